@@ -1,0 +1,11 @@
+// actionstring CLI — subcommand entry points.
+#pragma once
+
+namespace actionstring {
+namespace cli {
+
+/// `actionstring demo`: streams a synthetic performance through the runtime.
+int run_demo(int argc, char** argv);
+
+}  // namespace cli
+}  // namespace actionstring

@@ -1,0 +1,43 @@
+// actionstring — command line front end.
+#include <cstdio>
+#include <cstring>
+
+#include "actionstring/version.hpp"
+#include "commands.hpp"
+
+namespace {
+
+void print_usage(std::FILE* out) {
+    std::fprintf(out,
+                 "usage: actionstring <command> [options]\n"
+                 "\n"
+                 "commands:\n"
+                 "  demo       stream a synthetic performance through the runtime and print\n"
+                 "             the label timeline (no data needed)\n"
+                 "  version    print the library version\n"
+                 "\n"
+                 "Run 'actionstring <command> --help' for a command's options.\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        print_usage(stderr);
+        return 2;
+    }
+    const char* command = argv[1];
+    if (std::strcmp(command, "--help") == 0 || std::strcmp(command, "-h") == 0 ||
+        std::strcmp(command, "help") == 0) {
+        print_usage(stdout);
+        return 0;
+    }
+    if (std::strcmp(command, "version") == 0 || std::strcmp(command, "--version") == 0) {
+        std::printf("actionstring %s\n", actionstring::version_string());
+        return 0;
+    }
+    if (std::strcmp(command, "demo") == 0) return actionstring::cli::run_demo(argc - 1, argv + 1);
+    std::fprintf(stderr, "actionstring: unknown command '%s'\n\n", command);
+    print_usage(stderr);
+    return 2;
+}

@@ -1,0 +1,147 @@
+// actionstring — the per-frame annotator: every stage in order (DESIGN §2).
+//
+// push_frame(): StringEncoder (normalise → project → GMM posterior → tree
+// descent, at the string rate) → WindowMatcher (one DP line per open window
+// and representative) → kNN label whenever a window completes.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "actionstring/capacity.hpp"
+#include "actionstring/classify.hpp"
+#include "actionstring/encoder.hpp"
+#include "actionstring/matcher.hpp"
+#include "actionstring/model.hpp"
+#include "actionstring/status.hpp"
+
+namespace actionstring {
+
+/// Stream settings that are not part of the model.
+struct AnnotatorConfig {
+    /// A gap longer than this between accepted frames (dropped or rejected
+    /// frames, a paused source) restarts the stream: open windows are
+    /// discarded and the label becomes unknown. Must be ≥ the string period.
+    std::int64_t max_gap_us = 1000000;
+};
+
+/// What one push_frame() did.
+struct FrameResult {
+    /// ok or stream_restarted when the frame was accepted; otherwise the reason
+    /// it was rejected (non_finite_input, tracking_lost, degenerate_pose,
+    /// pose_out_of_range, time_went_backwards, not_initialized, invalid_argument).
+    /// A rejected frame changes nothing: the string, windows and label hold.
+    Status status = Status::ok;
+    /// Characters this frame appended to the action string.
+    std::uint32_t characters = 0;
+    /// Windows that completed during this frame (the last one is last_window()).
+    std::uint32_t windows_completed = 0;
+};
+
+/// One completed sliding window and the label it voted for.
+struct WindowResult {
+    std::uint64_t first_character = 0;  ///< Stream index of its first character.
+    std::int64_t start_time_us = 0;     ///< Time of its first character's tick.
+    std::int64_t end_time_us = 0;       ///< Time of its last character's tick.
+    Classification classification;
+};
+
+/// The runtime recogniser. All storage is inside the object and fixed by `Cap`;
+/// it never allocates. Keeps a pointer to the ModelView given to init(): that
+/// object and its tables must outlive the annotator (or the next init()).
+template <class Cap>
+class Annotator {
+public:
+    /// Binds a model. Returns invalid_model (inconsistent tables, or precision
+    /// factors that could overflow float), model_exceeds_capacity,
+    /// invalid_argument (config) or ok. Not usable until it returns ok.
+    Status init(const ModelView& model, const AnnotatorConfig& config = {}) noexcept {
+        model_ = nullptr;
+        Status status = matcher_.init(model);
+        if (status == Status::ok) status = encoder_.init(model, config.max_gap_us);
+        if (status != Status::ok) return status;
+        model_ = &model;
+        reset();
+        return Status::ok;
+    }
+
+    /// Starts a new stream: forgets the string, the windows and the label.
+    void reset() noexcept {
+        encoder_.reset();
+        matcher_.reset();
+        has_window_ = false;
+        window_ = WindowResult{};
+        last_character_ = 0;
+    }
+
+    /// Feeds one frame.
+    /// @param time_us   the frame's capture time in microseconds (any origin,
+    ///                  non-decreasing; equal times are treated as one instant)
+    /// @param positions joint_count × 3 floats, xyz per joint in metres; read
+    ///                  only during the call
+    FrameResult push_frame(std::int64_t time_us, const float* positions) noexcept {
+        FrameResult result;
+        if (model_ == nullptr) {
+            result.status = Status::not_initialized;
+            return result;
+        }
+        const EncodedFrame encoded = encoder_.push_frame(time_us, positions);
+        result.status = encoded.status;
+        if (!encoded.accepted()) return result;
+        if (encoded.status == Status::stream_restarted) {
+            matcher_.reset();
+            has_window_ = false;
+        }
+        emit(encoded.previous, encoded.from_previous, result);
+        emit(encoded.current, encoded.from_current, result);
+        return result;
+    }
+
+    /// Label of the latest completed window, or unknown_label (before the first
+    /// window, after a restart, or when nothing is close enough).
+    LabelId label() const noexcept { return has_window_ ? window_.classification.label : unknown_label; }
+    float confidence() const noexcept { return has_window_ ? window_.classification.confidence : 0.0f; }
+    /// Name of label(), or "unknown". Static storage owned by the model.
+    const char* label_name() const noexcept {
+        const LabelId id = label();
+        return id == unknown_label || model_ == nullptr ? "unknown" : model_->label_names[id];
+    }
+    /// The latest completed window, or null before the first one.
+    const WindowResult* last_window() const noexcept { return has_window_ ? &window_ : nullptr; }
+    /// Its distance to each representative (representative_count floats, owned
+    /// by the annotator, valid until the next push_frame()), or null.
+    const float* last_window_distances() const noexcept {
+        return has_window_ ? matcher_.completed_distances() : nullptr;
+    }
+    /// Characters in the current stream's string so far.
+    std::uint64_t characters() const noexcept { return matcher_.characters_pushed(); }
+    /// The most recent character (meaningful once characters() > 0).
+    Character last_character() const noexcept { return last_character_; }
+    bool initialized() const noexcept { return model_ != nullptr; }
+
+private:
+    void emit(Character character, std::uint32_t count, FrameResult& result) noexcept {
+        for (std::uint32_t t = 0; t < count; ++t) {
+            const std::uint64_t index = matcher_.characters_pushed();
+            last_character_ = character;
+            ++result.characters;
+            if (!matcher_.push(character)) continue;
+            ++result.windows_completed;
+            has_window_ = true;
+            window_.first_character = matcher_.completed_window_start();
+            window_.start_time_us = encoder_.tick_time_us(window_.first_character);
+            window_.end_time_us = encoder_.tick_time_us(index);
+            window_.classification =
+                classify_distances<Cap::max_representatives>(*model_, matcher_.completed_distances());
+        }
+    }
+
+    const ModelView* model_ = nullptr;
+    StringEncoder<Cap> encoder_;
+    WindowMatcher<Cap> matcher_;
+    bool has_window_ = false;
+    WindowResult window_;
+    Character last_character_ = 0;
+};
+
+}  // namespace actionstring

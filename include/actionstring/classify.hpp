@@ -1,0 +1,83 @@
+// actionstring — kNN over the representatives (DESIGN §1.8).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "actionstring/detail/math.hpp"
+#include "actionstring/model.hpp"
+
+namespace actionstring {
+
+/// Label decided from one set of distances to the representatives.
+struct Classification {
+    /// Winning label, or unknown_label when its nearest representative is
+    /// further than the model's unknown_distance.
+    LabelId label = unknown_label;
+    /// The vote's winner even when `label` is unknown (for diagnostics).
+    LabelId nearest_label = unknown_label;
+    /// Distance to the nearest representative of the winning label.
+    float distance = detail::infinity();
+    /// Margin in [0, 1]: 1 − distance / (distance to the nearest representative
+    /// of any other label); 1 when no other label exists, 0 when unknown or
+    /// when another label is at least as close.
+    float confidence = 0.0f;
+    /// Index of the nearest representative of the winning label.
+    std::uint16_t representative = 0xFFFF;
+};
+
+/// k-nearest-neighbour vote over representative distances (k = model.neighbours).
+/// The label with most votes among the k nearest wins; on a tie, the label of
+/// the nearer neighbour. Equal distances keep representative order.
+/// @tparam MaxRepresentatives bound on model.representative_count (stack scratch)
+/// @param distances representative_count floats; read only during the call
+template <std::size_t MaxRepresentatives>
+inline Classification classify_distances(const ModelView& model, const float* distances) noexcept {
+    Classification result;
+    const std::size_t R = model.representative_count;
+    if (distances == nullptr || R == 0 || R > MaxRepresentatives) return result;
+    const std::size_t k = model.neighbours < R ? model.neighbours : R;
+
+    // Insertion into a sorted list of the k nearest: k is small.
+    std::uint16_t nearest[MaxRepresentatives];
+    std::size_t found = 0;
+    for (std::size_t r = 0; r < R; ++r) {
+        const float d = distances[r];
+        if (detail::is_nan(d)) continue;
+        if (found == k && !(d < distances[nearest[k - 1]])) continue;
+        std::size_t at = found < k ? found++ : k - 1;
+        while (at > 0 && d < distances[nearest[at - 1]]) {
+            nearest[at] = nearest[at - 1];
+            --at;
+        }
+        nearest[at] = static_cast<std::uint16_t>(r);
+    }
+    if (found == 0) return result;
+
+    std::size_t best_votes = 0;
+    for (std::size_t a = 0; a < found; ++a) {
+        const LabelId label = model.representative_labels[nearest[a]];
+        std::size_t votes = 0;
+        for (std::size_t b = 0; b < found; ++b) votes += model.representative_labels[nearest[b]] == label;
+        if (votes > best_votes) {
+            best_votes = votes;
+            result.nearest_label = label;
+            result.representative = nearest[a];
+            result.distance = distances[nearest[a]];
+        }
+    }
+
+    float other = detail::infinity();
+    for (std::size_t r = 0; r < R; ++r)
+        if (model.representative_labels[r] != result.nearest_label && distances[r] < other)
+            other = distances[r];
+    if (!(result.distance <= model.unknown_distance)) return result;  // unknown
+    result.label = result.nearest_label;
+    if (!detail::is_finite(other))
+        result.confidence = 1.0f;
+    else if (other > result.distance)
+        result.confidence = (other - result.distance) / other;
+    return result;
+}
+
+}  // namespace actionstring

@@ -1,0 +1,135 @@
+// actionstring — stage 3: GMM posterior pose feature (DESIGN §1.3, paper §3).
+//
+// log N(z; μ_j, Σ_j) = log_normalizer_j − ½ ‖U_j (z − μ_j)‖², with the
+// precision Σ_j⁻¹ = U_jᵀ U_j precomputed by the trainer, so the runtime never
+// inverts a matrix or takes a determinant. Posteriors come from log-sum-exp.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+#include "actionstring/detail/math.hpp"
+#include "actionstring/model.hpp"
+#include "actionstring/status.hpp"
+
+namespace actionstring {
+
+/// Squared Mahalanobis distance ‖U_j (z − μ_j)‖² of a feature to component j.
+/// @tparam MaxFeatureDim bound on model.feature_dim (stack scratch)
+template <std::size_t MaxFeatureDim>
+inline float gmm_mahalanobis_sq(const ModelView& model, std::size_t component,
+                                const float* feature) noexcept {
+    const std::size_t d = model.feature_dim;
+    const float* mean = model.gmm_means + component * d;
+    const float* factor = model.gmm_factors + component * model.factor_size();
+    float diff[MaxFeatureDim];
+    for (std::size_t c = 0; c < d; ++c) diff[c] = feature[c] - mean[c];
+    float q = 0.0f;
+    if (model.covariance == Covariance::diagonal) {
+        for (std::size_t c = 0; c < d; ++c) {
+            const float y = factor[c] * diff[c];
+            q += y * y;
+        }
+        return q;
+    }
+    // U packed column by column (LAPACK 'U' packed): column c holds U[0..c][c].
+    // Accumulating y[r] column by column keeps every sum in one fixed order
+    // while the inner loop over r is independent, so it vectorises.
+    float y[MaxFeatureDim];
+    for (std::size_t r = 0; r < d; ++r) y[r] = 0.0f;
+    for (std::size_t c = 0; c < d; ++c) {
+        const float dc = diff[c];
+        for (std::size_t r = 0; r <= c; ++r) y[r] += factor[r] * dc;
+        factor += c + 1;
+    }
+    for (std::size_t r = 0; r < d; ++r) q += y[r] * y[r];
+    return q;
+}
+
+/// True when no pose within max_pose_coordinate of the root can drive a
+/// component's squared distance past float range, so gmm_posterior() cannot
+/// fail on a pose that normalize_pose() accepted. Bounds every term in double.
+inline bool gmm_is_overflow_safe(const ModelView& model, float max_coordinate) noexcept {
+    const std::size_t pose_dim = model.pose_dim();
+    const std::size_t d = model.feature_dim;
+    const double coordinate_bound = static_cast<double>(max_coordinate);
+    double feature_bound = coordinate_bound;
+    if (model.has_projection()) {
+        double mean_bound = 0.0;
+        for (std::size_t c = 0; c < pose_dim; ++c) {
+            const double v = std::fabs(static_cast<double>(model.projection_mean[c]));
+            if (v > mean_bound) mean_bound = v;
+        }
+        feature_bound = 0.0;
+        for (std::size_t r = 0; r < d; ++r) {
+            double row = 0.0;
+            for (std::size_t c = 0; c < pose_dim; ++c)
+                row += std::fabs(static_cast<double>(model.projection_matrix[r * pose_dim + c]));
+            row *= coordinate_bound + mean_bound;
+            if (row > feature_bound) feature_bound = row;
+        }
+    }
+    for (std::size_t j = 0; j < model.component_count; ++j) {
+        double diff_bound = 0.0;
+        for (std::size_t c = 0; c < d; ++c) {
+            const double v = feature_bound + std::fabs(static_cast<double>(model.gmm_means[j * d + c]));
+            if (v > diff_bound) diff_bound = v;
+        }
+        double factor_sum = 0.0;
+        const std::size_t size = model.factor_size();
+        for (std::size_t k = 0; k < size; ++k)
+            factor_sum += std::fabs(static_cast<double>(model.gmm_factors[j * size + k]));
+        const double y_bound = factor_sum * diff_bound;  // bounds every |y_r|
+        // q ≤ d·y², then ×0.5 and the finite log terms; keep a wide margin below FLT_MAX.
+        if (!(static_cast<double>(d) * y_bound * y_bound < 1.0e36)) return false;
+    }
+    return true;
+}
+
+/// Writes log(w_j N(z; μ_j, Σ_j)) for every component.
+/// @param feature    feature_dim floats; read only during the call
+/// @param log_joint  receives component_count floats (caller-owned)
+template <std::size_t MaxFeatureDim>
+inline Status gmm_log_joint(const ModelView& model, const float* feature, float* log_joint) noexcept {
+    if (feature == nullptr || log_joint == nullptr) return Status::invalid_argument;
+    if (model.feature_dim > MaxFeatureDim) return Status::model_exceeds_capacity;
+    for (std::size_t j = 0; j < model.component_count; ++j)
+        log_joint[j] = model.gmm_log_weights[j] + model.gmm_log_normalizers[j] -
+                       0.5f * gmm_mahalanobis_sq<MaxFeatureDim>(model, j, feature);
+    return Status::ok;
+}
+
+/// The pose feature t = [p(1|z) … p(J|z)] (paper eq. 5).
+///
+/// Always sums to 1 and is never all zero: far from every key-pose the nearest
+/// component (in likelihood) takes the mass instead of every term underflowing.
+///
+/// @param feature         feature_dim floats; read only during the call
+/// @param posterior       receives component_count floats (caller-owned)
+/// @param log_likelihood  if not null, receives log p(z) under the mixture
+/// @return ok, or pose_out_of_range when no likelihood is finite in float
+template <std::size_t MaxFeatureDim>
+inline Status gmm_posterior(const ModelView& model, const float* feature, float* posterior,
+                            float* log_likelihood = nullptr) noexcept {
+    const Status status = gmm_log_joint<MaxFeatureDim>(model, feature, posterior);
+    if (status != Status::ok) return status;
+    const std::size_t J = model.component_count;
+    float peak = -detail::infinity();
+    for (std::size_t j = 0; j < J; ++j) {
+        if (detail::is_nan(posterior[j])) return Status::pose_out_of_range;
+        if (posterior[j] > peak) peak = posterior[j];
+    }
+    if (!detail::is_finite(peak)) return Status::pose_out_of_range;
+    float sum = 0.0f;
+    for (std::size_t j = 0; j < J; ++j) {
+        posterior[j] = std::exp(posterior[j] - peak);
+        sum += posterior[j];
+    }
+    // sum ≥ 1: the peak term is exp(0).
+    const float inverse = 1.0f / sum;
+    for (std::size_t j = 0; j < J; ++j) posterior[j] *= inverse;
+    if (log_likelihood != nullptr) *log_likelihood = peak + std::log(sum);
+    return Status::ok;
+}
+
+}  // namespace actionstring

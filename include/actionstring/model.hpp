@@ -1,0 +1,250 @@
+// actionstring — the model view: every table the runtime reads.
+//
+// A generated header fills a `constexpr ModelView` whose pointers refer to
+// `constexpr` arrays; host tools fill one that points into a loaded artifact.
+// Both drive the same per-frame code, so they agree bit for bit.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "actionstring/detail/math.hpp"
+#include "actionstring/status.hpp"
+
+namespace actionstring {
+
+/// One symbol of an action string: the index of a leaf of the cluster tree.
+using Character = std::uint16_t;
+/// Index into the model's label names.
+using LabelId = std::uint16_t;
+/// Returned instead of a label when no representative is close enough.
+constexpr LabelId unknown_label = 0xFFFF;
+
+/// Shape of each GMM component's covariance.
+enum class Covariance : std::uint8_t { full = 0, diagonal = 1 };
+
+/// Boundary conditions of the string distance (DESIGN §1.6).
+enum class MatchVariant : std::uint8_t {
+    /// Qi et al. eqs. 6–7 as printed: row 0 is 0, column 0 holds W[A1(i)][A2(1)].
+    paper = 0,
+    /// Classic DTW: D[0][0] = 0, the rest of row 0 and column 0 infinite.
+    whole = 1,
+    /// The shorter string matches anywhere inside the longer one:
+    /// row 0 free, column 0 infinite, minimum over the last row.
+    subsequence = 2,
+};
+
+/// What the accumulated string distance is divided by.
+enum class LengthNormalization : std::uint8_t {
+    none = 0,
+    /// Number of cells on the optimal warping path.
+    path = 1,
+    /// Length of the query (the first argument; the window when streaming).
+    query = 2,
+};
+
+/// Optional size normalisation of the pose vector.
+enum class ScaleMode : std::uint8_t {
+    none = 0,
+    /// Divide by the 3-D hip width and multiply by `reference_scale`, so poses
+    /// of actors of different size map to the same units.
+    hip_width = 1,
+};
+
+/// Non-owning view of a trained model. All pointers refer to storage that must
+/// outlive every state object initialised from this view (a generated header's
+/// `constexpr` arrays live forever; a host artifact must outlive its users).
+struct ModelView {
+    // --- skeleton and pose normalisation (DESIGN §1.1) ---
+    std::uint16_t joint_count = 0;       ///< Joints per input frame (xyz each).
+    std::uint16_t root_joint = 0;        ///< Joint the pose is made relative to.
+    std::uint16_t left_hip_joint = 0;    ///< Left hip, for the facing direction.
+    std::uint16_t right_hip_joint = 0;   ///< Right hip, for the facing direction.
+    std::uint8_t up_axis = 1;            ///< 0 = x, 1 = y, 2 = z.
+    ScaleMode scale_mode = ScaleMode::none;
+    float reference_scale = 1.0f;        ///< Target hip width when scale_mode == hip_width.
+    std::uint16_t pose_joint_count = 0;  ///< Joints that make up the pose vector.
+    const std::uint16_t* pose_joints = nullptr;  ///< [pose_joint_count] joint indices.
+
+    // --- optional projection z = P (x - m) (DESIGN §1.2) ---
+    std::uint16_t feature_dim = 0;              ///< d; equals 3 * pose_joint_count without PCA.
+    const float* projection_mean = nullptr;     ///< [3 * pose_joint_count] or null for no PCA.
+    const float* projection_matrix = nullptr;   ///< [feature_dim x 3 * pose_joint_count], row-major.
+
+    // --- GMM of key-poses (DESIGN §1.3) ---
+    std::uint16_t component_count = 0;  ///< J.
+    Covariance covariance = Covariance::full;
+    const float* gmm_means = nullptr;            ///< [J x d], row-major.
+    /// Factor U of each component's precision, precision = Uᵀ U with U upper
+    /// triangular (U is the transpose of the precision's Cholesky factor).
+    /// Full: [J x d(d+1)/2], each U packed column by column (LAPACK 'U'
+    /// packed: column c holds U[0..c][c]). Diagonal: [J x d], the square
+    /// roots of the precisions.
+    const float* gmm_factors = nullptr;
+    const float* gmm_log_normalizers = nullptr;  ///< [J] −d/2·log 2π + Σ log U_ii.
+    const float* gmm_log_weights = nullptr;      ///< [J] log of the mixture weights.
+
+    // --- cluster tree whose leaves are the characters (DESIGN §1.4) ---
+    std::uint16_t node_count = 0;                ///< Node 0 is the root.
+    const float* node_centroids = nullptr;       ///< [node_count x J].
+    /// [node_count x 2] children; both −1 at a leaf. A child's index is always
+    /// greater than its parent's, which bounds the descent by node_count.
+    const std::int16_t* node_children = nullptr;
+    const Character* node_characters = nullptr;  ///< [node_count]; meaningful at leaves.
+    std::uint16_t character_count = 0;           ///< K.
+    const float* character_distances = nullptr;  ///< W, [K x K], row-major.
+
+    // --- strings and representatives (DESIGN §1.5, §1.7) ---
+    std::uint32_t string_period_us = 0;          ///< One character every this many µs.
+    std::uint16_t representative_count = 0;      ///< R.
+    const std::uint32_t* representative_offsets = nullptr;  ///< [R + 1] into representative_chars.
+    const Character* representative_chars = nullptr;        ///< Concatenated strings.
+    const LabelId* representative_labels = nullptr;         ///< [R].
+    std::uint16_t label_count = 0;
+    const char* const* label_names = nullptr;    ///< [label_count] NUL-terminated names.
+
+    // --- matching and labelling (DESIGN §1.6, §1.8) ---
+    MatchVariant variant = MatchVariant::whole;
+    LengthNormalization normalization = LengthNormalization::none;
+    std::uint16_t window_chars = 0;   ///< Sliding window length in characters.
+    std::uint16_t step_chars = 0;     ///< A new window starts every step_chars characters.
+    std::uint16_t neighbours = 1;     ///< k of the kNN vote.
+    float unknown_distance = detail::infinity();  ///< Best distance above this → unknown.
+
+    /// D, the length of the normalised pose vector.
+    constexpr std::size_t pose_dim() const noexcept { return 3u * pose_joint_count; }
+    constexpr bool has_projection() const noexcept { return projection_matrix != nullptr; }
+    /// Floats per component in gmm_factors.
+    constexpr std::size_t factor_size() const noexcept {
+        return covariance == Covariance::full
+                   ? static_cast<std::size_t>(feature_dim) * (feature_dim + 1u) / 2u
+                   : feature_dim;
+    }
+    constexpr std::uint32_t representative_length(std::size_t r) const noexcept {
+        return representative_offsets[r + 1] - representative_offsets[r];
+    }
+    constexpr std::uint32_t total_representative_chars() const noexcept {
+        return representative_count == 0 ? 0u : representative_offsets[representative_count];
+    }
+    /// Windows that can be open at once: ceil(window / step).
+    constexpr std::uint32_t max_open_windows() const noexcept {
+        return step_chars == 0 ? 0u : (window_chars + step_chars - 1u) / step_chars;
+    }
+};
+
+/// Weights W[a][b] between characters: K × K floats, row-major, not owned.
+struct CharacterWeights {
+    const float* values = nullptr;
+    std::size_t character_count = 0;
+    float operator()(Character a, Character b) const noexcept {
+        return values[static_cast<std::size_t>(a) * character_count + b];
+    }
+};
+
+/// The model's W as CharacterWeights.
+constexpr CharacterWeights character_weights(const ModelView& m) noexcept {
+    return CharacterWeights{m.character_distances, m.character_count};
+}
+
+namespace detail {
+
+inline bool all_finite(const float* values, std::size_t count) noexcept {
+    if (values == nullptr) return false;
+    for (std::size_t i = 0; i < count; ++i)
+        if (!is_finite(values[i])) return false;
+    return true;
+}
+
+}  // namespace detail
+
+/// Checks the tables that turn frames into characters (skeleton, projection,
+/// GMM, tree, W, string rate) so the per-frame code can trust them. O(table
+/// size); call once, before streaming. Returns ok or invalid_model.
+inline Status validate_feature_tables(const ModelView& m) noexcept {
+    using detail::all_finite;
+    const auto bad = Status::invalid_model;
+    // Skeleton.
+    if (m.joint_count == 0 || m.up_axis > 2) return bad;
+    if (m.scale_mode > ScaleMode::hip_width || m.covariance > Covariance::diagonal) return bad;
+    if (m.root_joint >= m.joint_count || m.left_hip_joint >= m.joint_count ||
+        m.right_hip_joint >= m.joint_count || m.left_hip_joint == m.right_hip_joint)
+        return bad;
+    if (m.scale_mode == ScaleMode::hip_width &&
+        !(detail::is_finite(m.reference_scale) && m.reference_scale > 0.0f))
+        return bad;
+    if (m.pose_joint_count == 0 || m.pose_joints == nullptr) return bad;
+    for (std::size_t i = 0; i < m.pose_joint_count; ++i)
+        if (m.pose_joints[i] >= m.joint_count) return bad;
+    // Projection.
+    const std::size_t pose_dim = m.pose_dim();
+    if (m.feature_dim == 0) return bad;
+    if (m.has_projection()) {
+        if (m.feature_dim > pose_dim) return bad;
+        if (!all_finite(m.projection_mean, pose_dim)) return bad;
+        if (!all_finite(m.projection_matrix, pose_dim * m.feature_dim)) return bad;
+    } else if (m.feature_dim != pose_dim) {
+        return bad;
+    }
+    // GMM.
+    const std::size_t J = m.component_count;
+    if (J == 0) return bad;
+    if (!all_finite(m.gmm_means, J * m.feature_dim)) return bad;
+    if (!all_finite(m.gmm_factors, J * m.factor_size())) return bad;
+    if (!all_finite(m.gmm_log_normalizers, J)) return bad;
+    if (!all_finite(m.gmm_log_weights, J)) return bad;
+    // Tree: children point forward and leaves carry a character.
+    if (m.node_count == 0 || m.node_children == nullptr || m.node_characters == nullptr) return bad;
+    if (!all_finite(m.node_centroids, static_cast<std::size_t>(m.node_count) * J)) return bad;
+    const std::size_t K = m.character_count;
+    if (K == 0) return bad;
+    for (std::size_t n = 0; n < m.node_count; ++n) {
+        const int left = m.node_children[2 * n], right = m.node_children[2 * n + 1];
+        const bool leaf = left < 0 && right < 0;
+        if (leaf) {
+            if (m.node_characters[n] >= K) return bad;
+            continue;
+        }
+        if (left <= static_cast<int>(n) || right <= static_cast<int>(n) || left == right) return bad;
+        if (left >= m.node_count || right >= m.node_count) return bad;
+    }
+    if (!all_finite(m.character_distances, K * K)) return bad;
+    if (m.string_period_us == 0) return bad;
+    return Status::ok;
+}
+
+/// Checks the tables that turn characters into labels (representatives,
+/// labels, window and kNN settings); the character count must already be valid.
+inline Status validate_matching_tables(const ModelView& m) noexcept {
+    const auto bad = Status::invalid_model;
+    const std::size_t K = m.character_count;
+    // Strings and representatives.
+    if (m.label_count == 0 || m.label_names == nullptr) return bad;
+    for (std::size_t l = 0; l < m.label_count; ++l)
+        if (m.label_names[l] == nullptr) return bad;
+    const std::size_t R = m.representative_count;
+    if (R == 0 || m.representative_offsets == nullptr || m.representative_chars == nullptr ||
+        m.representative_labels == nullptr)
+        return bad;
+    if (m.representative_offsets[0] != 0) return bad;
+    for (std::size_t r = 0; r < R; ++r) {
+        if (m.representative_offsets[r + 1] <= m.representative_offsets[r]) return bad;
+        if (m.representative_labels[r] >= m.label_count) return bad;
+    }
+    for (std::size_t c = 0; c < m.total_representative_chars(); ++c)
+        if (m.representative_chars[c] >= K) return bad;
+    // Matching.
+    if (m.variant > MatchVariant::subsequence) return bad;
+    if (m.normalization > LengthNormalization::query) return bad;
+    if (m.window_chars == 0 || m.step_chars == 0) return bad;
+    if (m.neighbours == 0 || m.neighbours > R) return bad;
+    if (detail::is_nan(m.unknown_distance) || m.unknown_distance < 0.0f) return bad;
+    return Status::ok;
+}
+
+/// Checks every index, size and value of a complete model.
+inline Status validate_model(const ModelView& m) noexcept {
+    const Status status = validate_feature_tables(m);
+    return status != Status::ok ? status : validate_matching_tables(m);
+}
+
+}  // namespace actionstring

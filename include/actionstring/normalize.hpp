@@ -1,0 +1,91 @@
+// actionstring — stage 1: pose normalisation (DESIGN §1.1).
+//
+// Joint positions become a pose vector that does not depend on where the
+// actor stands or which way they face: positions relative to the root joint,
+// rotated about the up axis so the hips face a canonical direction, optionally
+// scaled by hip width.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+#include <Eigen/Core>
+
+#include "actionstring/detail/math.hpp"
+#include "actionstring/model.hpp"
+#include "actionstring/status.hpp"
+
+namespace actionstring {
+
+/// Coordinates further than this from the root (metres, after scaling) are
+/// treated as corrupt input rather than a pose: nothing human is 10 km wide,
+/// and the bound keeps the GMM's squared distances far from float overflow.
+constexpr float max_pose_coordinate = 1.0e4f;
+
+/// The canonical facing: after normalisation the horizontal hip vector
+/// (right hip − left hip) points along the first horizontal axis, i.e. the
+/// axis (up_axis + 1) mod 3 (z for a y-up skeleton, x for a z-up one).
+///
+/// @param model     the model (joint roles, up axis, pose joints, scale mode)
+/// @param positions joint_count × 3 floats, xyz per joint in metres; read only
+///                  during the call
+/// @param pose_out  receives pose_dim() floats (caller-owned); its contents
+///                  are meaningful only when the call returns Status::ok
+/// @return ok, non_finite_input, tracking_lost (every joint the model reads is
+///         exactly at the origin, as Kinect reports lost tracking),
+///         degenerate_pose (no facing direction) or pose_out_of_range
+inline Status normalize_pose(const ModelView& model, const float* positions,
+                             float* pose_out) noexcept {
+    if (positions == nullptr || pose_out == nullptr) return Status::invalid_argument;
+    using Vec3 = Eigen::Vector3f;
+    auto joint = [positions](std::size_t index) {
+        return Eigen::Map<const Vec3>(positions + 3 * index);
+    };
+
+    // Validate only the joints the model reads: engine rigs carry many more.
+    bool any_non_zero = false;
+    auto check = [&](std::size_t index) {
+        const Vec3 p = joint(index);
+        for (int a = 0; a < 3; ++a) {
+            if (!detail::is_finite(p[a])) return false;
+            any_non_zero = any_non_zero || p[a] != 0.0f;
+        }
+        return true;
+    };
+    if (!check(model.root_joint) || !check(model.left_hip_joint) || !check(model.right_hip_joint))
+        return Status::non_finite_input;
+    for (std::size_t k = 0; k < model.pose_joint_count; ++k)
+        if (!check(model.pose_joints[k])) return Status::non_finite_input;
+    if (!any_non_zero) return Status::tracking_lost;
+
+    const int up = model.up_axis;
+    const int h1 = (up + 1) % 3;
+    const int h2 = (up + 2) % 3;
+    const Vec3 root = joint(model.root_joint);
+    const Vec3 hips = joint(model.right_hip_joint) - joint(model.left_hip_joint);
+    const float hip_width = hips.norm();
+    const float horizontal = std::sqrt(hips[h1] * hips[h1] + hips[h2] * hips[h2]);
+    // Hips nearly along the up axis leave the facing undefined (below ~0.06°).
+    if (!(horizontal > 1.0e-6f) || !(horizontal > 1.0e-3f * hip_width))
+        return Status::degenerate_pose;
+    const float cos_a = hips[h1] / horizontal;
+    const float sin_a = hips[h2] / horizontal;
+    const float scale =
+        model.scale_mode == ScaleMode::hip_width ? model.reference_scale / hip_width : 1.0f;
+
+    for (std::size_t k = 0; k < model.pose_joint_count; ++k) {
+        const Vec3 rel = (joint(model.pose_joints[k]) - root) * scale;
+        Vec3 out;
+        out[up] = rel[up];
+        out[h1] = cos_a * rel[h1] + sin_a * rel[h2];
+        out[h2] = -sin_a * rel[h1] + cos_a * rel[h2];
+        for (int a = 0; a < 3; ++a) {
+            // Negated comparison also rejects a NaN from inf − inf.
+            if (!(std::fabs(out[a]) <= max_pose_coordinate)) return Status::pose_out_of_range;
+            pose_out[3 * k + static_cast<std::size_t>(a)] = out[a];
+        }
+    }
+    return Status::ok;
+}
+
+}  // namespace actionstring

@@ -1,0 +1,36 @@
+// actionstring — stage 2: optional linear projection z = P (x − m) (DESIGN §1.2).
+#pragma once
+
+#include <cstddef>
+
+#include "actionstring/model.hpp"
+#include "actionstring/status.hpp"
+
+namespace actionstring {
+
+/// Projects a normalised pose onto the model's feature space. Without a
+/// projection in the model the pose is copied unchanged.
+///
+/// Sums run in a fixed order over plain loops on purpose: a vectorised kernel
+/// that peels by pointer alignment would make a generated-table build and a
+/// host-loaded artifact differ in the last bit.
+///
+/// @param pose     pose_dim() floats from normalize_pose(); read only during the call
+/// @param feature  receives feature_dim floats (caller-owned); may not alias pose
+inline Status project_pose(const ModelView& model, const float* pose, float* feature) noexcept {
+    if (pose == nullptr || feature == nullptr) return Status::invalid_argument;
+    const std::size_t pose_dim = model.pose_dim();
+    if (!model.has_projection()) {
+        for (std::size_t i = 0; i < pose_dim; ++i) feature[i] = pose[i];
+        return Status::ok;
+    }
+    for (std::size_t r = 0; r < model.feature_dim; ++r) {
+        const float* row = model.projection_matrix + r * pose_dim;
+        float sum = 0.0f;
+        for (std::size_t c = 0; c < pose_dim; ++c) sum += row[c] * (pose[c] - model.projection_mean[c]);
+        feature[r] = sum;
+    }
+    return Status::ok;
+}
+
+}  // namespace actionstring
