@@ -45,13 +45,16 @@ struct Capacity {
                m.feature_dim <= max_feature_dim && m.component_count <= max_components;
     }
 
-    /// True when the whole model fits these bounds (the model itself is checked by validate_model).
-    static constexpr bool fits(const ModelView& m) noexcept {
-        return fits_features(m) && m.representative_count <= max_representatives &&
+    /// True when the matching tables fit (what a WindowMatcher needs).
+    static constexpr bool fits_matching(const ModelView& m) noexcept {
+        return m.representative_count <= max_representatives &&
                m.total_representative_chars() <= max_representative_chars &&
                m.max_open_windows() <= max_windows &&
                (path_lengths || m.normalization != LengthNormalization::path);
     }
+
+    /// True when the whole model fits these bounds (the model itself is checked by validate_model).
+    static constexpr bool fits(const ModelView& m) noexcept { return fits_features(m) && fits_matching(m); }
 };
 
 /// Bounds for host tools: Kinect v2 and ASF skeletons, J ≤ 64, up to 64

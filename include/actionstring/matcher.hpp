@@ -25,13 +25,14 @@ namespace actionstring {
 template <class Cap>
 class WindowMatcher {
 public:
-    /// Binds the matcher to a model and clears it. Returns invalid_model,
+    /// Binds the matcher to a model's matching tables (W, representatives,
+    /// window settings; the rest may be empty) and clears it. Returns invalid_model,
     /// model_exceeds_capacity or ok; on failure the matcher stays unusable.
     Status init(const ModelView& model) noexcept {
         model_ = nullptr;
-        const Status status = validate_model(model);
+        const Status status = validate_matching_tables(model);
         if (status != Status::ok) return status;
-        if (!Cap::fits(model)) return Status::model_exceeds_capacity;
+        if (!Cap::fits_matching(model)) return Status::model_exceeds_capacity;
         for (std::size_t r = 0; r < model.representative_count; ++r)
             if (model.representative_length(r) + model.window_chars > 0xFFFFu)
                 return Status::model_exceeds_capacity;

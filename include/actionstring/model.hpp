@@ -158,7 +158,7 @@ inline bool all_finite(const float* values, std::size_t count) noexcept {
 }  // namespace detail
 
 /// Checks the tables that turn frames into characters (skeleton, projection,
-/// GMM, tree, W, string rate) so the per-frame code can trust them. O(table
+/// GMM, tree, string rate) so the per-frame code can trust them. O(table
 /// size); call once, before streaming. Returns ok or invalid_model.
 inline Status validate_feature_tables(const ModelView& m) noexcept {
     using detail::all_finite;
@@ -207,16 +207,16 @@ inline Status validate_feature_tables(const ModelView& m) noexcept {
         if (left <= static_cast<int>(n) || right <= static_cast<int>(n) || left == right) return bad;
         if (left >= m.node_count || right >= m.node_count) return bad;
     }
-    if (!all_finite(m.character_distances, K * K)) return bad;
     if (m.string_period_us == 0) return bad;
     return Status::ok;
 }
 
-/// Checks the tables that turn characters into labels (representatives,
-/// labels, window and kNN settings); the character count must already be valid.
+/// Checks the tables that turn characters into labels (W, representatives,
+/// labels, window and kNN settings) so the matcher can trust them.
 inline Status validate_matching_tables(const ModelView& m) noexcept {
     const auto bad = Status::invalid_model;
     const std::size_t K = m.character_count;
+    if (K == 0 || !detail::all_finite(m.character_distances, K * K)) return bad;
     // Strings and representatives.
     if (m.label_count == 0 || m.label_names == nullptr) return bad;
     for (std::size_t l = 0; l < m.label_count; ++l)

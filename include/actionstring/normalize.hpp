@@ -36,7 +36,7 @@ constexpr float max_pose_coordinate = 1.0e4f;
 ///         degenerate_pose (no facing direction) or pose_out_of_range
 inline Status normalize_pose(const ModelView& model, const float* positions,
                              float* pose_out) noexcept {
-    if (positions == nullptr || pose_out == nullptr) return Status::invalid_argument;
+    if (positions == nullptr || pose_out == nullptr || model.up_axis > 2) return Status::invalid_argument;
     using Vec3 = Eigen::Vector3f;
     auto joint = [positions](std::size_t index) {
         return Eigen::Map<const Vec3>(positions + 3 * index);

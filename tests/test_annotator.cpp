@@ -1,0 +1,182 @@
+// The whole per-frame pipeline on the synthetic toy world.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "actionstring/annotator.hpp"
+#include "actionstring/string_distance.hpp"
+#include "actionstring_host/toy.hpp"
+
+using namespace actionstring;
+
+namespace {
+
+using Cap = Capacity<8, 8, 24, 16, 16, 256, 8>;
+
+struct Fixture {
+    host::ToyWorld world;
+    ModelView view;
+    std::unique_ptr<Annotator<Cap>> annotator = std::make_unique<Annotator<Cap>>();
+    explicit Fixture(const host::ToyOptions& options = {}) : world(host::make_toy_world(options)) {
+        view = world.model.view();
+        REQUIRE(annotator->init(view) == Status::ok);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("each action performed alone is recognised by its last window") {
+    for (const MatchVariant variant : {MatchVariant::whole, MatchVariant::subsequence, MatchVariant::paper}) {
+        host::ToyOptions options;
+        options.variant = variant;
+        Fixture f(options);
+        int right = 0, total = 0;
+        for (int action = 0; action < static_cast<int>(f.world.actions.size()); ++action) {
+            for (std::uint32_t seed = 1; seed <= 5; ++seed) {
+                host::ToyStreamOptions stream;
+                stream.seed = seed * 31 + static_cast<std::uint32_t>(action);
+                stream.frame_rate_hz = seed % 2 ? 30.0 : 120.0;
+                f.annotator->reset();
+                for (const auto& frame : host::toy_stream(f.world, {action}, stream))
+                    REQUIRE(f.annotator->push_frame(frame.time_us, frame.positions.data()).status == Status::ok);
+                REQUIRE(f.annotator->last_window() != nullptr);
+                right += f.annotator->label() == action;
+                ++total;
+            }
+        }
+        CAPTURE(static_cast<int>(variant));
+        // Whole and subsequence matching must get every clean toy action; the
+        // paper's boundaries may not (DESIGN §1.6), but must beat chance (1/4).
+        if (variant == MatchVariant::paper)
+            CHECK(right * 2 >= total);
+        else
+            CHECK(right == total);
+    }
+}
+
+TEST_CASE("window results carry their time span and the matcher's distances") {
+    Fixture f;
+    host::ToyStreamOptions stream;
+    stream.frame_rate_hz = 50.0;
+    const auto frames = host::toy_stream(f.world, {1, 3}, stream);
+    std::uint32_t windows = 0, characters = 0;
+    for (const auto& frame : frames) {
+        const FrameResult r = f.annotator->push_frame(frame.time_us, frame.positions.data());
+        windows += r.windows_completed;
+        characters += r.characters;
+    }
+    const std::uint32_t expected_chars =
+        static_cast<std::uint32_t>((frames.back().time_us - frames.front().time_us) / f.view.string_period_us) + 1;
+    CHECK(characters == expected_chars);
+    CHECK(f.annotator->characters() == expected_chars);
+    CHECK(windows == (expected_chars - f.view.window_chars) / f.view.step_chars + 1);
+    const WindowResult* w = f.annotator->last_window();
+    REQUIRE(w != nullptr);
+    CHECK(w->end_time_us - w->start_time_us == static_cast<std::int64_t>(f.view.window_chars - 1) * f.view.string_period_us);
+    CHECK(w->start_time_us == frames.front().time_us + static_cast<std::int64_t>(w->first_character) * f.view.string_period_us);
+    const float* distances = f.annotator->last_window_distances();
+    REQUIRE(distances != nullptr);
+    float best = std::numeric_limits<float>::infinity();
+    for (std::size_t r = 0; r < f.view.representative_count; ++r) best = std::min(best, distances[r]);
+    CHECK(w->classification.distance == best);
+}
+
+TEST_CASE("rejected frames are skipped: the string and label hold, time keeps the rate") {
+    Fixture f;
+    host::ToyStreamOptions stream;
+    const auto frames = host::toy_stream(f.world, {0, 2}, stream);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::uint32_t rejected = 0;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        std::vector<float> positions = frames[i].positions;
+        const bool lost = i >= 40 && i < 52;  // 0.4 s without tracking, shorter than the maximum gap
+        if (lost) std::fill(positions.begin(), positions.end(), 0.0f);
+        if (i == 70) positions[4] = nan;
+        const std::uint64_t before = f.annotator->characters();
+        const LabelId label_before = f.annotator->label();
+        const FrameResult r = f.annotator->push_frame(frames[i].time_us, positions.data());
+        if (lost || i == 70) {
+            CHECK(r.status == (lost ? Status::tracking_lost : Status::non_finite_input));
+            CHECK(r.characters == 0);
+            CHECK(f.annotator->characters() == before);
+            CHECK(f.annotator->label() == label_before);
+            ++rejected;
+        } else {
+            CHECK(r.status == Status::ok);
+        }
+    }
+    CHECK(rejected == 13);
+    // The gap was bridged: the string has one character per period of stream time.
+    CHECK(f.annotator->characters() ==
+          static_cast<std::uint64_t>((frames.back().time_us - frames.front().time_us) / f.view.string_period_us) + 1);
+}
+
+TEST_CASE("a gap longer than the maximum restarts the stream") {
+    Fixture f;
+    host::ToyStreamOptions stream;
+    const auto frames = host::toy_stream(f.world, {3, 3}, stream);
+    std::size_t i = 0;
+    for (; frames[i].time_us < 3000000; ++i) f.annotator->push_frame(frames[i].time_us, frames[i].positions.data());
+    REQUIRE(f.annotator->label() != unknown_label);
+    const std::vector<float> lost(15, 0.0f);
+    const std::int64_t resume = frames[i].time_us + 1500000;
+    for (std::int64_t t = frames[i].time_us; t < resume; t += 33333)
+        CHECK(f.annotator->push_frame(t, lost.data()).status == Status::tracking_lost);
+    const FrameResult r = f.annotator->push_frame(resume, frames[i].positions.data());
+    CHECK(r.status == Status::stream_restarted);
+    CHECK(r.characters == 1);
+    CHECK(f.annotator->characters() == 1);
+    CHECK(f.annotator->label() == unknown_label);
+    CHECK(f.annotator->last_window() == nullptr);
+    CHECK(f.annotator->push_frame(resume - 1, frames[i].positions.data()).status == Status::time_went_backwards);
+}
+
+TEST_CASE("garbage frames never crash, hang or leak NaN into labels") {
+    Fixture f;
+    std::mt19937 rng(77);
+    std::uniform_int_distribution<int> kind(0, 9);
+    std::uniform_real_distribution<float> coordinate(-3.0f, 3.0f);
+    const auto clean = host::toy_stream(f.world, {0, 1, 2, 3, 0, 1}, {});
+    const float specials[] = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                              -std::numeric_limits<float>::infinity(), 1e38f, -1e38f, 1e-40f, 0.0f, -0.0f};
+    std::int64_t time = 0;
+    for (int i = 0; i < 6000; ++i) {
+        std::vector<float> positions = clean[static_cast<std::size_t>(i) % clean.size()].positions;
+        switch (kind(rng)) {
+            case 0: for (auto& p : positions) p = coordinate(rng); break;
+            case 1: positions[static_cast<std::size_t>(i) % 15] = specials[static_cast<std::size_t>(i) % 8]; break;
+            case 2: for (auto& p : positions) p = specials[static_cast<std::size_t>(i + kind(rng)) % 8]; break;
+            case 3: time -= 10000; break;
+            case 4: time += 3000000; break;
+            default: break;
+        }
+        time += 33333;
+        f.annotator->push_frame(time, positions.data());
+        const LabelId label = f.annotator->label();
+        CHECK((label == unknown_label || label < f.view.label_count));
+        const float confidence = f.annotator->confidence();
+        CHECK((confidence >= 0.0f && confidence <= 1.0f));
+        if (const float* d = f.annotator->last_window_distances())
+            for (std::size_t r = 0; r < f.view.representative_count; ++r) CHECK_FALSE(std::isnan(d[r]));
+    }
+}
+
+TEST_CASE("reset() gives the same results as a fresh annotator") {
+    Fixture f;
+    auto second = std::make_unique<Annotator<Cap>>();
+    REQUIRE(second->init(f.view) == Status::ok);
+    const auto frames = host::toy_stream(f.world, {2, 0, 1}, {});
+    for (const auto& frame : frames) f.annotator->push_frame(frame.time_us + 777, frame.positions.data());
+    f.annotator->reset();
+    for (const auto& frame : frames) {
+        f.annotator->push_frame(frame.time_us, frame.positions.data());
+        second->push_frame(frame.time_us, frame.positions.data());
+        REQUIRE(f.annotator->label() == second->label());
+        REQUIRE(f.annotator->confidence() == second->confidence());
+        REQUIRE(f.annotator->last_character() == second->last_character());
+    }
+}

@@ -1,0 +1,74 @@
+// kNN vote, unknown threshold and confidence.
+#include <doctest/doctest.h>
+
+#include <limits>
+#include <vector>
+
+#include "actionstring/classify.hpp"
+
+using namespace actionstring;
+
+namespace {
+struct Reps {
+    std::vector<LabelId> labels;
+    const char* names[3] = {"a", "b", "c"};
+    ModelView view;
+    Reps(std::vector<LabelId> l, std::uint16_t k, float unknown = std::numeric_limits<float>::infinity())
+        : labels(std::move(l)) {
+        view.representative_count = static_cast<std::uint16_t>(labels.size());
+        view.representative_labels = labels.data();
+        view.label_count = 3;
+        view.label_names = names;
+        view.neighbours = k;
+        view.unknown_distance = unknown;
+    }
+};
+}  // namespace
+
+TEST_CASE("1-NN picks the nearest representative") {
+    Reps reps({0, 1, 2, 1}, 1);
+    const float d[] = {3.0f, 2.0f, 1.0f, 5.0f};
+    const Classification c = classify_distances<8>(reps.view, d);
+    CHECK(c.label == 2);
+    CHECK(c.representative == 2);
+    CHECK(c.distance == 1.0f);
+    CHECK(c.confidence == doctest::Approx(0.5));  // 1 − 1/2
+}
+
+TEST_CASE("k-NN votes; ties go to the label of the nearer neighbour") {
+    Reps reps({0, 1, 1, 0, 2}, 3);
+    const float d[] = {1.0f, 1.5f, 1.6f, 9.0f, 2.0f};
+    Classification c = classify_distances<8>(reps.view, d);
+    CHECK(c.label == 1);  // two of the three nearest
+    CHECK(c.distance == 1.5f);
+    CHECK(c.confidence == 0.0f);  // label 0 is nearer than the winner
+    Reps tie({0, 1, 2}, 3);
+    const float e[] = {2.0f, 1.0f, 3.0f};
+    c = classify_distances<8>(tie.view, e);
+    CHECK(c.label == 1);
+    CHECK(c.confidence == doctest::Approx(0.5));
+}
+
+TEST_CASE("nothing close enough is unknown") {
+    Reps reps({0, 1}, 1, 2.0f);
+    const float far[] = {2.5f, 3.0f};
+    Classification c = classify_distances<8>(reps.view, far);
+    CHECK(c.label == unknown_label);
+    CHECK(c.nearest_label == 0);
+    CHECK(c.confidence == 0.0f);
+    const float near[] = {2.0f, 3.0f};
+    c = classify_distances<8>(reps.view, near);
+    CHECK(c.label == 0);
+}
+
+TEST_CASE("a single label has full confidence; NaN distances are ignored") {
+    Reps reps({1, 1}, 2);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float d[] = {nan, 4.0f};
+    const Classification c = classify_distances<8>(reps.view, d);
+    CHECK(c.label == 1);
+    CHECK(c.representative == 1);
+    CHECK(c.confidence == 1.0f);
+    const float all_nan[] = {nan, nan};
+    CHECK(classify_distances<8>(reps.view, all_nan).label == unknown_label);
+}

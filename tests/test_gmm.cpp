@@ -1,0 +1,160 @@
+// GMM posterior against an independent double-precision computation.
+#include <doctest/doctest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "actionstring/gmm.hpp"
+#include "actionstring/normalize.hpp"
+#include "actionstring/projection.hpp"
+#include "actionstring_host/model_data.hpp"
+
+using namespace actionstring;
+
+namespace {
+
+constexpr std::size_t kMaxDim = 16;
+
+struct RandomGmm {
+    std::vector<Eigen::VectorXd> means;
+    std::vector<Eigen::MatrixXd> covariances;
+    std::vector<double> weights;
+    host::ModelData data;
+};
+
+RandomGmm make_gmm(std::mt19937& rng, Eigen::Index d, int J, Covariance kind) {
+    RandomGmm g;
+    std::normal_distribution<double> normal(0.0, 1.0);
+    std::uniform_real_distribution<double> uniform(0.2, 1.0);
+    double total = 0;
+    for (int j = 0; j < J; ++j) {
+        Eigen::VectorXd mean(d);
+        for (Eigen::Index i = 0; i < d; ++i) mean[i] = 0.5 * normal(rng);
+        Eigen::MatrixXd a(d, d);
+        for (Eigen::Index i = 0; i < a.size(); ++i) a(i) = 0.3 * normal(rng);
+        Eigen::MatrixXd cov = a * a.transpose() + 0.05 * Eigen::MatrixXd::Identity(d, d);
+        if (kind == Covariance::diagonal) cov = Eigen::MatrixXd(cov.diagonal().asDiagonal());
+        g.means.push_back(mean);
+        g.covariances.push_back(cov);
+        g.weights.push_back(uniform(rng));
+        total += g.weights.back();
+    }
+    for (auto& w : g.weights) w /= total;
+    host::set_gmm(g.data, g.means, g.covariances, g.weights, kind);
+    return g;
+}
+
+// Posteriors from the textbook densities: explicit inverse and determinant (LU).
+std::vector<double> direct_posterior(const RandomGmm& g, const Eigen::VectorXd& x) {
+    const double pi = 3.14159265358979323846;
+    std::vector<double> p;
+    double total = 0;
+    for (std::size_t j = 0; j < g.means.size(); ++j) {
+        const Eigen::FullPivLU<Eigen::MatrixXd> lu(g.covariances[j]);
+        const Eigen::VectorXd diff = x - g.means[j];
+        const double q = diff.dot(lu.inverse() * diff);
+        const double density = std::exp(-0.5 * q) / std::sqrt(std::pow(2 * pi, static_cast<double>(x.size())) * lu.determinant());
+        p.push_back(g.weights[j] * density);
+        total += p.back();
+    }
+    for (auto& v : p) v /= total;
+    return p;
+}
+
+ModelView gmm_view(host::ModelData& data) {
+    ModelView v = data.view();
+    return v;
+}
+
+}  // namespace
+
+TEST_CASE("posteriors match direct densities in double precision") {
+    std::mt19937 rng(11);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    for (const Covariance kind : {Covariance::full, Covariance::diagonal}) {
+        for (int trial = 0; trial < 40; ++trial) {
+            const Eigen::Index d = 1 + trial % 12;
+            const int J = 1 + trial % 7;
+            RandomGmm g = make_gmm(rng, d, J, kind);
+            const ModelView view = gmm_view(g.data);
+            for (int sample = 0; sample < 20; ++sample) {
+                // Near a random component, where double densities do not underflow.
+                const auto& centre = g.means[static_cast<std::size_t>(sample % J)];
+                Eigen::VectorXd x = centre;
+                for (Eigen::Index i = 0; i < d; ++i) x[i] += 0.3 * normal(rng);
+                const std::vector<double> expected = direct_posterior(g, x);
+                std::vector<float> feature(static_cast<std::size_t>(d)), posterior(static_cast<std::size_t>(J));
+                for (Eigen::Index i = 0; i < d; ++i) feature[static_cast<std::size_t>(i)] = static_cast<float>(x[i]);
+                float log_likelihood = 0;
+                REQUIRE(gmm_posterior<kMaxDim>(view, feature.data(), posterior.data(), &log_likelihood) == Status::ok);
+                double sum = 0;
+                for (int j = 0; j < J; ++j) {
+                    CHECK(static_cast<double>(posterior[static_cast<std::size_t>(j)]) ==
+                          doctest::Approx(expected[static_cast<std::size_t>(j)]).epsilon(2e-3).scale(1.0));
+                    sum += static_cast<double>(posterior[static_cast<std::size_t>(j)]);
+                }
+                CHECK(sum == doctest::Approx(1.0).epsilon(1e-5));
+                CHECK(std::isfinite(log_likelihood));
+            }
+        }
+    }
+}
+
+TEST_CASE("far-away poses still give a finite posterior that sums to one") {
+    std::mt19937 rng(12);
+    RandomGmm g = make_gmm(rng, 6, 5, Covariance::full);
+    const ModelView view = gmm_view(g.data);
+    for (const float far : {50.0f, 1.0e3f, 2.0e4f, -2.0e4f}) {
+        std::vector<float> feature(6, far), posterior(5);
+        feature[2] = -far;
+        REQUIRE(gmm_posterior<kMaxDim>(view, feature.data(), posterior.data()) == Status::ok);
+        float sum = 0, peak = 0;
+        for (float p : posterior) {
+            CHECK(std::isfinite(p));
+            CHECK(p >= 0.0f);
+            sum += p;
+            peak = std::max(peak, p);
+        }
+        CHECK(sum == doctest::Approx(1.0f).epsilon(1e-5));
+        CHECK(peak > 0.2f);  // never all zero: the likeliest component takes the mass
+    }
+    CHECK(gmm_is_overflow_safe(view, max_pose_coordinate));
+}
+
+TEST_CASE("a model that could overflow float is detected") {
+    std::mt19937 rng(13);
+    RandomGmm g = make_gmm(rng, 4, 2, Covariance::diagonal);
+    g.data.gmm_factors[0] = 1.0e16f;  // a variance of 1e-32 m²
+    const ModelView view = gmm_view(g.data);
+    CHECK_FALSE(gmm_is_overflow_safe(view, max_pose_coordinate));
+}
+
+TEST_CASE("set_gmm refuses covariances that are not positive definite") {
+    host::ModelData data;
+    std::vector<Eigen::VectorXd> means{Eigen::VectorXd::Zero(2)};
+    std::vector<Eigen::MatrixXd> covs{Eigen::MatrixXd::Zero(2, 2)};
+    CHECK_THROWS_AS(host::set_gmm(data, means, covs, {1.0}, Covariance::full), std::invalid_argument);
+    covs[0] << 1.0, 2.0, 2.0, 1.0;  // indefinite
+    CHECK_THROWS_AS(host::set_gmm(data, means, covs, {1.0}, Covariance::full), std::invalid_argument);
+    covs[0] << 1.0, 0.5, 0.4, 1.0;  // not symmetric
+    CHECK_THROWS_AS(host::set_gmm(data, means, covs, {1.0}, Covariance::full), std::invalid_argument);
+    covs[0] = Eigen::MatrixXd::Identity(2, 2);
+    CHECK_THROWS_AS(host::set_gmm(data, means, covs, {0.0}, Covariance::full), std::invalid_argument);
+    CHECK_NOTHROW(host::set_gmm(data, means, covs, {1.0}, Covariance::full));
+}
+
+TEST_CASE("projection computes P (x - m) in the model's layout") {
+    host::ModelData data;
+    data.pose_joints = {0, 1};  // D = 6
+    data.feature_dim = 2;
+    data.projection_mean = {1, 2, 3, 4, 5, 6};
+    data.projection_matrix = {1, 0, 0, 0, 0, 0,   0.5f, 0, 0, 0, 0, -2};
+    const ModelView view = data.view();
+    const float pose[6] = {2, 2, 3, 4, 5, 10};
+    float feature[2] = {};
+    REQUIRE(project_pose(view, pose, feature) == Status::ok);
+    CHECK(feature[0] == 1.0f);
+    CHECK(feature[1] == doctest::Approx(0.5 * 1 - 2 * 4));
+}

@@ -1,0 +1,139 @@
+// Zero heap allocations per frame, proven with tripwires that are first shown to fire.
+//
+// Counts every malloc/calloc/realloc (glibc's allocator underneath), every
+// global operator new, and every Eigen heap request (EIGEN_RUNTIME_NO_MALLOC
+// with eigen_assert routed to a counter instead of abort()).
+#include <atomic>
+#include <cstddef>
+#include <cstdlib>
+#include <new>
+
+namespace {
+std::atomic<long> g_mallocs{0};
+std::atomic<long> g_news{0};
+std::atomic<long> g_eigen_violations{0};
+}  // namespace
+
+void note_eigen_violation() { ++g_eigen_violations; }
+
+#define EIGEN_RUNTIME_NO_MALLOC
+#define eigen_assert(condition)                 \
+    do {                                        \
+        if (!(condition)) note_eigen_violation(); \
+    } while (false)
+
+#define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
+#include <doctest/doctest.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "actionstring/actionstring.hpp"
+#include "actionstring_host/toy.hpp"
+
+extern "C" {
+void* __libc_malloc(std::size_t);
+void* __libc_calloc(std::size_t, std::size_t);
+void* __libc_realloc(void*, std::size_t);
+void __libc_free(void*);
+
+void* malloc(std::size_t size) {
+    ++g_mallocs;
+    return __libc_malloc(size);
+}
+void* calloc(std::size_t count, std::size_t size) {
+    ++g_mallocs;
+    return __libc_calloc(count, size);
+}
+void* realloc(void* pointer, std::size_t size) {
+    ++g_mallocs;
+    return __libc_realloc(pointer, size);
+}
+void free(void* pointer) { __libc_free(pointer); }
+}
+
+void* operator new(std::size_t size) {
+    ++g_news;
+    if (void* p = __libc_malloc(size == 0 ? 1 : size)) return p;
+    throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* pointer) noexcept { __libc_free(pointer); }
+void operator delete[](void* pointer) noexcept { __libc_free(pointer); }
+void operator delete(void* pointer, std::size_t) noexcept { __libc_free(pointer); }
+void operator delete[](void* pointer, std::size_t) noexcept { __libc_free(pointer); }
+
+namespace {
+
+struct Counts {
+    long mallocs, news, eigen;
+};
+Counts snapshot() { return {g_mallocs.load(), g_news.load(), g_eigen_violations.load()}; }
+
+// Keeps the optimiser from removing an allocation whose result is unused.
+void* volatile g_sink = nullptr;
+
+}  // namespace
+
+TEST_CASE("the tripwires fire") {
+    Counts before = snapshot();
+    {
+        std::vector<int> v(100);
+        g_sink = v.data();
+    }
+    CHECK(snapshot().news > before.news);
+
+    before = snapshot();
+    void* (*volatile allocate)(std::size_t) = &malloc;
+    void* p = allocate(32);
+    g_sink = p;
+    free(p);
+    CHECK(snapshot().mallocs == before.mallocs + 1);
+
+    before = snapshot();
+    Eigen::internal::set_is_malloc_allowed(false);
+    {
+        Eigen::MatrixXf heap_matrix(16, 16);
+        g_sink = heap_matrix.data();
+    }
+    Eigen::internal::set_is_malloc_allowed(true);
+    CHECK(snapshot().eigen > before.eigen);
+}
+
+TEST_CASE("streaming thousands of frames through the annotator allocates nothing") {
+    using Cap = actionstring::Capacity<8, 8, 24, 16, 16, 256, 8>;
+    for (const auto covariance : {actionstring::Covariance::full, actionstring::Covariance::diagonal}) {
+        actionstring::host::ToyOptions options;
+        options.covariance = covariance;
+        options.neighbours = 3;
+        actionstring::host::ToyWorld world = actionstring::host::make_toy_world(options);
+        const actionstring::ModelView view = world.model.view();
+        auto annotator = std::make_unique<actionstring::Annotator<Cap>>();
+        REQUIRE(annotator->init(view) == actionstring::Status::ok);
+        std::vector<int> sequence;
+        for (int i = 0; i < 40; ++i) sequence.push_back(i % 4);
+        actionstring::host::ToyStreamOptions stream;
+        stream.frame_rate_hz = 60.0;
+        stream.frame_time_jitter = 0.3;
+        stream.drop_probability = 0.05;
+        auto frames = actionstring::host::toy_stream(world, sequence, stream);
+        frames[100].positions.assign(15, 0.0f);  // a lost-tracking frame on the way
+
+        Eigen::internal::set_is_malloc_allowed(false);
+        const Counts before = snapshot();
+        std::size_t windows = 0;
+        for (const auto& frame : frames) {
+            windows += annotator->push_frame(frame.time_us, frame.positions.data()).windows_completed;
+            g_sink = const_cast<char*>(annotator->label_name());
+        }
+        const Counts after = snapshot();
+        Eigen::internal::set_is_malloc_allowed(true);
+
+        CHECK(frames.size() > 4000);
+        CHECK(windows > 150);
+        CHECK(after.mallocs == before.mallocs);
+        CHECK(after.news == before.news);
+        CHECK(after.eigen == before.eigen);
+    }
+}

@@ -1,0 +1,137 @@
+// Pose normalisation: invariance to position and facing, and rejected frames.
+#include <doctest/doctest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "actionstring/gmm.hpp"
+#include "actionstring/normalize.hpp"
+#include "actionstring_host/toy.hpp"
+
+using namespace actionstring;
+
+namespace {
+
+// Rewrites a y-up pose so that `up` is the vertical axis (cyclic relabelling).
+std::vector<float> with_up_axis(const std::vector<float>& y_up, int up) {
+    std::vector<float> out(y_up.size());
+    for (std::size_t j = 0; j < y_up.size() / 3; ++j)
+        for (int a = 0; a < 3; ++a)
+            out[3 * j + static_cast<std::size_t>((a + up + 2) % 3)] = y_up[3 * j + static_cast<std::size_t>(a)];
+    return out;
+}
+
+std::vector<float> transform(const std::vector<float>& pose, const Eigen::Matrix3f& rotation,
+                             const Eigen::Vector3f& shift, float scale = 1.0f) {
+    std::vector<float> out(pose.size());
+    for (std::size_t j = 0; j < pose.size() / 3; ++j) {
+        const Eigen::Vector3f p(pose[3 * j], pose[3 * j + 1], pose[3 * j + 2]);
+        const Eigen::Vector3f q = rotation * (p * scale) + shift;
+        for (int a = 0; a < 3; ++a) out[3 * j + static_cast<std::size_t>(a)] = q[a];
+    }
+    return out;
+}
+
+std::vector<float> normalized(const ModelView& view, const std::vector<float>& pose, Status expect = Status::ok) {
+    std::vector<float> out(view.pose_dim(), -1.0f);
+    CHECK(normalize_pose(view, pose.data(), out.data()) == expect);
+    return out;
+}
+
+double max_difference(const std::vector<float>& a, const std::vector<float>& b) {
+    double worst = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        worst = std::max(worst, std::fabs(static_cast<double>(a[i]) - static_cast<double>(b[i])));
+    return worst;
+}
+
+}  // namespace
+
+TEST_CASE("translation and rotation about the up axis leave the pose and feature unchanged") {
+    host::ToyWorld world = host::make_toy_world();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> angle(-3.14159f, 3.14159f), offset(-5.0f, 5.0f);
+    for (int up = 0; up < 3; ++up) {
+        world.model.up_axis = static_cast<std::uint8_t>(up);
+        const ModelView view = world.model.view();
+        Eigen::Vector3f up_vector = Eigen::Vector3f::Zero();
+        up_vector[up] = 1.0f;
+        for (const auto& key : world.key_poses) {
+            const std::vector<float> base = with_up_axis(key, up);
+            const std::vector<float> reference = normalized(view, base);
+            std::vector<float> ref_posterior(view.component_count), posterior(view.component_count);
+            const bool projected_identity = !view.has_projection();
+            REQUIRE(projected_identity);
+            REQUIRE(gmm_posterior<32>(view, reference.data(), ref_posterior.data()) == Status::ok);
+            for (int trial = 0; trial < 25; ++trial) {
+                const Eigen::Matrix3f rotation = Eigen::AngleAxisf(angle(rng), up_vector).toRotationMatrix();
+                const Eigen::Vector3f shift(offset(rng), offset(rng), offset(rng));
+                const std::vector<float> moved = normalized(view, transform(base, rotation, shift));
+                CHECK(max_difference(moved, reference) < 2e-5);
+                REQUIRE(gmm_posterior<32>(view, moved.data(), posterior.data()) == Status::ok);
+                CHECK(max_difference(posterior, ref_posterior) < 1e-4);
+            }
+            // A tilt about the horizontal axis across the hips' line is not a change
+            // of facing: the pose must change.
+            Eigen::Vector3f horizontal = Eigen::Vector3f::Zero();
+            horizontal[(up + 2) % 3] = 1.0f;
+            const Eigen::Matrix3f tilt = Eigen::AngleAxisf(0.5f, horizontal).toRotationMatrix();
+            CHECK(max_difference(normalized(view, transform(base, tilt, Eigen::Vector3f::Zero())), reference) > 0.05);
+        }
+    }
+}
+
+TEST_CASE("the hips face the canonical direction after normalisation") {
+    host::ToyWorld world = host::make_toy_world();
+    const ModelView view = world.model.view();
+    const Eigen::Matrix3f turn = Eigen::AngleAxisf(2.0f, Eigen::Vector3f::UnitY()).toRotationMatrix();
+    const std::vector<float> pose = normalized(view, transform(world.key_poses[0], turn, {1, 2, 3}));
+    // Pose joints 1, 2 are the hips: right − left points along +z (axis (1 + 1) mod 3).
+    CHECK(pose[5] - pose[2] == doctest::Approx(0.2).epsilon(1e-4));
+    CHECK(pose[3] - pose[0] == doctest::Approx(0.0).scale(1.0).epsilon(1e-5));
+}
+
+TEST_CASE("hip-width scaling maps actors of different size together") {
+    host::ToyWorld world = host::make_toy_world();
+    world.model.scale_mode = ScaleMode::hip_width;
+    world.model.reference_scale = 0.2f;
+    const ModelView view = world.model.view();
+    const std::vector<float> reference = normalized(view, world.key_poses[2]);
+    const std::vector<float> tall = normalized(view, transform(world.key_poses[2], Eigen::Matrix3f::Identity(), {0, 1, 0}, 1.3f));
+    CHECK(max_difference(reference, tall) < 1e-5);
+    world.model.scale_mode = ScaleMode::none;
+    const ModelView unscaled = world.model.view();
+    CHECK(max_difference(normalized(unscaled, world.key_poses[2]),
+                         normalized(unscaled, transform(world.key_poses[2], Eigen::Matrix3f::Identity(), {0, 1, 0}, 1.3f))) > 0.1);
+}
+
+TEST_CASE("frames that are not poses are rejected with a reason") {
+    host::ToyWorld world = host::make_toy_world();
+    const ModelView view = world.model.view();
+    std::vector<float> pose = transform(world.key_poses[1], Eigen::Matrix3f::Identity(), {1, 1, 1});
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+
+    auto with = [&](std::size_t index, float value) {
+        std::vector<float> p = pose;
+        p[index] = value;
+        return p;
+    };
+    normalized(view, with(10, nan), Status::non_finite_input);
+    normalized(view, with(0, inf), Status::non_finite_input);
+    normalized(view, with(13, -inf), Status::non_finite_input);
+    normalized(view, std::vector<float>(15, 0.0f), Status::tracking_lost);
+    normalized(view, with(9, 3.0e4f), Status::pose_out_of_range);
+    normalized(view, with(9, 3.0e38f), Status::pose_out_of_range);
+    // Hips on the vertical line through each other: no facing.
+    std::vector<float> vertical = pose;
+    vertical[3] = vertical[6] = 1.0f;
+    vertical[5] = vertical[8] = 1.0f;
+    vertical[4] = 1.0f;
+    vertical[7] = 1.2f;
+    normalized(view, vertical, Status::degenerate_pose);
+    CHECK(normalize_pose(view, nullptr, pose.data()) == Status::invalid_argument);
+}
