@@ -49,7 +49,9 @@ TEST_CASE("each kind of corruption is refused") {
         {"NaN threshold", [](host::ModelData& m) { m.unknown_distance = kNaN; }},
         {"bad variant", [](host::ModelData& m) { m.variant = static_cast<MatchVariant>(7); }},
     };
-    for (const auto& [name, corrupt] : corruptions) {
+    for (const auto& entry : corruptions) {
+        const char* name = entry.first;
+        const auto& corrupt = entry.second;
         CAPTURE(name);
         host::ToyWorld world = host::make_toy_world();
         corrupt(world.model);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "actionstring/capacity.hpp"
@@ -109,8 +110,9 @@ TEST_CASE("the same performance gives the same string at any frame rate") {
         return string;
     };
     const std::vector<Character> reference = encode(120.0, 0.0, 0.0);
-    for (const auto& [rate, jitter, drop] : {std::tuple{30.0, 0.0, 0.0}, std::tuple{60.0, 0.3, 0.0},
-                                             std::tuple{30.0, 0.4, 0.2}, std::tuple{15.0, 0.0, 0.0}}) {
+    for (const auto& setting : {std::tuple{30.0, 0.0, 0.0}, std::tuple{60.0, 0.3, 0.0},
+                                std::tuple{30.0, 0.4, 0.2}, std::tuple{15.0, 0.0, 0.0}}) {
+        const double rate = std::get<0>(setting), jitter = std::get<1>(setting), drop = std::get<2>(setting);
         CAPTURE(rate);
         CAPTURE(drop);
         const std::vector<Character> other = encode(rate, jitter, drop);

@@ -1,0 +1,23 @@
+# Sourced by the scripts: installs the Debian packages the build needs, if missing.
+ensure_packages() {
+    local missing=()
+    for package in "$@"; do
+        dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+    done
+    [ ${#missing[@]} -eq 0 ] && return 0
+    echo "actionstring: installing missing Debian packages: ${missing[*]}" >&2
+    local sudo=""
+    if [ "$(id -u)" -ne 0 ]; then
+        if command -v sudo >/dev/null 2>&1; then
+            sudo="sudo"
+        else
+            echo "actionstring: not root and no sudo; install these packages first: ${missing[*]}" >&2
+            return 1
+        fi
+    fi
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+# Packages for building and testing on the host.
+ACTIONSTRING_HOST_PACKAGES=(cmake make g++ clang libclang-rt-14-dev libeigen3-dev doctest-dev)

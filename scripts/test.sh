@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# The test command: installs what is missing, then builds and runs every test
+# twice — Release with g++ and warnings as errors, and Debug with clang under
+# AddressSanitizer + UndefinedBehaviorSanitizer.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+# shellcheck source=deps.sh
+source "$root/scripts/deps.sh"
+ensure_packages "${ACTIONSTRING_HOST_PACKAGES[@]}"
+jobs=$(nproc 2>/dev/null || echo 2)
+
+run_suite() {
+    local name=$1; shift
+    local dir="$root/build/$name"
+    echo "== $name: configure and build" >&2
+    cmake -S "$root" -B "$dir" -DACTIONSTRING_WARNINGS_AS_ERRORS=ON "$@" >/dev/null
+    cmake --build "$dir" -j"$jobs"
+    echo "== $name: tests" >&2
+    ctest --test-dir "$dir" --output-on-failure -j"$jobs"
+}
+
+start=$(date +%s)
+run_suite release -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++
+UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+    run_suite asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DACTIONSTRING_SANITIZE=ON
+echo "actionstring: all test suites passed in $(( $(date +%s) - start )) s" >&2
