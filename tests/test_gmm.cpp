@@ -150,7 +150,8 @@ TEST_CASE("projection computes P (x - m) in the model's layout") {
     data.pose_joints = {0, 1};  // D = 6
     data.feature_dim = 2;
     data.projection_mean = {1, 2, 3, 4, 5, 6};
-    data.projection_matrix = {1, 0, 0, 0, 0, 0,   0.5f, 0, 0, 0, 0, -2};
+    // P = [[1, 0, 0, 0, 0, 0], [0.5, 0, 0, 0, 0, -2]], stored column by column.
+    data.projection_matrix = {1, 0.5f,   0, 0,   0, 0,   0, 0,   0, 0,   0, -2};
     const ModelView view = data.view();
     const float pose[6] = {2, 2, 3, 4, 5, 10};
     float feature[2] = {};

@@ -37,6 +37,7 @@ TEST_CASE("each kind of corruption is refused") {
         {"one child only", [](host::ModelData& m) { m.node_children[1] = -1; }},
         {"leaf character out of range", [](host::ModelData& m) { m.node_characters.back() = 6; }},
         {"NaN in W", [](host::ModelData& m) { m.character_distances[7] = kNaN; }},
+        {"negative W", [](host::ModelData& m) { m.character_distances[7] = -0.5f; }},
         {"zero period", [](host::ModelData& m) { m.string_period_us = 0; }},
         {"rep character out of range", [](host::ModelData& m) { m.representative_chars[0] = 6; }},
         {"empty rep", [](host::ModelData& m) { m.representative_offsets[1] = 0; }},

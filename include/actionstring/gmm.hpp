@@ -64,7 +64,7 @@ inline bool gmm_is_overflow_safe(const ModelView& model, float max_coordinate) n
         for (std::size_t r = 0; r < d; ++r) {
             double row = 0.0;
             for (std::size_t c = 0; c < pose_dim; ++c)
-                row += std::fabs(static_cast<double>(model.projection_matrix[r * pose_dim + c]));
+                row += std::fabs(static_cast<double>(model.projection_matrix[c * d + r]));
             row *= coordinate_bound + mean_bound;
             if (row > feature_bound) feature_bound = row;
         }

@@ -69,7 +69,9 @@ struct ModelView {
     // --- optional projection z = P (x - m) (DESIGN §1.2) ---
     std::uint16_t feature_dim = 0;              ///< d; equals 3 * pose_joint_count without PCA.
     const float* projection_mean = nullptr;     ///< [3 * pose_joint_count] or null for no PCA.
-    const float* projection_matrix = nullptr;   ///< [feature_dim x 3 * pose_joint_count], row-major.
+    /// P stored column by column: [3 * pose_joint_count x feature_dim], row c
+    /// holding column c of P (the weights of pose coordinate c in every feature).
+    const float* projection_matrix = nullptr;
 
     // --- GMM of key-poses (DESIGN §1.3) ---
     std::uint16_t component_count = 0;  ///< J.
@@ -217,6 +219,8 @@ inline Status validate_matching_tables(const ModelView& m) noexcept {
     const auto bad = Status::invalid_model;
     const std::size_t K = m.character_count;
     if (K == 0 || !detail::all_finite(m.character_distances, K * K)) return bad;
+    for (std::size_t i = 0; i < K * K; ++i)
+        if (m.character_distances[i] < 0.0f) return bad;  // a distance: costs stay ≥ 0 or +inf
     // Strings and representatives.
     if (m.label_count == 0 || m.label_names == nullptr) return bad;
     for (std::size_t l = 0; l < m.label_count; ++l)

@@ -24,11 +24,14 @@ inline Status project_pose(const ModelView& model, const float* pose, float* fea
         for (std::size_t i = 0; i < pose_dim; ++i) feature[i] = pose[i];
         return Status::ok;
     }
-    for (std::size_t r = 0; r < model.feature_dim; ++r) {
-        const float* row = model.projection_matrix + r * pose_dim;
-        float sum = 0.0f;
-        for (std::size_t c = 0; c < pose_dim; ++c) sum += row[c] * (pose[c] - model.projection_mean[c]);
-        feature[r] = sum;
+    // Column by column: the d outputs are independent accumulators, each summed
+    // in one fixed order.
+    const std::size_t d = model.feature_dim;
+    for (std::size_t r = 0; r < d; ++r) feature[r] = 0.0f;
+    const float* column = model.projection_matrix;
+    for (std::size_t c = 0; c < pose_dim; ++c, column += d) {
+        const float centred = pose[c] - model.projection_mean[c];
+        for (std::size_t r = 0; r < d; ++r) feature[r] += column[r] * centred;
     }
     return Status::ok;
 }

@@ -25,6 +25,16 @@ inline Cell dp_step(Cell diagonal, Cell above, Cell left, float weight) noexcept
     return Cell{best.cost + weight, best.path + 1u};
 }
 
+/// The cost of dp_step() alone, with the same comparisons in the same order
+/// (so equal values, signed zeros included, resolve identically), written as
+/// selects so that a loop over independent lanes vectorises.
+inline float dp_step_cost(float diagonal, float above, float left, float weight) noexcept {
+    float best = diagonal;
+    best = above < best ? above : best;
+    best = left < best ? left : best;
+    return best + weight;
+}
+
 /// D[0][0] for every variant.
 constexpr Cell dp_origin() noexcept { return Cell{0.0f, 0u}; }
 
