@@ -65,7 +65,7 @@ public:
         return Status::ok;
     }
 
-    /// Starts a new stream: forgets the string, the windows and the label.
+    /// Starts another stream: forgets the string, the windows and the label.
     void reset() noexcept {
         encoder_.reset();
         matcher_.reset();

@@ -60,7 +60,7 @@ public:
         return Status::ok;
     }
 
-    /// Starts a new stream.
+    /// Starts another stream from scratch.
     void reset() noexcept {
         sampler_.reset();
         has_previous_ = false;

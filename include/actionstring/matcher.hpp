@@ -158,7 +158,7 @@ private:
         }
     }
 
-    // The new character is row i of a window that is A1; the stored row holds D[i−1][·].
+    // The incoming character is row i of a window that is A1; the stored row holds D[i−1][·].
     template <bool Paths>
     void advance_row(std::size_t base, const Character* rep, std::size_t len, Character c,
                      CharacterWeights w) noexcept {
@@ -200,7 +200,7 @@ private:
         }
     }
 
-    // The new character is column j of a window that is A2; the stored column holds D[·][j−1].
+    // The incoming character is column j of a window that is A2; the stored column holds D[·][j−1].
     template <bool Paths>
     void advance_column(std::size_t r, std::size_t base, const Character* rep, std::size_t len, Character c,
                         CharacterWeights w) noexcept {

@@ -109,7 +109,7 @@ struct ModelView {
     MatchVariant variant = MatchVariant::whole;
     LengthNormalization normalization = LengthNormalization::none;
     std::uint16_t window_chars = 0;   ///< Sliding window length in characters.
-    std::uint16_t step_chars = 0;     ///< A new window starts every step_chars characters.
+    std::uint16_t step_chars = 0;     ///< A window opens every step_chars characters.
     std::uint16_t neighbours = 1;     ///< k of the kNN vote.
     float unknown_distance = detail::infinity();  ///< Best distance above this → unknown.
 

@@ -12,7 +12,7 @@
 
 namespace actionstring {
 
-/// Which frames the ticks that became due at a new frame take their characters from.
+/// Which frames the ticks that fell due at an incoming frame take their characters from.
 struct SamplePlan {
     /// ok, stream_restarted (a gap longer than the maximum: tick 0 again at
     /// this frame), or time_went_backwards (frame rejected, nothing changed).

@@ -38,7 +38,7 @@ inline float dp_step_cost(float diagonal, float above, float left, float weight)
 /// D[0][0] for every variant.
 constexpr Cell dp_origin() noexcept { return Cell{0.0f, 0u}; }
 
-/// D[0][j], j ≥ 1: free (0) for the paper's boundaries and subsequence, blocked for whole.
+/// D[0][j], j ≥ 1: 0 under the paper's boundaries and subsequence (the start is unconstrained), blocked for whole.
 inline Cell dp_row0(MatchVariant variant) noexcept {
     return variant == MatchVariant::whole ? Cell{infinity(), 0u} : Cell{0.0f, 0u};
 }
