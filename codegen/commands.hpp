@@ -7,5 +7,8 @@ namespace cli {
 /// `actionstring demo`: streams a synthetic performance through the runtime.
 int run_demo(int argc, char** argv);
 
+/// `actionstring info FILE`: joints, frames, duration, rate and bounds of a motion file.
+int run_info(int argc, char** argv);
+
 }  // namespace cli
 }  // namespace actionstring

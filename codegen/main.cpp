@@ -14,6 +14,7 @@ void print_usage(std::FILE* out) {
                  "commands:\n"
                  "  demo       stream a synthetic performance through the runtime and print\n"
                  "             the label timeline (no data needed)\n"
+                 "  info       describe a motion file: joints, frames, duration, rate, bounds\n"
                  "  version    print the library version\n"
                  "\n"
                  "Run 'actionstring <command> --help' for a command's options.\n");
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
         return 0;
     }
     if (std::strcmp(command, "demo") == 0) return actionstring::cli::run_demo(argc - 1, argv + 1);
+    if (std::strcmp(command, "info") == 0) return actionstring::cli::run_info(argc - 1, argv + 1);
     std::fprintf(stderr, "actionstring: unknown command '%s'\n\n", command);
     print_usage(stderr);
     return 2;
