@@ -1,0 +1,262 @@
+// Readers on small hand-written files: formats, conventions and every kind of bad input.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "actionstring_host/readers.hpp"
+
+using namespace actionstring::host;
+
+namespace {
+
+// A two-bone ASF: a hip joint straight down-left, then a femur with an axis and dofs.
+const char* const kAsf =
+    "# test skeleton\n"
+    ":version 1.10\n"
+    ":name test\n"
+    ":units\n  mass 1.0\n  length 0.45\n  angle deg\n"
+    ":documentation\n  anything here\n"
+    ":root\n   order TX TY TZ RX RY RZ\n   axis XYZ\n   position 0 0 0\n   orientation 0 0 0\n"
+    ":bonedata\n"
+    "  begin\n     id 1\n     name lhipjoint\n     direction 1 0 0\n     length 4.5\n     axis 0 0 0 XYZ\n  end\n"
+    "  begin\n     id 2\n     name lfemur\n     direction 0 -1 0\n     length 9\n     axis 0 0 90 XYZ\n"
+    "    dof rx ry rz\n    limits (-160.0 20.0)\n           (-70.0 70.0)\n           (-60.0 70.0)\n  end\n"
+    "  begin\n     id 3\n     name rhipjoint\n     direction -1 0 0\n     length 4.5\n     axis 0 0 0 XYZ\n  end\n"
+    ":hierarchy\n  begin\n    root lhipjoint rhipjoint\n    lhipjoint lfemur\n  end\n";
+
+std::string amc(const std::string& frames) { return "#!OML:ASF \xFC test\r\n:FULLY-SPECIFIED\r\n:DEGREES\n" + frames; }
+
+void check_error(const std::function<void()>& read, std::size_t line, const std::string& fragment) {
+    try {
+        read();
+        FAIL("no ReadError; expected one at line " << line << " mentioning '" << fragment << "'");
+    } catch (const ReadError& error) {
+        const std::string message = error.what();
+        CAPTURE(message);
+        CHECK(error.line() == line);
+        CHECK(message.find(fragment) != std::string::npos);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("ASF units, axes and hierarchy") {
+    const AsfSkeleton s = parse_asf("t.asf", kAsf);
+    REQUIRE(s.bones.size() == 3);
+    CHECK(s.length_scale == doctest::Approx(0.0254 / 0.45));
+    CHECK(s.bones[0].length == doctest::Approx(4.5 * 0.0254 / 0.45));  // 0.254 m
+    CHECK(s.bones[1].parent == 0);
+    CHECK(s.bones[2].parent == -1);
+    CHECK(s.bones[1].dofs == std::vector<int>{0, 1, 2});
+    // axis 0 0 90: C turns x into y.
+    CHECK((s.bones[1].axis * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY()).norm() < 1e-12);
+}
+
+TEST_CASE("AMC forward kinematics, worked by hand") {
+    const AsfSkeleton s = parse_asf("t.asf", kAsf);
+    // Frame 1: root at (45, 90, 0) units and turned 90° about y; the femur's rx = 90°
+    // is a turn about C·x = global y, which leaves a bone pointing down pointing down.
+    const Clip clip = parse_amc("t.amc", amc("1\r\nroot 45 90 0 0 90 0\nlfemur 90 0 0\n2\nroot 0 0 0 0 0 0\nlfemur 0 0 90\n"), s);
+    REQUIRE(clip.frame_count() == 2);
+    REQUIRE(clip.joint_count() == 4);
+    CHECK(clip.times[1] == doctest::Approx(1.0 / 120.0));
+    const double u = 0.0254 / 0.45;
+    const float* f0 = clip.frame(0);
+    CHECK(f0[0] == doctest::Approx(45 * u));
+    CHECK(f0[1] == doctest::Approx(90 * u));
+    // Root yaw 90° (about y) maps +x to −z: lhipjoint (1, 0, 0) × 4.5 ends at root + (0, 0, −4.5).
+    CHECK(f0[3] == doctest::Approx(45 * u).epsilon(1e-6));
+    CHECK(f0[5] == doctest::Approx(-4.5 * u).epsilon(1e-6));
+    // Femur: motion rx = 90° in the bone frame C (x_C = global y), i.e. a turn about global y,
+    // which leaves a bone pointing down (0, −1, 0) unchanged: knee 9 units below the hip.
+    CHECK(f0[6] == doctest::Approx(f0[3]).epsilon(1e-6));
+    CHECK(f0[7] == doctest::Approx(f0[4] - 9 * u).epsilon(1e-6));
+    CHECK(f0[8] == doctest::Approx(f0[5]).epsilon(1e-6));
+    // Frame 2: rz = 90° in the bone frame; z_C = global z, so down (0, −1, 0) turns to +x.
+    const float* f1 = clip.frame(1);
+    CHECK(f1[3] == doctest::Approx(4.5 * u));
+    CHECK(f1[6] == doctest::Approx(f1[3] + 9 * u).epsilon(1e-6));
+    CHECK(f1[7] == doctest::Approx(f1[4]).scale(1.0).epsilon(1e-6));
+    CHECK(clip.roles.root == 0);
+    CHECK(clip.roles.left_hip == 1);
+    CHECK(clip.roles.right_hip == 3);
+}
+
+TEST_CASE("ASF/AMC bad input names the file, line and what was expected") {
+    const AsfSkeleton s = parse_asf("t.asf", kAsf);
+    check_error([&] { parse_amc("t.amc", amc(""), s); }, 0, "no frames");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 2\n"), s); }, 6, "has 2 values, expected 3");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 x 3\n"), s); }, 6, "expected a bone value, got 'x'");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 nan 3\n"), s); }, 6, "finite");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 inf 3\n"), s); }, 6, "finite");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 1e300 3\n"), s); }, 6, "out of range");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 2 3\nrtibia 4\n"), s); }, 7, "unknown bone 'rtibia'");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\n2\nroot 0 0 0 0 0 0\nlfemur 0 0 0\n"), s); }, 4, "no line for bone 'lfemur'");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 2 3\n1\n"), s); }, 7, "does not follow");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 2 3\n2\nroot 0 0 0"), s); }, 8, "root has 3 values");
+    check_error([&] { parse_amc("t.amc", amc("lfemur 1 2 3\n"), s); }, 4, "expected a frame number");
+    check_error([&] { parse_asf("x.asf", ""); }, 0, "no :root section");
+    check_error([&] { parse_asf("x.asf", "garbage\x01\x02 text\n"); }, 0, "no :root section");
+    std::string asf = kAsf;
+    check_error([&] { parse_asf("x.asf", asf.substr(0, asf.find(":hierarchy"))); }, 0, "no :hierarchy");
+    std::string duplicate = asf;
+    duplicate.replace(duplicate.find("name rhipjoint"), 14, "name lhipjoint");
+    check_error([&] { parse_asf("x.asf", duplicate); }, 34, "duplicate bone name 'lhipjoint'");
+    std::string bad_order = asf;
+    bad_order.replace(bad_order.find("0 0 90 XYZ"), 10, "0 0 90 XXZ");
+    check_error([&] { parse_asf("x.asf", bad_order); }, 28, "rotation order");
+    std::string orphan = asf;
+    orphan.replace(orphan.find("    lhipjoint lfemur\n"), 21, "");
+    check_error([&] { parse_asf("x.asf", orphan); }, 0, "'lfemur' is not connected");
+    std::string unknown = asf;
+    unknown.replace(unknown.find("lhipjoint lfemur"), 16, "lhipjoint lfoot");
+    check_error([&] { parse_asf("x.asf", unknown); }, 44, "unknown bone 'lfoot'");
+    check_error([&] { parse_asf("x.asf", asf.substr(0, asf.find("  end\n  begin\n     id 2"))); }, 16, "missing its 'end'");
+    check_error([&] { read_clip("/nonexistent/x.amc", {}, "/nonexistent/x.asf"); }, 0, "cannot open");
+    check_error([&] { read_clip("/nonexistent/x.amc"); }, 0, "needs its ASF skeleton");
+}
+
+TEST_CASE("BVH channel orders, End Sites, several roots, units and up axis") {
+    // Two roots; the second chain is Z-up in its own offsets but turned by its root's channels.
+    const std::string bvh =
+        "HIERARCHY\n"
+        "ROOT Hips\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
+        "  JOINT Spine\n  {\n    OFFSET 0 50 0\n    CHANNELS 3 Xrotation Yrotation Zrotation\n"
+        "    JOINT Head\n    {\n      OFFSET 0 60 0\n      CHANNELS 3 Zrotation Yrotation Xrotation\n"
+        "      End Site\n      {\n        OFFSET 0 10 0\n      }\n    }\n  }\n"
+        "  JOINT LeftUpLeg\n  {\n    OFFSET -10 0 0\n    CHANNELS 3 Zrotation Xrotation Yrotation\n"
+        "    JOINT LeftLeg\n    {\n      OFFSET 0 -80 0\n      CHANNELS 3 Zrotation Xrotation Yrotation\n"
+        "      End Site\n      {\n        OFFSET 0 -10 0\n      }\n    }\n  }\n"
+        "}\n"
+        "ROOT Prop\n{\n  OFFSET 100 0 0\n  CHANNELS 3 Xposition Yposition Zposition\n}\n"
+        "MOTION\nFrames: 2\nFrame Time: 0.02\n"
+        "0 90 0  0 0 0  0 0 0  0 0 0  90 0 0  0 0 0  1 2 3\r\n"
+        "0 90 0  90 0 0  0 0 90  0 0 0  0 0 0  0 0 0  0 0 0\n";
+    const Clip clip = parse_bvh("t.bvh", bvh);
+    REQUIRE(clip.joint_count() == 6);
+    REQUIRE(clip.frame_count() == 2);
+    CHECK(clip.times[1] == doctest::Approx(0.02));
+    CHECK(clip.up_axis == 1);
+    CHECK(clip.parents == std::vector<int>{-1, 0, 1, 0, 3, -1});
+    // Height ≈ 110 units from knee to head over the clip → centimetres.
+    const float* f0 = clip.frame(0);
+    CHECK(f0[1] == doctest::Approx(0.9));            // hips at 90 cm
+    CHECK(f0[7] == doctest::Approx(0.9 + 0.5 + 0.6));  // head straight above
+    // Left leg: Zrotation 90 on LeftUpLeg turns the shin (0, −80, 0) to (80, 0, 0).
+    CHECK(f0[12] == doctest::Approx(-0.1 + 0.8));
+    CHECK(f0[13] == doctest::Approx(0.9).epsilon(1e-6));
+    // Prop: its own root, offset plus channels.
+    CHECK(f0[15] == doctest::Approx(1.01));
+    CHECK(f0[16] == doctest::Approx(0.02));
+    // Frame 2: hips turned 90° about z: the spine (0, 50, 0) points to −x; the Spine's
+    // Zrotation 90 turns the head offset further, to −y.
+    const float* f1 = clip.frame(1);
+    CHECK(f1[3] == doctest::Approx(-0.5));
+    CHECK(f1[6] == doctest::Approx(-0.5).epsilon(1e-6));
+    CHECK(f1[7] == doctest::Approx(0.9 - 0.6));
+}
+
+TEST_CASE("BVH bad input") {
+    const std::string head = "HIERARCHY\nROOT A\n{\n  OFFSET 0 0 0\n  CHANNELS 3 Xposition Yposition Zposition\n";
+    check_error([&] { parse_bvh("t.bvh", ""); }, 0, "empty file");
+    check_error([&] { parse_bvh("t.bvh", "HIERARCHY\nROOT A\n{\n  OFFSET 0 0\n"); }, 4, "file ends");
+    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 2\nFrame Time: 0.1\n1 2 3\n"); }, 10, "after 1 of 2 frames");
+    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n1 2\n"); }, 10, "has 2 values, expected 3");
+    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n1 2 3\n4 5 6\n"); }, 11, "more frame lines");
+    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 1\nFrame Time: 0\n1 2 3\n"); }, 9, "positive frame time");
+    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n1 nan 3\n"); }, 10, "finite");
+    check_error([&] { parse_bvh("t.bvh", head + "  JOINT A\n  {\n"); }, 6, "duplicate joint name 'A'");
+    check_error([&] { parse_bvh("t.bvh", "HIERARCHY\nROOT A\n{\n  OFFSET 0 0 0\n  CHANNELS 2 Xposition Wrotation\n"); }, 5,
+                "expected a channel such as");
+    check_error([&] { parse_bvh("t.bvh", "HIERARCHY\nROOT A\n{\n  OFFSET 0 0 0\n  CHANNELS 9 Xposition\n"); }, 5, "at most 6 channels");
+    std::string deep = "HIERARCHY\nROOT J0\n{\nOFFSET 0 0 0\n";
+    for (int i = 1; i < 400; ++i) deep += "JOINT J" + std::to_string(i) + "\n{\nOFFSET 0 1 0\n";
+    check_error([&] { parse_bvh("t.bvh", deep); }, 773, "nested deeper");  // JOINT J257 on line 3·257 + 2
+}
+
+TEST_CASE("MSR Action3D text: 20 joint lines per frame, lost frames kept and flagged") {
+    std::string text;
+    for (int f = 0; f < 3; ++f)
+        for (int j = 0; j < 20; ++j) {
+            const bool lost = f == 1;
+            text += lost ? "0 0 0 0\n" : std::to_string(0.01 * j) + " " + std::to_string(-1.0 + 0.08 * j) + " 2.5 1\n";
+        }
+    const Clip clip = parse_msr_skeleton("a.txt", text);
+    CHECK(clip.frame_count() == 3);
+    CHECK(clip.times[2] == doctest::Approx(2.0 / 15.0));
+    CHECK(clip.lost == std::vector<std::uint8_t>{0, 1, 0});
+    CHECK(clip.joint_names[19] == "Head");
+    CHECK(clip.roles.root == 6);
+    check_error([&] { parse_msr_skeleton("a.txt", text + "1 2 3 4\n"); }, 61, "1 of 20 joint lines");
+    check_error([&] { parse_msr_skeleton("a.txt", "1 2 3\n"); }, 1, "expected 4 values");
+    check_error([&] { parse_msr_skeleton("a.txt", "1 2 3 4\n1 2 3e999 4\n"); }, 2, "expected a coordinate");
+    check_error([&] { parse_msr_skeleton("a.txt", "\n\n"); }, 0, "empty file");
+}
+
+TEST_CASE("UTKinect text and labels") {
+    std::string line = " 0.1 0.2 2.0";
+    std::string values;
+    for (int j = 0; j < 20; ++j) values += line;
+    const std::string text = "190" + values + "\n190" + values + "\n194" + values + "\n";
+    const Clip clip = parse_utkinect("j.txt", text);
+    CHECK(clip.frame_count() == 3);
+    CHECK(clip.times[0] == clip.times[1]);
+    CHECK(clip.times[2] == doctest::Approx(194.0 / 30.0));
+    check_error([&] { parse_utkinect("j.txt", text + "150" + values + "\n"); }, 4, "comes after");
+    check_error([&] { parse_utkinect("j.txt", "190 1 2 3\n"); }, 1, "expected a frame id and 60 coordinates");
+    check_error([&] { parse_utkinect("j.txt", "-4" + values + "\n"); }, 1, "frame id");
+    const auto labels = parse_utkinect_labels("l.txt", "s01_e01\nwalk: 252 390\npush: NaN NaN\ns01_e02\nwalk: 1 2\n");
+    REQUIRE(labels.size() == 2);
+    CHECK(labels[0].second.size() == 2);
+    CHECK(labels[0].second[0].end_frame == 390);
+    CHECK_FALSE(labels[0].second[1].valid);
+    check_error([&] { parse_utkinect_labels("l.txt", "walk: 1 2\n"); }, 1, "sequence name before");
+    check_error([&] { parse_utkinect_labels("l.txt", "s01\nwalk: 5 2\n"); }, 2, "ends before it starts");
+}
+
+TEST_CASE("joint CSV") {
+    const std::string text =
+        "timestamp,SpineBase_x,SpineBase_y,SpineBase_z,HipLeft.x,HipLeft.y,HipLeft.z,HipRight X,HipRight Y,HipRight Z\n"
+        "0.0, 0,1,2, -0.1,1,2, 0.1,1,2\n0.033,0,1,2,-0.1,1,2,0.1,1,2\n";
+    const Clip clip = parse_joint_csv("k.csv", text);
+    CHECK(clip.joint_names == std::vector<std::string>{"SpineBase", "HipLeft", "HipRight"});
+    CHECK(clip.roles.complete());
+    CHECK(clip.times[1] == doctest::Approx(0.033));
+    check_error([&] { parse_joint_csv("k.csv", "frame,a_x,a_y,a_z\n"); }, 1, "'timestamp'");
+    check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,b_z\n"); }, 1, "name different joints");
+    check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z,a_x,a_y,a_z\n"); }, 1, "duplicate joint 'a'");
+    check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z\n1,2,3\n"); }, 2, "expected 4 columns");
+    check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z\n1,2,3,4\n0.5,2,3,4\n"); }, 3, "earlier");
+    check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z\n"); }, 1, "no data rows");
+}
+
+TEST_CASE("clip lists resolve paths against their folder") {
+    const auto entries = parse_clip_list("l.tsv", "path\tlabel\tsubject\tskeleton\nx/a.amc\tjump\tbd\tasf/b.asf\n/abs/c.amc\trun\tmm\ts.asf\n", "/data");
+    REQUIRE(entries.size() == 2);
+    CHECK(entries[0].path == "/data/x/a.amc");
+    CHECK(entries[0].skeleton == "/data/asf/b.asf");
+    CHECK(entries[1].path == "/abs/c.amc");
+    CHECK(entries[1].line == 3);
+    const auto reordered = parse_clip_list("l.tsv", "subject\tpath\tlabel\ns1\tf.txt\twave\n", "d");
+    CHECK(reordered[0].path == "d/f.txt");
+    CHECK(reordered[0].subject == "s1");
+    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\n", "d"); }, 1, "path, label and subject");
+    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\na\tb\n", "d"); }, 2, "expected 3 tab-separated fields");
+    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\na\t\tc\n", "d"); }, 2, "empty label");
+    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\n", "d"); }, 1, "names no clips");
+}
+
+TEST_CASE("joint roles can be overridden and must exist") {
+    const std::string text = "timestamp,a_x,a_y,a_z,b_x,b_y,b_z,c_x,c_y,c_z\n0,0,1,0,-0.1,1,0,0.1,1,0\n";
+    ReadOptions options;
+    options.roles = RoleNames{"a", "b", "c"};
+    const Clip clip = parse_joint_csv("k.csv", text, options);
+    CHECK(clip.roles.root == 0);
+    CHECK(clip.roles.right_hip == 2);
+    options.roles.left_hip = "nope";
+    check_error([&] { parse_joint_csv("k.csv", text, options); }, 0, "left hip joint 'nope'");
+}
