@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test command: installs what is missing, then builds and runs every test
 # twice — Release with g++ and warnings as errors, and Debug with clang under
-# AddressSanitizer + UndefinedBehaviorSanitizer.
+# AddressSanitizer + UndefinedBehaviorSanitizer, where each reader is also
+# fuzzed for ACTIONSTRING_FUZZ_SECONDS (default 30) seconds.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # shellcheck source=deps.sh
@@ -22,5 +23,6 @@ run_suite() {
 start=$(date +%s)
 run_suite release -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
-    run_suite asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DACTIONSTRING_SANITIZE=ON
+    run_suite asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DACTIONSTRING_SANITIZE=ON \
+        -DACTIONSTRING_FUZZ=ON -DACTIONSTRING_FUZZ_SECONDS="${ACTIONSTRING_FUZZ_SECONDS:-30}"
 echo "actionstring: all test suites passed in $(( $(date +%s) - start )) s" >&2

@@ -173,7 +173,9 @@ Clip parse_bvh(const std::string& name, std::string_view text, const ReadOptions
     std::vector<Eigen::Matrix3d> global(J);
     std::vector<Eigen::Vector3d> position(J);
     std::vector<double> values(channel_count);
-    clip.positions.reserve(static_cast<std::size_t>(frame_count) * J * 3);
+    // The declared count is untrusted: reserve no more frames than the text could hold.
+    const std::size_t plausible_frames = std::min(static_cast<std::size_t>(frame_count), text.size() / (2 * std::max<std::size_t>(channel_count, 1)) + 1);
+    clip.positions.reserve(plausible_frames * J * 3);
     const double to_radians = kPi / 180.0;
     std::string_view line;
     for (long f = 0; f < frame_count; ++f) {
