@@ -10,5 +10,11 @@ int run_demo(int argc, char** argv);
 /// `actionstring info FILE`: joints, frames, duration, rate and bounds of a motion file.
 int run_info(int argc, char** argv);
 
+/// `actionstring train --clips LIST --out MODEL`: trains and writes a model artifact.
+int run_train(int argc, char** argv);
+
+/// `actionstring codegen MODEL --out HEADER`: the constexpr header of a model.
+int run_codegen(int argc, char** argv);
+
 }  // namespace cli
 }  // namespace actionstring

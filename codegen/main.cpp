@@ -14,6 +14,8 @@ void print_usage(std::FILE* out) {
                  "commands:\n"
                  "  demo       stream a synthetic performance through the runtime and print\n"
                  "             the label timeline (no data needed)\n"
+                 "  train      train a model from a clip list and write the model artifact\n"
+                 "  codegen    turn a model artifact into a header of constexpr tables\n"
                  "  info       describe a motion file: joints, frames, duration, rate, bounds\n"
                  "  version    print the library version\n"
                  "\n"
@@ -39,6 +41,8 @@ int main(int argc, char** argv) {
     }
     if (std::strcmp(command, "demo") == 0) return actionstring::cli::run_demo(argc - 1, argv + 1);
     if (std::strcmp(command, "info") == 0) return actionstring::cli::run_info(argc - 1, argv + 1);
+    if (std::strcmp(command, "train") == 0) return actionstring::cli::run_train(argc - 1, argv + 1);
+    if (std::strcmp(command, "codegen") == 0) return actionstring::cli::run_codegen(argc - 1, argv + 1);
     std::fprintf(stderr, "actionstring: unknown command '%s'\n\n", command);
     print_usage(stderr);
     return 2;

@@ -1,0 +1,309 @@
+// `actionstring train` and `actionstring codegen`.
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "actionstring_host/artifact.hpp"
+#include "actionstring_host/readers.hpp"
+#include "actionstring_host/training.hpp"
+#include "commands.hpp"
+#include "options.hpp"
+
+namespace actionstring {
+namespace cli {
+namespace {
+
+void print_train_usage(std::FILE* out) {
+    const host::TrainingOptions d;
+    std::fprintf(out,
+                 "usage: actionstring train --clips LIST --out MODEL [options] [--config FILE]\n"
+                 "                          [--validate LIST] [--sweep]\n"
+                 "\n"
+                 "Trains a model from a clip list (TSV: path label subject [skeleton]) and writes\n"
+                 "the checksummed model artifact. Options (defaults in brackets):\n"
+                 "  --components J          GMM key-poses [%d]\n"
+                 "  --covariance full|diagonal                     [full]\n"
+                 "  --covariance-floor V    MAP variance floor per average component, units^2 [%g]\n"
+                 "  --pca D                 project poses to D dimensions, 0 = none [%d]\n"
+                 "  --feature-rate HZ       frames per second used to fit the GMM and tree [%g]\n"
+                 "  --em-iterations N       [%d]     --em-tolerance X  relative [%g]\n"
+                 "  --scale none|hip-width  size normalisation of poses [none]\n"
+                 "  --epsilon E             split clusters whose L1 diameter is >= E [%g]\n"
+                 "  --max-characters K      cap on tree leaves [%d]\n"
+                 "  --string-rate HZ        characters per second [%g]\n"
+                 "  --variant paper|whole|subsequence              [whole]\n"
+                 "  --normalization none|path|query                [none]\n"
+                 "  --sigma S               merge string clusters while their distance <= S [%g]\n"
+                 "  --keep-singletons       keep clusters of one string as representatives\n"
+                 "  --neighbours K          k of the kNN vote [%d]\n"
+                 "  --window S, --step S    sliding window and step in seconds [%g, %g]\n"
+                 "  --unknown-distance X    label unknown above this distance [never]\n"
+                 "  --seed N                [%u]\n"
+                 "  --rate HZ               frame rate of files without timing (AMC 120, MSR 15)\n"
+                 "  --roles R,L,R           root, left hip, right hip joint names\n"
+                 "  --config FILE           'option value' lines, same names without dashes\n"
+                 "  --validate LIST         report clip accuracy on LIST after training\n"
+                 "  --sweep                 with --validate: vary one setting at a time around the\n"
+                 "                          given ones and print a table (choose on validation data)\n",
+                 d.components, d.covariance_floor, d.pca_dim, d.feature_rate_hz, d.em_max_iterations, d.em_tolerance,
+                 d.epsilon, d.max_characters, d.string_rate_hz, d.sigma, d.neighbours, d.window_seconds, d.step_seconds,
+                 d.seed);
+}
+
+bool apply(ArgumentReader& args, const std::string& name, const std::string& value, host::TrainingOptions& o,
+           host::ReadOptions& read) {
+    auto number = [&](double low, double high) {
+        char* end = nullptr;
+        const double v = std::strtod(value.c_str(), &end);
+        if (end == value.c_str() || *end != '\0' || !(v >= low && v <= high)) {
+            args.error("--" + name + " expects a number in [" + std::to_string(low) + ", " + std::to_string(high) + "], got '" + value + "'");
+            return 0.0;
+        }
+        return v;
+    };
+    auto choice = [&](std::initializer_list<const char*> names) {
+        int i = 0;
+        for (const char* n : names) {
+            if (value == n) return i;
+            ++i;
+        }
+        args.error("--" + name + ": unknown value '" + value + "'");
+        return 0;
+    };
+    if (name == "components") o.components = static_cast<int>(number(1, 64));
+    else if (name == "covariance") o.covariance = static_cast<Covariance>(choice({"full", "diagonal"}));
+    else if (name == "covariance-floor") o.covariance_floor = number(1e-12, 1e6);
+    else if (name == "pca") o.pca_dim = static_cast<int>(number(0, 96));
+    else if (name == "feature-rate") o.feature_rate_hz = number(0.1, 10000);
+    else if (name == "em-iterations") o.em_max_iterations = static_cast<int>(number(1, 100000));
+    else if (name == "em-tolerance") o.em_tolerance = number(0, 1);
+    else if (name == "scale") o.scale_mode = static_cast<ScaleMode>(choice({"none", "hip-width"}));
+    else if (name == "epsilon") o.epsilon = number(1e-9, 1e9);
+    else if (name == "max-characters") o.max_characters = static_cast<int>(number(1, 4096));
+    else if (name == "string-rate") o.string_rate_hz = number(0.1, 10000);
+    else if (name == "variant") o.variant = static_cast<MatchVariant>(choice({"paper", "whole", "subsequence"}));
+    else if (name == "normalization") o.normalization = static_cast<LengthNormalization>(choice({"none", "path", "query"}));
+    else if (name == "sigma") o.sigma = number(0, 1e9);
+    else if (name == "keep-singletons") o.keep_singletons = value == "true" || value == "1" || value.empty();
+    else if (name == "neighbours") o.neighbours = static_cast<int>(number(1, 4096));
+    else if (name == "window") o.window_seconds = number(0.01, 3600);
+    else if (name == "step") o.step_seconds = number(0.01, 3600);
+    else if (name == "unknown-distance") o.unknown_distance = number(0, 1e30);
+    else if (name == "seed") o.seed = static_cast<std::uint32_t>(number(0, 4294967295.0));
+    else if (name == "rate") read.frame_rate_hz = number(0.001, 1e6);
+    else if (name == "roles") read.roles = parse_roles(args, value);
+    else return false;
+    return true;
+}
+
+std::vector<host::LabelledClip> load_list(const std::string& path, const host::ReadOptions& read) {
+    std::vector<host::LabelledClip> clips;
+    for (const host::ClipListEntry& entry : host::read_clip_list(path))
+        clips.push_back({host::read_clip(entry, read), entry.label, entry.subject});
+    return clips;
+}
+
+std::size_t table_bytes(const host::ModelData& m) {
+    return 4 * (m.projection_mean.size() + m.projection_matrix.size() + m.gmm_means.size() + m.gmm_factors.size() +
+                m.gmm_log_normalizers.size() + m.gmm_log_weights.size() + m.node_centroids.size() + m.character_distances.size() +
+                m.representative_offsets.size()) +
+           2 * (m.pose_joints.size() + m.node_children.size() + m.node_characters.size() + m.representative_chars.size() +
+                m.representative_labels.size());
+}
+
+const char* variant_name(MatchVariant v) {
+    return v == MatchVariant::paper ? "paper" : v == MatchVariant::whole ? "whole" : "subsequence";
+}
+const char* normalization_name(LengthNormalization n) {
+    return n == LengthNormalization::none ? "none" : n == LengthNormalization::path ? "path" : "query";
+}
+
+int run_sweep(const std::vector<host::LabelledClip>& train, const std::vector<host::LabelledClip>& validation,
+              const host::TrainingOptions& base) {
+    struct Variation {
+        std::string setting;
+        host::TrainingOptions options;
+    };
+    std::vector<Variation> grid{{"(given settings)", base}};
+    auto vary = [&](const std::string& setting, auto change) {
+        host::TrainingOptions o = base;
+        change(o);
+        grid.push_back({setting, o});
+    };
+    for (int j : {20, 60}) vary("components " + std::to_string(j), [j](auto& o) { o.components = j; });
+    for (int p : {0, 12, 24}) if (p != base.pca_dim) vary("pca " + std::to_string(p), [p](auto& o) { o.pca_dim = p; });
+    vary("covariance diagonal", [](auto& o) { o.covariance = Covariance::diagonal; });
+    for (double e : {0.5, 1.9}) vary("epsilon " + std::to_string(e).substr(0, 4), [e](auto& o) { o.epsilon = e; });
+    for (double s : {0.5, 2.0}) vary("sigma x" + std::to_string(s).substr(0, 3), [s](auto& o) { o.sigma *= s; });
+    vary("keep-singletons", [](auto& o) { o.keep_singletons = true; });
+    for (double r : {8.0, 20.0}) vary("string-rate " + std::to_string(static_cast<int>(r)), [r](auto& o) { o.string_rate_hz = r; });
+    for (auto v : {MatchVariant::paper, MatchVariant::whole, MatchVariant::subsequence})
+        if (v != base.variant) vary(std::string("variant ") + variant_name(v), [v](auto& o) { o.variant = v; });
+    for (auto n : {LengthNormalization::none, LengthNormalization::path, LengthNormalization::query})
+        if (n != base.normalization)
+            vary(std::string("normalization ") + normalization_name(n), [n](auto& o) {
+                o.normalization = n;
+                if (n == LengthNormalization::path) o.sigma /= 20.0;  // σ in per-cell units
+                if (n == LengthNormalization::query) o.sigma /= 20.0;
+            });
+    std::printf("%-26s %5s %5s %5s %9s %9s %8s\n", "setting", "J", "K", "reps", "train acc", "val acc", "train s");
+    for (const Variation& v : grid) {
+        host::TrainingReport report;
+        const auto start = std::chrono::steady_clock::now();
+        try {
+            host::ModelData m = host::train_model(train, v.options, &report);
+            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const ModelView view = m.view();
+            std::printf("%-26s %5d %5d %5d %9.3f %9.3f %8.1f\n", v.setting.c_str(), v.options.components, report.characters,
+                        report.representatives, host::clip_accuracy(view, train), host::clip_accuracy(view, validation), seconds);
+        } catch (const std::exception& e) {
+            std::printf("%-26s failed: %s\n", v.setting.c_str(), e.what());
+        }
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
+}  // namespace
+
+int run_train(int argc, char** argv) {
+    host::TrainingOptions options;
+    host::ReadOptions read;
+    std::string clips_path, out_path, validate_path;
+    bool sweep = false;
+    ArgumentReader args("train", argc, argv);
+    while (args.more()) {
+        const std::string arg = args.next();
+        if (arg == "--help" || arg == "-h") {
+            print_train_usage(stdout);
+            return 0;
+        }
+        if (arg == "--clips") clips_path = args.value(arg);
+        else if (arg == "--out") out_path = args.value(arg);
+        else if (arg == "--validate") validate_path = args.value(arg);
+        else if (arg == "--sweep") sweep = true;
+        else if (arg == "--keep-singletons") options.keep_singletons = true;
+        else if (arg == "--config") {
+            const std::string path = args.value(arg);
+            std::ifstream in(path);
+            if (!in) return args.error("cannot open config file '" + path + "'");
+            std::string line;
+            int number = 0;
+            while (std::getline(in, line)) {
+                ++number;
+                std::istringstream words(line);
+                std::string name, value;
+                if (!(words >> name) || name[0] == '#') continue;
+                words >> value;
+                if (!apply(args, name, value, options, read))
+                    return args.error(path + ":" + std::to_string(number) + ": unknown setting '" + name + "'");
+            }
+        } else if (arg.rfind("--", 0) == 0 && arg != "--") {
+            const std::string name = arg.substr(2);
+            const std::string value = args.value(arg);
+            if (args.ok() && !apply(args, name, value, options, read)) return args.unknown(arg);
+        } else {
+            return args.unknown(arg);
+        }
+        if (!args.ok()) return 2;
+    }
+    if (!args.ok()) return 2;
+    if (clips_path.empty() || (out_path.empty() && !sweep)) {
+        print_train_usage(stderr);
+        return 2;
+    }
+    if (sweep && validate_path.empty()) return args.error("--sweep needs --validate LIST");
+    try {
+        std::fprintf(stderr, "train: reading %s\n", clips_path.c_str());
+        const auto train = load_list(clips_path, read);
+        std::vector<host::LabelledClip> validation;
+        if (!validate_path.empty()) validation = load_list(validate_path, read);
+        if (sweep) return run_sweep(train, validation, options);
+        auto stage_start = std::chrono::steady_clock::now();
+        options.progress = [&](const char* stage) {
+            std::fprintf(stderr, "train: %s\n", stage);
+            stage_start = std::chrono::steady_clock::now();
+        };
+        host::TrainingReport report;
+        host::ModelData model = host::train_model(train, options, &report);
+        host::save_model(model, out_path);
+        const ModelView view = model.view();
+        std::printf("model:            %s\n", out_path.c_str());
+        std::printf("frames:           %zu read, %zu rejected; %zu feature samples at %g Hz\n", report.frames_read,
+                    report.frames_rejected, report.feature_samples, options.feature_rate_hz);
+        std::printf("features:         D %zu -> d %u, J %u (%s covariance), EM %zu iterations%s%s\n", view.pose_dim(),
+                    view.feature_dim, view.component_count, view.covariance == Covariance::full ? "full" : "diagonal",
+                    report.em.objective.size(), report.em.converged ? ", converged" : ", NOT converged",
+                    report.em.reseeded.empty() ? "" : " (components re-seeded)");
+        std::printf("characters:       K %d (epsilon %g)\n", report.characters, options.epsilon);
+        std::printf("representatives:  %d of %d strings (sigma %g, %s, %s normalisation)\n", report.representatives,
+                    report.strings, options.sigma, variant_name(options.variant), normalization_name(options.normalization));
+        for (std::size_t l = 0; l < model.label_names.size(); ++l)
+            std::printf("  %-32s %d%s\n", model.label_names[l].c_str(), report.representatives_per_label[l],
+                        report.representatives_per_label[l] == 0 ? "   <- no representative: this class cannot be recognised" : "");
+        std::printf("tables:           %zu bytes\n", table_bytes(model));
+        double total = 0;
+        for (const auto& stage : report.stage_seconds) {
+            std::printf("  %-30s %7.2f s\n", stage.first.c_str(), stage.second);
+            total += stage.second;
+        }
+        std::printf("  %-30s %7.2f s\n", "total", total);
+        if (!validation.empty())
+            std::printf("validation:       clip accuracy %.3f on %zu clips (%s)\n", host::clip_accuracy(view, validation),
+                        validation.size(), validate_path.c_str());
+        return 0;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "actionstring train: %s\n", error.what());
+        return 1;
+    }
+}
+
+int run_codegen(int argc, char** argv) {
+    std::string model_path, out_path, ns = "actionstring_model";
+    ArgumentReader args("codegen", argc, argv);
+    while (args.more()) {
+        const std::string arg = args.next();
+        if (arg == "--help" || arg == "-h") {
+            std::printf("usage: actionstring codegen MODEL --out HEADER [--namespace NS]\n\n"
+                        "Writes a C++17 header of constexpr tables for MODEL: NS::kModel (a ModelView),\n"
+                        "NS::ModelCapacity (a Capacity that fits it exactly) and NS::kModelChecksum, under a\n"
+                        "DO-NOT-EDIT banner carrying the artifact's checksum. [namespace: actionstring_model]\n");
+            return 0;
+        }
+        if (arg == "--out") out_path = args.value(arg);
+        else if (arg == "--namespace") ns = args.value(arg);
+        else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
+        else if (model_path.empty()) model_path = arg;
+        else return args.error("more than one MODEL given");
+    }
+    if (!args.ok()) return 2;
+    if (model_path.empty() || out_path.empty()) return args.error("usage: actionstring codegen MODEL --out HEADER [--namespace NS]");
+    if (ns.empty() || !(std::isalpha(static_cast<unsigned char>(ns[0])) || ns[0] == '_') ||
+        !std::all_of(ns.begin(), ns.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ':'; }))
+        return args.error("--namespace must be a C++ identifier (or a::b)");
+    try {
+        const std::string text = host::read_file(model_path);
+        host::ModelData model = host::parse_model(model_path, text);
+        const std::size_t slash = model_path.find_last_of('/');
+        const std::string header =
+            host::generate_header(model, host::artifact_checksum(text), ns, slash == std::string::npos ? model_path : model_path.substr(slash + 1));
+        std::ofstream out(out_path, std::ios::binary);
+        if (!out || !(out << header)) {
+            std::fprintf(stderr, "actionstring codegen: cannot write %s\n", out_path.c_str());
+            return 1;
+        }
+        return 0;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "actionstring codegen: %s\n", error.what());
+        return 1;
+    }
+}
+
+}  // namespace cli
+}  // namespace actionstring

@@ -1,0 +1,42 @@
+// actionstring host library — the model artifact and the constexpr header generator.
+//
+// The artifact is text: a version line, a checksum line, then one line per
+// table (`name count values…`), floats as C99 hexadecimal literals so every
+// value round-trips exactly. Loading refuses a wrong version, a checksum that
+// does not match, truncation, and tables the runtime would refuse.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "actionstring_host/model_data.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// Artifact format version written and read by this build.
+constexpr int artifact_version = 1;
+
+/// 64-bit FNV-1a of the bytes.
+std::uint64_t fnv1a64(std::string_view bytes);
+
+/// The artifact text of a model (deterministic: same model, same bytes).
+std::string serialize_model(ModelData& model);
+/// Parses artifact text; throws ReadError naming `name` and the line.
+ModelData parse_model(const std::string& name, std::string_view text);
+
+void save_model(ModelData& model, const std::string& path);
+ModelData load_model(const std::string& path);
+
+/// The checksum recorded in an artifact's text, as 16 hex digits.
+std::string artifact_checksum(std::string_view text);
+
+/// A C++17 header of constexpr tables for `model`: a DO-NOT-EDIT banner with
+/// the artifact's checksum, `kModel` (a ModelView), `ModelCapacity` (a
+/// Capacity that fits exactly) and `kModelChecksum`, in namespace `ns`.
+std::string generate_header(ModelData& model, const std::string& checksum, const std::string& ns,
+                            const std::string& source_name);
+
+}  // namespace host
+}  // namespace actionstring

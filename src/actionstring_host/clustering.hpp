@@ -1,0 +1,40 @@
+// actionstring host library — clustering for training.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "actionstring/model.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// The cluster tree in the runtime's table layout.
+struct ClusterTree {
+    std::vector<float> centroids;         ///< node × dim.
+    std::vector<std::int16_t> children;   ///< node × 2, −1 at leaves.
+    std::vector<Character> characters;    ///< Leaf characters, numbered breadth-first.
+    int character_count = 0;
+};
+
+/// Whether the L1 diameter of `members` is ≥ ε. Exact up to `exact_limit`
+/// members; above it, when the cheap bounds disagree, it answers yes, so the
+/// tree never splits less than the exact rule would.
+bool diameter_reaches(const std::vector<float>& features, std::size_t dim, const std::vector<std::size_t>& members,
+                      double epsilon, std::size_t exact_limit);
+
+/// Top-down: a cluster whose L1 diameter reaches ε is split in two by 2-means
+/// (k-means++ seeded, squared Euclidean: the runtime's descent metric, ties
+/// to the left). Nodes are created breadth-first; at most `max_leaves`.
+ClusterTree build_cluster_tree(const std::vector<float>& features, std::size_t dim, double epsilon, int max_leaves,
+                               std::uint32_t seed, std::size_t exact_limit = 3000);
+
+/// Agglomerative clustering (paper §4.3): repeatedly merge the two clusters
+/// whose centroids are nearest while that distance is ≤ σ; a cluster's
+/// centroid is its medoid, the member whose largest distance to the other
+/// members is smallest. Returns every cluster (singletons included), medoid first.
+std::vector<std::vector<std::size_t>> agglomerate(const std::vector<std::vector<double>>& distance, double sigma);
+
+}  // namespace host
+}  // namespace actionstring
