@@ -104,21 +104,18 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
 
     Eigen::VectorXd worst_fit(n);  // per-sample log-likelihood, to re-seed empty components
     worst_fit.setZero();
+    std::vector<int> reseed_count(static_cast<std::size_t>(J), 0);
     double previous = -std::numeric_limits<double>::infinity();
     for (int iteration = 0; iteration <= max_iterations; ++iteration) {
         // M-step (MAP covariance).
         bool reseeded = false;
-        for (int j = 0; j < J; ++j) {
-            double nj = resp.row(j).sum();
+        int current = static_cast<int>(fit.means.size());
+        std::vector<bool> empty(static_cast<std::size_t>(current), false);
+        for (int j = 0; j < current; ++j) {
+            const double nj = resp.row(j).sum();
             if (nj < 1e-6 * static_cast<double>(n) || nj < 1e-3) {
-                // Emptied: restart it at the sample the mixture explains worst.
-                Eigen::Index worst = 0;
-                worst_fit.minCoeff(&worst);
-                resp.row(j).setZero();
-                resp(j, worst) = 1.0;
-                worst_fit[worst] = std::numeric_limits<double>::infinity();
-                nj = 1.0;
-                reseeded = true;
+                empty[static_cast<std::size_t>(j)] = true;
+                continue;
             }
             const Eigen::VectorXd mean = x * resp.row(j).transpose() / nj;
             const Eigen::MatrixXd centred = x.colwise() - mean;
@@ -134,15 +131,46 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
             fit.covariances[static_cast<std::size_t>(j)] = cov;
             fit.weights[static_cast<std::size_t>(j)] = nj / static_cast<double>(n);
         }
+        // Recovery for components that lost (almost) every sample: re-seed at the
+        // sample the mixture explains worst, with the others' mean covariance and
+        // an average weight; one that collapses a third time is dropped (J shrinks).
+        for (int j = current - 1; j >= 0; --j) {
+            if (!empty[static_cast<std::size_t>(j)]) continue;
+            reseeded = true;
+            if (++reseed_count[static_cast<std::size_t>(j)] > 2 || current == 1) {
+                fit.means.erase(fit.means.begin() + j);
+                fit.covariances.erase(fit.covariances.begin() + j);
+                fit.weights.erase(fit.weights.begin() + j);
+                reseed_count.erase(reseed_count.begin() + j);
+                fit.report.dropped += 1;
+                --current;
+                continue;
+            }
+            Eigen::Index worst = 0;
+            worst_fit.minCoeff(&worst);
+            worst_fit[worst] = std::numeric_limits<double>::infinity();
+            Eigen::MatrixXd typical = Eigen::MatrixXd::Zero(d, d);
+            int others = 0;
+            for (int k = 0; k < current; ++k)
+                if (!empty[static_cast<std::size_t>(k)]) {
+                    typical += fit.covariances[static_cast<std::size_t>(k)];
+                    ++others;
+                }
+            fit.means[static_cast<std::size_t>(j)] = x.col(worst);
+            fit.covariances[static_cast<std::size_t>(j)] = others > 0 ? Eigen::MatrixXd(typical / others)
+                                                                      : Eigen::MatrixXd(lambda * Eigen::MatrixXd::Identity(d, d));
+            fit.weights[static_cast<std::size_t>(j)] = 1.0 / current;
+        }
         if (reseeded) {
             const double total = std::accumulate(fit.weights.begin(), fit.weights.end(), 0.0);
             for (double& w : fit.weights) w /= total;
             fit.report.reseeded.push_back(iteration);
         }
+        const int J_now = current;
         // E-step in the log domain.
-        Eigen::MatrixXd log_joint(J, n);
+        Eigen::MatrixXd log_joint(J_now, n);
         double penalty = 0;
-        for (int j = 0; j < J; ++j) {
+        for (int j = 0; j < J_now; ++j) {
             const Eigen::MatrixXd& cov = fit.covariances[static_cast<std::size_t>(j)];
             const Eigen::MatrixXd centred = x.colwise() - fit.means[static_cast<std::size_t>(j)];
             Eigen::RowVectorXd q;

@@ -187,3 +187,39 @@ std::vector<ToyFrame> toy_stream(const ToyWorld& world, const std::vector<int>& 
 
 }  // namespace host
 }  // namespace actionstring
+
+namespace actionstring {
+namespace host {
+
+Clip toy_clip(const std::vector<ToyFrame>& frames, const std::string& source) {
+    Clip clip;
+    clip.source = source;
+    clip.joint_names = {"root", "lhipjoint", "rhipjoint", "lhand", "rhand"};
+    clip.parents = {-1, 0, 0, 0, 0};
+    for (const ToyFrame& frame : frames) {
+        clip.times.push_back(static_cast<double>(frame.time_us) * 1e-6);
+        clip.positions.insert(clip.positions.end(), frame.positions.begin(), frame.positions.end());
+    }
+    flag_lost_frames(clip);
+    assign_roles(clip, {});
+    return clip;
+}
+
+std::vector<LabelledClip> toy_clips(const ToyWorld& world, int performances, std::uint32_t seed, double frame_rate_hz) {
+    std::vector<LabelledClip> clips;
+    for (int p = 0; p < performances; ++p)
+        for (std::size_t a = 0; a < world.actions.size(); ++a) {
+            ToyStreamOptions options;
+            options.seed = seed + static_cast<std::uint32_t>(p * 97 + static_cast<int>(a));
+            options.frame_rate_hz = frame_rate_hz;
+            options.position_noise_m = 0.015;
+            options.frame_time_jitter = 0.2;
+            const std::string name = world.actions[a].name + "_" + std::to_string(p);
+            clips.push_back({toy_clip(toy_stream(world, {static_cast<int>(a)}, options), name), world.actions[a].name,
+                             "toy" + std::to_string(p)});
+        }
+    return clips;
+}
+
+}  // namespace host
+}  // namespace actionstring

@@ -179,7 +179,7 @@ ModelData train_model(const std::vector<LabelledClip>& clips, const TrainingOpti
     // 4. Posterior features through the runtime, then the ε tree.
     if (options.progress) options.progress("building the cluster tree");
     stage = Clock::now();
-    const std::size_t J = static_cast<std::size_t>(options.components);
+    const std::size_t J = fit.means.size();  // fewer than asked when EM dropped collapsed components
     std::vector<float> features(n * J);
     {
         const ModelView view = m.view();

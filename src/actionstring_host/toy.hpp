@@ -70,3 +70,19 @@ std::vector<ToyFrame> toy_stream(const ToyWorld& world, const std::vector<int>& 
 
 }  // namespace host
 }  // namespace actionstring
+
+#include "actionstring_host/training.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// A synthetic stream as a clip (joints: root, lhipjoint, rhipjoint, lhand, rhand).
+Clip toy_clip(const std::vector<ToyFrame>& frames, const std::string& source);
+
+/// `performances` labelled clips of every action, each at its own place,
+/// facing, size and noise (seeded), for training and evaluation tests.
+std::vector<LabelledClip> toy_clips(const ToyWorld& world, int performances, std::uint32_t seed,
+                                    double frame_rate_hz = 60.0);
+
+}  // namespace host
+}  // namespace actionstring

@@ -59,6 +59,7 @@ struct EmReport {
     std::vector<double> objective;       ///< Penalised log-likelihood after each iteration.
     std::vector<double> log_likelihood;  ///< Plain log-likelihood after each iteration.
     std::vector<int> reseeded;           ///< Iterations at which an emptied component was re-seeded.
+    int dropped = 0;                     ///< Components dropped after collapsing a third time.
     bool converged = false;
 };
 
@@ -74,8 +75,10 @@ struct GmmFit {
 /// k-means++ start (seeded). The covariance update is the MAP estimate
 /// Σ_j = (S_j + λ I) / N_j with λ = covariance_floor · N / J, so the objective
 /// log-likelihood − ½ λ Σ_j tr(Σ_j⁻¹) never decreases. A component left with
-/// (almost) no responsibility is re-seeded at the worst-explained sample,
-/// recorded in the report. Throws std::invalid_argument for fewer samples
+/// (almost) no responsibility is re-seeded at the worst-explained sample with
+/// the other components' mean covariance and weight 1/J; one that collapses a
+/// third time is dropped, so the fit may return fewer than J components.
+/// Both are recorded in the report (the objective may drop at those iterations). Throws std::invalid_argument for fewer samples
 /// than components or non-finite samples.
 GmmFit fit_gmm(const Eigen::MatrixXd& samples, int components, Covariance covariance, double covariance_floor,
                int max_iterations, double tolerance, std::uint32_t seed);

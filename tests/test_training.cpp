@@ -1,0 +1,208 @@
+// Training: EM, the ε tree, agglomeration, determinism, artifact IO and codegen.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <string>
+
+#include "actionstring/string_distance.hpp"
+#include "actionstring_host/artifact.hpp"
+#include "actionstring_host/clustering.hpp"
+#include "actionstring_host/toy.hpp"
+#include "actionstring_host/training.hpp"
+
+using namespace actionstring;
+using namespace actionstring::host;
+
+namespace {
+
+Eigen::MatrixXd blobs(int per_blob, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, 0.2);
+    const double centres[3][2] = {{0, 0}, {3, 0}, {0, 4}};
+    Eigen::MatrixXd x(2, 3 * per_blob);
+    for (int b = 0; b < 3; ++b)
+        for (int i = 0; i < per_blob; ++i) {
+            x(0, b * per_blob + i) = centres[b][0] + noise(rng) * (b + 1);
+            x(1, b * per_blob + i) = centres[b][1] + noise(rng);
+        }
+    return x;
+}
+
+TrainingOptions toy_options() {
+    TrainingOptions o;
+    o.components = 6;
+    o.string_rate_hz = 10.0;
+    o.sigma = 4.0;
+    o.covariance_floor = 1e-3;
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("EM: the penalised log-likelihood never decreases and the blobs are found") {
+    for (const Covariance kind : {Covariance::full, Covariance::diagonal}) {
+        // Strongly overlapping clusters: EM needs many iterations, each checked.
+        std::mt19937 rng(4);
+        std::normal_distribution<double> noise(0.0, 0.6);
+        Eigen::MatrixXd overlapping(2, 900);
+        for (int i = 0; i < 900; ++i) {
+            overlapping(0, i) = (i % 3 == 1 ? 1.0 : 0.0) + noise(rng);
+            overlapping(1, i) = (i % 3 == 2 ? 1.2 : 0.0) + 0.5 * noise(rng);
+        }
+        const GmmFit slow = fit_gmm(overlapping, 3, kind, 1e-3, 300, 1e-12, 5);
+        REQUIRE(slow.report.objective.size() > 10);
+        CHECK(slow.report.reseeded.empty());
+        for (std::size_t i = 1; i < slow.report.objective.size(); ++i)
+            CHECK(slow.report.objective[i] >= slow.report.objective[i - 1] - 1e-9 * std::fabs(slow.report.objective[i - 1]));
+        const GmmFit fit = fit_gmm(blobs(200, 3), 3, kind, 1e-3, 200, 1e-10, 5);
+        CHECK(fit.report.converged);
+        std::set<int> found;
+        for (const auto& mean : fit.means) found.insert(static_cast<int>(std::lround(mean[0])) * 10 + static_cast<int>(std::lround(mean[1])));
+        CHECK(found == std::set<int>{0, 30, 4});
+        for (double w : fit.weights) CHECK(w == doctest::Approx(1.0 / 3).epsilon(0.05));
+    }
+}
+
+TEST_CASE("EM: degenerate data gives finite tables or a clear error") {
+    // Identical samples: every component collapses onto them; the MAP floor keeps covariances positive.
+    Eigen::MatrixXd same = Eigen::MatrixXd::Constant(3, 50, 0.7);
+    const GmmFit fit = fit_gmm(same, 4, Covariance::full, 1e-4, 50, 1e-8, 1);
+    for (const auto& cov : fit.covariances) CHECK(cov.allFinite());
+    ModelData data;
+    CHECK_NOTHROW(set_gmm(data, fit.means, fit.covariances, fit.weights, Covariance::full));
+    for (float v : data.gmm_factors) CHECK(std::isfinite(v));
+    // More components than the data supports: emptied ones are re-seeded, and a
+    // component that keeps collapsing is dropped; the objective is monotone
+    // between recoveries and the fit ends with finite tables.
+    for (const Covariance kind : {Covariance::full, Covariance::diagonal}) {
+        Eigen::MatrixXd overlapping = blobs(300, 4);
+        overlapping.row(0) *= 0.3;
+        const GmmFit recovered = fit_gmm(overlapping, 8, kind, 1e-3, 300, 1e-12, 5);
+        CHECK(recovered.means.size() + static_cast<std::size_t>(recovered.report.dropped) == 8);
+        for (const auto& cov : recovered.covariances) CHECK(cov.allFinite());
+        for (double w : recovered.weights) CHECK(w > 0.0);
+        const auto& o = recovered.report.objective;
+        const auto& r = recovered.report.reseeded;
+        for (std::size_t i = 1; i < o.size(); ++i)
+            if (std::find(r.begin(), r.end(), static_cast<int>(i)) == r.end()) CHECK(o[i] >= o[i - 1] - 1e-9 * std::fabs(o[i - 1]));
+        CHECK(r.size() <= 8 * 3);
+    }
+    // Fewer samples than components, non-finite samples: refused.
+    CHECK_THROWS_AS(fit_gmm(Eigen::MatrixXd::Zero(2, 3), 4, Covariance::full, 1e-4, 10, 1e-8, 1), std::invalid_argument);
+    Eigen::MatrixXd bad = blobs(10, 1);
+    bad(1, 3) = std::nan("");
+    CHECK_THROWS_AS(fit_gmm(bad, 2, Covariance::full, 1e-4, 10, 1e-8, 1), std::invalid_argument);
+}
+
+TEST_CASE("the tree splits exactly while the L1 diameter reaches ε") {
+    // Four corners of a square of side 1 in 2-D: L1 diameter 2, pairs at 1.
+    const std::vector<float> corners = {0, 0, 1, 0, 0, 1, 1, 1};
+    CHECK(diameter_reaches(corners, 2, {0, 1, 2, 3}, 2.0, 100));
+    CHECK_FALSE(diameter_reaches(corners, 2, {0, 1, 2, 3}, 2.01, 100));
+    CHECK(diameter_reaches(corners, 2, {0, 1}, 1.0, 100));
+    CHECK_FALSE(diameter_reaches(corners, 2, {0, 1}, 1.01, 100));
+    const ClusterTree fine = build_cluster_tree(corners, 2, 0.5, 100, 1);
+    CHECK(fine.character_count == 4);
+    const ClusterTree coarse = build_cluster_tree(corners, 2, 2.5, 100, 1);
+    CHECK(coarse.character_count == 1);
+    for (std::size_t node = 0; node < fine.characters.size(); ++node)
+        for (int side = 0; side < 2; ++side) {
+            const int child = fine.children[2 * node + static_cast<std::size_t>(side)];
+            if (child >= 0) CHECK(child > static_cast<int>(node));
+        }
+}
+
+TEST_CASE("agglomeration merges while ≤ σ, keeps the medoid first, leaves singletons") {
+    // Strings 0–2 close together, 3–4 close together, 5 alone.
+    std::vector<std::vector<double>> d(6, std::vector<double>(6, 50.0));
+    for (int i = 0; i < 6; ++i) d[static_cast<std::size_t>(i)][static_cast<std::size_t>(i)] = 0;
+    auto set = [&](int a, int b, double v) { d[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] = d[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] = v; };
+    set(0, 1, 2);
+    set(1, 2, 2);
+    set(0, 2, 4);
+    set(3, 4, 3);
+    const auto clusters = agglomerate(d, 5.0);
+    REQUIRE(clusters.size() == 3);
+    CHECK(clusters[0].front() == 1);  // 1 is at most 2 from the others
+    CHECK(clusters[0].size() == 3);
+    CHECK(clusters[1].size() == 2);
+    CHECK(clusters[2] == std::vector<std::size_t>{5});
+    CHECK(agglomerate(d, 1.0).size() == 6);
+}
+
+TEST_CASE("training on the toy world recognises held-out performances") {
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 6, 100);
+    const auto held_out = toy_clips(world, 5, 9000, 30.0);
+    TrainingReport report;
+    ModelData model = train_model(train, toy_options(), &report);
+    const ModelView view = model.view();
+    CHECK(validate_model(view) == Status::ok);
+    CHECK(report.em.converged);
+    CHECK(report.characters >= 5);
+    for (int count : report.representatives_per_label) CHECK(count >= 1);
+    CHECK(clip_accuracy(view, held_out) >= 0.9);
+}
+
+TEST_CASE("the same inputs and seed give byte-identical artifacts and headers") {
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 4, 200);
+    TrainingOptions options = toy_options();
+    options.pca_dim = 6;
+    ModelData a = train_model(train, options);
+    ModelData b = train_model(train, options);
+    const std::string text_a = serialize_model(a), text_b = serialize_model(b);
+    CHECK(text_a == text_b);
+    CHECK(generate_header(a, artifact_checksum(text_a), "m", "a.model") == generate_header(b, artifact_checksum(text_b), "m", "a.model"));
+    options.seed = 2;
+    ModelData c = train_model(train, options);
+    CHECK(serialize_model(c) != text_a);  // the seed matters, so the comparison above can fail
+}
+
+TEST_CASE("artifacts round-trip exactly and refuse corruption") {
+    ToyWorld world = make_toy_world();
+    std::string text = serialize_model(world.model);
+    ModelData loaded = parse_model("m.model", text);
+    CHECK(serialize_model(loaded) == text);
+    CHECK(loaded.gmm_factors == world.model.gmm_factors);  // every float, bit for bit
+    CHECK(loaded.label_names == world.model.label_names);
+
+    auto refused = [&](const std::string& bad, const std::string& fragment) {
+        try {
+            parse_model("m.model", bad);
+            FAIL("accepted a bad artifact; expected '" << fragment << "'");
+        } catch (const ReadError& error) {
+            const std::string message = error.what();
+            CAPTURE(message);
+            CHECK(message.find(fragment) != std::string::npos);
+        }
+    };
+    std::string flipped = text;
+    flipped[flipped.size() / 2] = flipped[flipped.size() / 2] == '1' ? '2' : '1';
+    refused(flipped, "checksum mismatch");
+    refused(text.substr(0, text.size() / 2), "checksum mismatch");
+    refused(text.substr(0, 30), "expected 'checksum fnv1a64");
+    refused("", "empty file");
+    refused("actionstring-model 99\n", "version 99 is not supported");
+    refused("something else\n", "not an actionstring model");
+    // A consistent checksum over inconsistent tables: the runtime's validation refuses it.
+    world.model.representative_labels[0] = 77;
+    world.model.label_names.resize(1);
+    refused(serialize_model(world.model), "inconsistent");
+}
+
+TEST_CASE("generated headers carry the banner, the checksum and exact literals") {
+    ToyWorld world = make_toy_world();
+    const std::string text = serialize_model(world.model);
+    const std::string header = generate_header(world.model, artifact_checksum(text), "toy", "toy.model");
+    CHECK(header.rfind("// DO NOT EDIT.", 0) == 0);
+    CHECK(header.find(artifact_checksum(text)) != std::string::npos);
+    CHECK(header.find("inline constexpr ::actionstring::ModelView kModel") != std::string::npos);
+    CHECK(header.find("using ModelCapacity = ::actionstring::Capacity<5, 4, 12, 6,") != std::string::npos);
+    char literal[48];
+    std::snprintf(literal, sizeof literal, "%af", static_cast<double>(world.model.gmm_means[0]));
+    CHECK(header.find(literal) != std::string::npos);
+}
