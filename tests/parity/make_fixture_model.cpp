@@ -1,0 +1,34 @@
+// Trains a model on synthetic toy clips with the real training pipeline and
+// writes its artifact: the fixture of the header/artifact parity test, made
+// at build time so the test needs no dataset.
+#include <cstdio>
+
+#include "actionstring_host/artifact.hpp"
+#include "actionstring_host/toy.hpp"
+#include "actionstring_host/training.hpp"
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: make_fixture_model OUT.model\n");
+        return 2;
+    }
+    using namespace actionstring::host;
+    try {
+        ToyWorld world = make_toy_world();
+        TrainingOptions options;
+        options.components = 6;
+        options.pca_dim = 8;
+        options.string_rate_hz = 10.0;
+        options.sigma = 4.0;
+        options.covariance_floor = 1e-3;
+        options.normalization = actionstring::LengthNormalization::path;
+        options.sigma = 0.3;
+        options.neighbours = 3;
+        ModelData model = train_model(toy_clips(world, 6, 100), options);
+        save_model(model, argv[1]);
+        return 0;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "make_fixture_model: %s\n", error.what());
+        return 1;
+    }
+}

@@ -1,0 +1,54 @@
+// The runtime compiled against a generated header and the same runtime on the
+// host-loaded artifact must agree bit for bit: characters, window distances,
+// labels and confidences, frame by frame.
+#define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
+#include <doctest/doctest.h>
+
+#include <cstring>
+#include <memory>
+
+#include "actionstring/annotator.hpp"
+#include "actionstring_host/artifact.hpp"
+#include "actionstring_host/toy.hpp"
+#include "fixture_model.hpp"
+
+using namespace actionstring;
+
+TEST_CASE("generated header and loaded artifact agree bit for bit") {
+    host::ModelData loaded = host::load_model(ACTIONSTRING_FIXTURE_MODEL);
+    const ModelView view = loaded.view();
+    CHECK(std::strcmp(fixture::kModelChecksum + 8, host::artifact_checksum(host::read_file(ACTIONSTRING_FIXTURE_MODEL)).c_str()) == 0);
+    // Different capacities on purpose: the exact one from the header and the host's.
+    auto generated = std::make_unique<Annotator<fixture::ModelCapacity>>();
+    auto host_side = std::make_unique<Annotator<HostCapacity>>();
+    REQUIRE(generated->init(fixture::kModel) == Status::ok);
+    REQUIRE(host_side->init(view) == Status::ok);
+
+    host::ToyWorld world = host::make_toy_world();
+    std::vector<int> sequence;
+    for (int i = 0; i < 24; ++i) sequence.push_back((i * 7) % 4);
+    host::ToyStreamOptions stream;
+    stream.seed = 4242;
+    stream.frame_time_jitter = 0.3;
+    stream.drop_probability = 0.05;
+    std::size_t windows = 0, characters = 0;
+    for (const auto& frame : host::toy_stream(world, sequence, stream)) {
+        const FrameResult a = generated->push_frame(frame.time_us, frame.positions.data());
+        const FrameResult b = host_side->push_frame(frame.time_us, frame.positions.data());
+        REQUIRE(a.status == b.status);
+        REQUIRE(a.characters == b.characters);
+        REQUIRE(a.windows_completed == b.windows_completed);
+        REQUIRE(generated->last_character() == host_side->last_character());
+        REQUIRE(generated->label() == host_side->label());
+        const float ca = generated->confidence(), cb = host_side->confidence();
+        REQUIRE(std::memcmp(&ca, &cb, sizeof ca) == 0);
+        if (a.windows_completed > 0) {
+            REQUIRE(std::memcmp(generated->last_window_distances(), host_side->last_window_distances(),
+                                sizeof(float) * view.representative_count) == 0);
+            ++windows;
+        }
+        characters += a.characters;
+    }
+    CHECK(windows > 100);
+    CHECK(characters > 500);
+}
