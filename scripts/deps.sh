@@ -19,5 +19,6 @@ ensure_packages() {
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
-# Packages for building and testing on the host.
-ACTIONSTRING_HOST_PACKAGES=(cmake make g++ clang libclang-rt-14-dev libeigen3-dev doctest-dev)
+# Packages for building and testing on the host, and for the Cortex-M builds.
+ACTIONSTRING_HOST_PACKAGES=(cmake make g++ clang libclang-rt-14-dev libeigen3-dev doctest-dev
+                            gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib)
