@@ -34,6 +34,7 @@ Eigen::MatrixXd blobs(int per_blob, std::uint32_t seed) {
 TrainingOptions toy_options() {
     TrainingOptions o;
     o.components = 6;
+    o.pca_dim = 0;  // the toy pose has 12 dimensions
     o.string_rate_hz = 10.0;
     o.sigma = 4.0;
     o.covariance_floor = 1e-3;
