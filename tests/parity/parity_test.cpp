@@ -52,3 +52,49 @@ TEST_CASE("generated header and loaded artifact agree bit for bit") {
     CHECK(windows > 100);
     CHECK(characters > 500);
 }
+
+#if defined(ACTIONSTRING_WITH_EXAMPLE_MODEL)
+#include <cstdlib>
+
+#include "actionstring_host/readers.hpp"
+#include "hdm05_model.hpp"
+
+// Real clips through the committed example header and through the artifact the
+// regeneration test just trained (ACTIONSTRING_EXAMPLE_ARTIFACT); skipped when absent.
+TEST_CASE("the committed HDM05 header and its artifact agree bit for bit on real clips") {
+    const char* artifact = std::getenv("ACTIONSTRING_EXAMPLE_ARTIFACT");
+    const char* list = std::getenv("ACTIONSTRING_EXAMPLE_CLIPS");
+    if (artifact == nullptr || list == nullptr || std::getenv("ACTIONSTRING_EXAMPLE_SKIP") != nullptr) {
+        MESSAGE("SKIPPED: no example artifact or clip list (HDM05 data absent)");
+        return;
+    }
+    host::ModelData loaded = host::load_model(artifact);
+    const ModelView view = loaded.view();
+    REQUIRE(std::strcmp(actionstring_hdm05::kModelChecksum + 8, host::artifact_checksum(host::read_file(artifact)).c_str()) == 0);
+    auto generated = std::make_unique<Annotator<actionstring_hdm05::ModelCapacity>>();
+    auto host_side = std::make_unique<Annotator<HostCapacity>>();
+    REQUIRE(generated->init(actionstring_hdm05::kModel) == Status::ok);
+    REQUIRE(host_side->init(view) == Status::ok);
+    std::size_t windows = 0;
+    std::int64_t offset = 0;
+    for (const host::ClipListEntry& entry : host::read_clip_list(list)) {
+        const host::Clip clip = host::read_clip(entry);
+        for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+            const std::int64_t t = offset + static_cast<std::int64_t>(clip.times[f] * 1e6);
+            const FrameResult a = generated->push_frame(t, clip.frame(f));
+            const FrameResult b = host_side->push_frame(t, clip.frame(f));
+            REQUIRE(a.status == b.status);
+            REQUIRE(a.characters == b.characters);
+            REQUIRE(generated->last_character() == host_side->last_character());
+            REQUIRE(generated->label() == host_side->label());
+            if (a.windows_completed > 0) {
+                REQUIRE(std::memcmp(generated->last_window_distances(), host_side->last_window_distances(),
+                                    sizeof(float) * view.representative_count) == 0);
+                ++windows;
+            }
+        }
+        offset += static_cast<std::int64_t>(clip.duration() * 1e6) + 8333;
+    }
+    CHECK(windows > 100);
+}
+#endif
