@@ -14,6 +14,31 @@
 
 using namespace actionstring;
 
+namespace {
+
+// Feeds one frame to both annotators and requires identical results; counts completed windows.
+template <class GeneratedCap>
+void push_both(Annotator<GeneratedCap>& generated, Annotator<HostCapacity>& host_side, const ModelView& view,
+               std::int64_t time_us, const float* positions, std::size_t& windows, std::size_t& characters) {
+    const FrameResult a = generated.push_frame(time_us, positions);
+    const FrameResult b = host_side.push_frame(time_us, positions);
+    REQUIRE(a.status == b.status);
+    REQUIRE(a.characters == b.characters);
+    REQUIRE(a.windows_completed == b.windows_completed);
+    REQUIRE(generated.last_character() == host_side.last_character());
+    REQUIRE(generated.label() == host_side.label());
+    const float ca = generated.confidence(), cb = host_side.confidence();
+    REQUIRE(std::memcmp(&ca, &cb, sizeof ca) == 0);
+    if (a.windows_completed > 0) {
+        REQUIRE(std::memcmp(generated.last_window_distances(), host_side.last_window_distances(),
+                            sizeof(float) * view.representative_count) == 0);
+        ++windows;
+    }
+    characters += a.characters;
+}
+
+}  // namespace
+
 TEST_CASE("generated header and loaded artifact agree bit for bit") {
     host::ModelData loaded = host::load_model(ACTIONSTRING_FIXTURE_MODEL);
     const ModelView view = loaded.view();
@@ -32,23 +57,8 @@ TEST_CASE("generated header and loaded artifact agree bit for bit") {
     stream.frame_time_jitter = 0.3;
     stream.drop_probability = 0.05;
     std::size_t windows = 0, characters = 0;
-    for (const auto& frame : host::toy_stream(world, sequence, stream)) {
-        const FrameResult a = generated->push_frame(frame.time_us, frame.positions.data());
-        const FrameResult b = host_side->push_frame(frame.time_us, frame.positions.data());
-        REQUIRE(a.status == b.status);
-        REQUIRE(a.characters == b.characters);
-        REQUIRE(a.windows_completed == b.windows_completed);
-        REQUIRE(generated->last_character() == host_side->last_character());
-        REQUIRE(generated->label() == host_side->label());
-        const float ca = generated->confidence(), cb = host_side->confidence();
-        REQUIRE(std::memcmp(&ca, &cb, sizeof ca) == 0);
-        if (a.windows_completed > 0) {
-            REQUIRE(std::memcmp(generated->last_window_distances(), host_side->last_window_distances(),
-                                sizeof(float) * view.representative_count) == 0);
-            ++windows;
-        }
-        characters += a.characters;
-    }
+    for (const auto& frame : host::toy_stream(world, sequence, stream))
+        push_both(*generated, *host_side, view, frame.time_us, frame.positions.data(), windows, characters);
     CHECK(windows > 100);
     CHECK(characters > 500);
 }
@@ -75,24 +85,13 @@ TEST_CASE("the committed HDM05 header and its artifact agree bit for bit on real
     auto host_side = std::make_unique<Annotator<HostCapacity>>();
     REQUIRE(generated->init(actionstring_hdm05::kModel) == Status::ok);
     REQUIRE(host_side->init(view) == Status::ok);
-    std::size_t windows = 0;
+    std::size_t windows = 0, characters = 0;
     std::int64_t offset = 0;
     for (const host::ClipListEntry& entry : host::read_clip_list(list)) {
         const host::Clip clip = host::read_clip(entry);
-        for (std::size_t f = 0; f < clip.frame_count(); ++f) {
-            const std::int64_t t = offset + static_cast<std::int64_t>(clip.times[f] * 1e6);
-            const FrameResult a = generated->push_frame(t, clip.frame(f));
-            const FrameResult b = host_side->push_frame(t, clip.frame(f));
-            REQUIRE(a.status == b.status);
-            REQUIRE(a.characters == b.characters);
-            REQUIRE(generated->last_character() == host_side->last_character());
-            REQUIRE(generated->label() == host_side->label());
-            if (a.windows_completed > 0) {
-                REQUIRE(std::memcmp(generated->last_window_distances(), host_side->last_window_distances(),
-                                    sizeof(float) * view.representative_count) == 0);
-                ++windows;
-            }
-        }
+        for (std::size_t f = 0; f < clip.frame_count(); ++f)
+            push_both(*generated, *host_side, view, offset + static_cast<std::int64_t>(clip.times[f] * 1e6), clip.frame(f),
+                      windows, characters);
         offset += static_cast<std::int64_t>(clip.duration() * 1e6) + 8333;
     }
     CHECK(windows > 100);
