@@ -16,5 +16,8 @@ int run_train(int argc, char** argv);
 /// `actionstring codegen MODEL --out HEADER`: the constexpr header of a model.
 int run_codegen(int argc, char** argv);
 
+/// `actionstring eval --model MODEL --clips LIST`: clip recognition beside baselines.
+int run_eval(int argc, char** argv);
+
 }  // namespace cli
 }  // namespace actionstring

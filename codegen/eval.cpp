@@ -1,0 +1,117 @@
+// `actionstring eval`: clip recognition on a list, beside baselines.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "actionstring_host/artifact.hpp"
+#include "actionstring_host/evaluation.hpp"
+#include "actionstring_host/readers.hpp"
+#include "commands.hpp"
+#include "options.hpp"
+
+namespace actionstring {
+namespace cli {
+namespace {
+
+void print_eval_usage(std::FILE* out) {
+    std::fprintf(out,
+                 "usage: actionstring eval --model MODEL --clips LIST [--train LIST] [--json FILE]\n"
+                 "                         [--rate HZ] [--roles R,L,R]\n"
+                 "\n"
+                 "Classifies every clip of LIST with the runtime's own code and reports clip\n"
+                 "accuracy, per-class precision and recall, the confusion matrix, the unknown rate\n"
+                 "and the annotator's per-frame time. With --train (the model's training list) the\n"
+                 "same run adds baselines on the same split: DTW 1-NN on normalised poses, and\n"
+                 "1-NN over all training strings (no representatives).\n");
+}
+
+std::vector<host::LabelledClip> load(const std::string& path, const host::ReadOptions& read) {
+    std::vector<host::LabelledClip> clips;
+    for (const host::ClipListEntry& entry : host::read_clip_list(path))
+        clips.push_back({host::read_clip(entry, read), entry.label, entry.subject});
+    return clips;
+}
+
+void print_results(const host::ClipResults& r) {
+    std::printf("  %-44s clip accuracy %.3f, unknown %.3f\n", r.method.c_str(), r.clip_accuracy, r.unknown_rate);
+}
+
+}  // namespace
+
+int run_eval(int argc, char** argv) {
+    std::string model_path, clips_path, train_path, json_path;
+    host::ReadOptions read;
+    ArgumentReader args("eval", argc, argv);
+    while (args.more()) {
+        const std::string arg = args.next();
+        if (arg == "--help" || arg == "-h") {
+            print_eval_usage(stdout);
+            return 0;
+        }
+        if (arg == "--model") model_path = args.value(arg);
+        else if (arg == "--clips") clips_path = args.value(arg);
+        else if (arg == "--train") train_path = args.value(arg);
+        else if (arg == "--json") json_path = args.value(arg);
+        else if (arg == "--rate") read.frame_rate_hz = args.number(arg, 0.001, 1e6);
+        else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
+        else return args.unknown(arg);
+    }
+    if (!args.ok()) return 2;
+    if (model_path.empty() || clips_path.empty()) {
+        print_eval_usage(stderr);
+        return 2;
+    }
+    try {
+        host::ModelData model = host::load_model(model_path);
+        const ModelView view = model.view();
+        const auto clips = load(clips_path, read);
+        std::vector<host::ClipResults> results{host::evaluate_model(view, clips)};
+        if (!train_path.empty()) {
+            const auto train = load(train_path, read);
+            results.push_back(host::evaluate_all_strings(view, train, clips));
+            results.push_back(host::evaluate_pose_dtw(view, train, clips));
+        }
+        const std::vector<double> frame_ns = host::annotator_frame_times(view, clips);
+        auto at = [&](double q) {
+            return frame_ns.empty() ? 0.0 : frame_ns[std::min(frame_ns.size() - 1, static_cast<std::size_t>(q * static_cast<double>(frame_ns.size())))];
+        };
+
+        const host::ClipResults& main = results.front();
+        std::printf("%s: %zu clips\n", clips_path.c_str(), clips.size());
+        for (const auto& r : results) print_results(r);
+        std::printf("\nper class (action strings):\n  %-32s %9s %7s\n", "label", "precision", "recall");
+        for (std::size_t l = 0; l < main.labels.size(); ++l)
+            std::printf("  %-32s %9.3f %7.3f\n", main.labels[l].c_str(), main.precision[l], main.recall[l]);
+        std::printf("\nconfusion (rows true, columns predicted in label order, last column unknown):\n");
+        for (std::size_t t = 0; t < main.confusion.size(); ++t) {
+            std::printf("  %-32s", main.labels[t].c_str());
+            for (int v : main.confusion[t]) std::printf(" %3d", v);
+            std::printf("\n");
+        }
+        std::printf("\nannotator per frame (host build, HostCapacity, %zu frames): median %.0f ns, p99 %.0f ns, max %.0f ns\n",
+                    frame_ns.size(), at(0.5), at(0.99), frame_ns.empty() ? 0.0 : frame_ns.back());
+        if (!json_path.empty()) {
+            std::ofstream out(json_path);
+            std::string json = host::to_json(main, clips);
+            json.pop_back();  // extend the model's object with the rest
+            out << json << ", \"model\": " << host::json_string(model_path) << ", \"frame_time_ns\": {\"median\": " << at(0.5) << ", \"p99\": " << at(0.99)
+                << ", \"max\": " << (frame_ns.empty() ? 0.0 : frame_ns.back()) << "}, \"baselines\": [";
+            for (std::size_t i = 1; i < results.size(); ++i) out << (i > 1 ? ", " : "") << host::to_json(results[i], clips);
+            out << "]}\n";
+            if (!out) {
+                std::fprintf(stderr, "actionstring eval: cannot write %s\n", json_path.c_str());
+                return 1;
+            }
+        }
+        return 0;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "actionstring eval: %s\n", error.what());
+        return 1;
+    }
+}
+
+}  // namespace cli
+}  // namespace actionstring

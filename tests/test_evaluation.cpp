@@ -1,0 +1,54 @@
+// Evaluation: metrics on hand-made predictions, JSON, and the baselines on the toy world.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "actionstring_host/evaluation.hpp"
+#include "actionstring_host/toy.hpp"
+
+using namespace actionstring;
+using namespace actionstring::host;
+
+TEST_CASE("accuracy, unknown rate, confusion, precision and recall") {
+    std::vector<LabelledClip> clips(4);
+    clips[0].label = clips[1].label = "a";
+    clips[2].label = clips[3].label = "b";
+    ClipResults r;
+    r.labels = {"a", "b"};
+    r.predictions = {0, 1, 1, -1};
+    summarise(r, clips);
+    CHECK(r.clip_accuracy == doctest::Approx(0.5));
+    CHECK(r.unknown_rate == doctest::Approx(0.25));
+    CHECK(r.confusion == std::vector<std::vector<int>>{{1, 1, 0}, {0, 1, 1}});
+    CHECK(r.precision == std::vector<double>{1.0, 0.5});
+    CHECK(r.recall == std::vector<double>{0.5, 0.5});
+    const std::string json = to_json(r, clips);
+    CHECK(json.find("\"clip_accuracy\": 0.5") != std::string::npos);
+    CHECK(json.find("\"confusion\": [[1, 1, 0], [0, 1, 1]]") != std::string::npos);
+    CHECK(json.find("\"b\": {\"precision\": 0.5, \"recall\": 0.5, \"support\": 2}") != std::string::npos);
+    CHECK(std::count(json.begin(), json.end(), '{') == std::count(json.begin(), json.end(), '}'));
+    CHECK(std::count(json.begin(), json.end(), '[') == std::count(json.begin(), json.end(), ']'));
+}
+
+TEST_CASE("the model and both baselines recognise held-out toy performances") {
+    ToyWorld world = make_toy_world();
+    TrainingOptions options;
+    options.components = 6;
+    options.pca_dim = 0;
+    options.string_rate_hz = 10.0;
+    options.sigma = 4.0;
+    options.covariance_floor = 1e-3;
+    const auto train = toy_clips(world, 5, 300);
+    const auto test = toy_clips(world, 4, 7000, 30.0);
+    ModelData model = train_model(train, options);
+    const ModelView view = model.view();
+    CHECK(evaluate_model(view, test).clip_accuracy >= 0.9);
+    CHECK(evaluate_all_strings(view, train, test).clip_accuracy >= 0.9);
+    const ClipResults dtw = evaluate_pose_dtw(view, train, test);
+    CHECK(dtw.clip_accuracy >= 0.9);
+    CHECK(dtw.confusion.size() == 4);
+    const auto times = annotator_frame_times(view, test);
+    CHECK(times.size() > 1000);
+    CHECK(std::is_sorted(times.begin(), times.end()));
+}
