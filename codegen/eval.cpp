@@ -19,13 +19,16 @@ namespace {
 void print_eval_usage(std::FILE* out) {
     std::fprintf(out,
                  "usage: actionstring eval --model MODEL --clips LIST [--train LIST] [--json FILE]\n"
-                 "                         [--rate HZ] [--roles R,L,R]\n"
+                 "                         [--online] [--seed N] [--rate HZ] [--roles R,L,R]\n"
                  "\n"
                  "Classifies every clip of LIST with the runtime's own code and reports clip\n"
                  "accuracy, per-class precision and recall, the confusion matrix, the unknown rate\n"
                  "and the annotator's per-frame time. With --train (the model's training list) the\n"
                  "same run adds baselines on the same split: DTW 1-NN on normalised poses, and\n"
-                 "1-NN over all training strings (no representatives).\n");
+                 "1-NN over all training strings (no representatives).\n"
+                 "With --online it also concatenates each subject's clips in a seeded shuffled\n"
+                 "order and streams them frame by frame through the annotator, as a device would,\n"
+                 "reporting frame accuracy, segment F1 (IoU >= 0.5), label delay and flicker.\n");
 }
 
 std::vector<host::LabelledClip> load(const std::string& path, const host::ReadOptions& read) {
@@ -44,6 +47,8 @@ void print_results(const host::ClipResults& r) {
 int run_eval(int argc, char** argv) {
     std::string model_path, clips_path, train_path, json_path;
     host::ReadOptions read;
+    bool online = false;
+    std::uint32_t seed = 1;
     ArgumentReader args("eval", argc, argv);
     while (args.more()) {
         const std::string arg = args.next();
@@ -56,6 +61,8 @@ int run_eval(int argc, char** argv) {
         else if (arg == "--train") train_path = args.value(arg);
         else if (arg == "--json") json_path = args.value(arg);
         else if (arg == "--rate") read.frame_rate_hz = args.number(arg, 0.001, 1e6);
+        else if (arg == "--online") online = true;
+        else if (arg == "--seed") seed = static_cast<std::uint32_t>(args.number(arg, 0, 4294967295.0));
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
         else return args.unknown(arg);
     }
@@ -75,6 +82,8 @@ int run_eval(int argc, char** argv) {
             results.push_back(host::evaluate_pose_dtw(view, train, clips));
         }
         const std::vector<double> frame_ns = host::annotator_frame_times(view, clips);
+        host::OnlineResults stream;
+        if (online) stream = host::evaluate_online(view, clips, seed);
         auto at = [&](double q) {
             return frame_ns.empty() ? 0.0 : frame_ns[std::min(frame_ns.size() - 1, static_cast<std::size_t>(q * static_cast<double>(frame_ns.size())))];
         };
@@ -91,6 +100,12 @@ int run_eval(int argc, char** argv) {
             for (int v : main.confusion[t]) std::printf(" %3d", v);
             std::printf("\n");
         }
+        if (online)
+            std::printf("\nonline (clips concatenated per subject, seed %u, %zu frames): frame accuracy %.3f, segment F1 %.3f "
+                        "(P %.3f, R %.3f), mean delay %.2f s, %d segments missed, flicker %.1f changes/min beyond the true %.1f\n",
+                        seed, stream.frames, stream.frame_accuracy, stream.segment_f1, stream.segment_precision,
+                        stream.segment_recall, stream.mean_delay_s, stream.missed_segments, stream.flicker_per_min,
+                        stream.true_changes_per_min);
         std::printf("\nannotator per frame (host build, HostCapacity, %zu frames): median %.0f ns, p99 %.0f ns, max %.0f ns\n",
                     frame_ns.size(), at(0.5), at(0.99), frame_ns.empty() ? 0.0 : frame_ns.back());
         if (!json_path.empty()) {
@@ -100,7 +115,14 @@ int run_eval(int argc, char** argv) {
             out << json << ", \"model\": " << host::json_string(model_path) << ", \"frame_time_ns\": {\"median\": " << at(0.5) << ", \"p99\": " << at(0.99)
                 << ", \"max\": " << (frame_ns.empty() ? 0.0 : frame_ns.back()) << "}, \"baselines\": [";
             for (std::size_t i = 1; i < results.size(); ++i) out << (i > 1 ? ", " : "") << host::to_json(results[i], clips);
-            out << "]}\n";
+            out << "]";
+            if (online)
+                out << ", \"frame_accuracy\": " << stream.frame_accuracy << ", \"online\": {\"frames\": " << stream.frames
+                    << ", \"frame_accuracy\": " << stream.frame_accuracy << ", \"segment_f1\": " << stream.segment_f1
+                    << ", \"segment_precision\": " << stream.segment_precision << ", \"segment_recall\": " << stream.segment_recall
+                    << ", \"mean_delay_s\": " << stream.mean_delay_s << ", \"missed_segments\": " << stream.missed_segments
+                    << ", \"flicker_per_min\": " << stream.flicker_per_min << ", \"seed\": " << seed << "}";
+            out << "}\n";
             if (!out) {
                 std::fprintf(stderr, "actionstring eval: cannot write %s\n", json_path.c_str());
                 return 1;

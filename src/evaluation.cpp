@@ -8,6 +8,8 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <random>
+#include <stdexcept>
 #include <sstream>
 
 #include "actionstring/annotator.hpp"
@@ -216,6 +218,134 @@ std::string to_json(const ClipResults& r, const std::vector<LabelledClip>& clips
     }
     out << "}}";
     return out.str();
+}
+
+}  // namespace host
+}  // namespace actionstring
+
+namespace actionstring {
+namespace host {
+namespace {
+
+struct Segment {
+    int label;
+    std::size_t begin, end;  // frames [begin, end)
+};
+
+std::vector<Segment> runs(const std::vector<int>& labels) {
+    std::vector<Segment> out;
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        if (out.empty() || out.back().label != labels[i]) out.push_back({labels[i], i, i + 1});
+        else out.back().end = i + 1;
+    }
+    return out;
+}
+
+}  // namespace
+
+OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<int>& predicted, const std::vector<double>& times,
+                             const std::vector<std::size_t>& stream_starts) {
+    OnlineResults r;
+    r.frames = truth.size();
+    if (r.frames == 0) return r;
+    std::size_t right = 0;
+    for (std::size_t i = 0; i < truth.size(); ++i) right += truth[i] == predicted[i];
+    r.frame_accuracy = static_cast<double>(right) / static_cast<double>(r.frames);
+
+    // Segments and label changes, per stream so boundaries between subjects do not count.
+    int true_segments = 0, predicted_segments = 0, matched = 0, found = 0;
+    double delay_sum = 0, minutes = 0;
+    int predicted_changes = 0, true_changes = 0;
+    for (std::size_t s = 0; s + 1 < stream_starts.size(); ++s) {
+        const std::size_t begin = stream_starts[s], end = stream_starts[s + 1];
+        if (end <= begin) continue;
+        const std::vector<int> t(truth.begin() + static_cast<long>(begin), truth.begin() + static_cast<long>(end));
+        const std::vector<int> p(predicted.begin() + static_cast<long>(begin), predicted.begin() + static_cast<long>(end));
+        const auto true_runs = runs(t), predicted_runs = runs(p);
+        minutes += (times[end - 1] - times[begin]) / 60.0;
+        true_changes += static_cast<int>(true_runs.size()) - 1;
+        predicted_changes += static_cast<int>(predicted_runs.size()) - 1;
+        std::vector<bool> used(predicted_runs.size(), false);
+        for (const Segment& segment : predicted_runs) predicted_segments += segment.label >= 0;
+        for (const Segment& segment : true_runs) {
+            ++true_segments;
+            for (std::size_t q = 0; q < predicted_runs.size(); ++q) {
+                const Segment& guess = predicted_runs[q];
+                if (used[q] || guess.label != segment.label) continue;
+                const std::size_t overlap_begin = std::max(segment.begin, guess.begin), overlap_end = std::min(segment.end, guess.end);
+                if (overlap_end <= overlap_begin) continue;
+                const double overlap = static_cast<double>(overlap_end - overlap_begin);
+                const double joined = static_cast<double>(std::max(segment.end, guess.end) - std::min(segment.begin, guess.begin));
+                if (overlap / joined >= 0.5) {
+                    used[q] = true;
+                    ++matched;
+                    break;
+                }
+            }
+            std::size_t first = segment.end;
+            for (std::size_t i = segment.begin; i < segment.end; ++i)
+                if (p[i] == segment.label) {
+                    first = i;
+                    break;
+                }
+            if (first < segment.end) {
+                delay_sum += times[begin + first] - times[begin + segment.begin];
+                ++found;
+            } else {
+                ++r.missed_segments;
+            }
+        }
+    }
+    r.segment_precision = predicted_segments > 0 ? static_cast<double>(matched) / predicted_segments : 0.0;
+    r.segment_recall = true_segments > 0 ? static_cast<double>(matched) / true_segments : 0.0;
+    r.segment_f1 = r.segment_precision + r.segment_recall > 0
+                       ? 2 * r.segment_precision * r.segment_recall / (r.segment_precision + r.segment_recall)
+                       : 0.0;
+    r.mean_delay_s = found > 0 ? delay_sum / found : 0.0;
+    if (minutes > 0) {
+        r.label_changes_per_min = predicted_changes / minutes;
+        r.true_changes_per_min = true_changes / minutes;
+        r.flicker_per_min = std::max(0.0, r.label_changes_per_min - r.true_changes_per_min);
+    }
+    return r;
+}
+
+OnlineResults evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed) {
+    std::vector<std::string> names(model.label_names, model.label_names + model.label_count);
+    std::map<std::string, std::vector<std::size_t>> by_subject;
+    for (std::size_t c = 0; c < clips.size(); ++c) by_subject[clips[c].subject].push_back(c);
+    std::mt19937 rng(seed);
+    auto annotator = std::make_unique<Annotator<HostCapacity>>();
+    if (annotator->init(model) != Status::ok) throw std::invalid_argument("the model does not fit the host annotator");
+
+    std::vector<int> truth, predicted;
+    std::vector<double> times;
+    std::vector<std::size_t> stream_starts;
+    for (auto& subject : by_subject) {
+        std::vector<std::size_t>& order = subject.second;
+        std::shuffle(order.begin(), order.end(), rng);
+        annotator->reset();
+        stream_starts.push_back(truth.size());
+        double offset = 0;
+        for (const std::size_t c : order) {
+            const Clip& clip = clips[c].clip;
+            const auto found = std::find(names.begin(), names.end(), clips[c].label);
+            const int label = found == names.end() ? -2 : static_cast<int>(found - names.begin());
+            const double start = clip.times.empty() ? 0.0 : clip.times.front();
+            for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+                const double t = offset + clip.times[f] - start;
+                annotator->push_frame(static_cast<std::int64_t>(std::llround(t * 1e6)), clip.frame(f));
+                const LabelId out = annotator->label();
+                truth.push_back(label);
+                predicted.push_back(out == unknown_label ? -1 : static_cast<int>(out));
+                times.push_back(t);
+            }
+            const double period = clip.frame_count() > 1 ? clip.duration() / static_cast<double>(clip.frame_count() - 1) : 1.0 / 30;
+            offset += clip.duration() + period;
+        }
+    }
+    stream_starts.push_back(truth.size());
+    return score_timeline(truth, predicted, times, stream_starts);
 }
 
 }  // namespace host

@@ -52,3 +52,43 @@ TEST_CASE("the model and both baselines recognise held-out toy performances") {
     CHECK(times.size() > 1000);
     CHECK(std::is_sorted(times.begin(), times.end()));
 }
+
+TEST_CASE("online metrics on a timeline scored by hand") {
+    // One stream, 1 s per frame: truth 0 0 0 0 1 1 1 1, prediction ? ? 0 0 0 1 1 1.
+    const std::vector<int> truth{0, 0, 0, 0, 1, 1, 1, 1}, predicted{-1, -1, 0, 0, 0, 1, 1, 1};
+    const std::vector<double> times{0, 1, 2, 3, 4, 5, 6, 7};
+    const OnlineResults r = score_timeline(truth, predicted, times, {0, 8});
+    CHECK(r.frame_accuracy == doctest::Approx(5.0 / 8));
+    // Segment 0: IoU 2/5 < 0.5, not matched; segment 1: IoU 3/4, matched. 2 predicted, 2 true.
+    CHECK(r.segment_precision == doctest::Approx(0.5));
+    CHECK(r.segment_recall == doctest::Approx(0.5));
+    CHECK(r.segment_f1 == doctest::Approx(0.5));
+    CHECK(r.mean_delay_s == doctest::Approx(1.5));  // 2 s and 1 s
+    CHECK(r.missed_segments == 0);
+    CHECK(r.true_changes_per_min == doctest::Approx(60.0 / 7));
+    CHECK(r.label_changes_per_min == doctest::Approx(120.0 / 7));
+    CHECK(r.flicker_per_min == doctest::Approx(60.0 / 7));
+    // Two streams: the boundary between them is not a label change, and a never-found segment is missed.
+    const OnlineResults split = score_timeline({0, 0, 1, 1}, {0, 0, 0, 0}, {0, 1, 0, 1}, {0, 2, 4});
+    CHECK(split.true_changes_per_min == 0.0);
+    CHECK(split.missed_segments == 1);
+}
+
+TEST_CASE("online evaluation streams concatenated toy clips deterministically") {
+    ToyWorld world = make_toy_world();
+    TrainingOptions options;
+    options.components = 6;
+    options.pca_dim = 0;
+    options.string_rate_hz = 10.0;
+    options.sigma = 4.0;
+    options.covariance_floor = 1e-3;
+    ModelData model = train_model(toy_clips(world, 5, 300), options);
+    const ModelView view = model.view();
+    const auto test = toy_clips(world, 4, 7000, 30.0);
+    const OnlineResults a = evaluate_online(view, test, 3), b = evaluate_online(view, test, 3);
+    CHECK(a.frames > 1000);
+    CHECK(a.frame_accuracy == b.frame_accuracy);
+    CHECK(a.frame_accuracy > 0.3);  // the latest-window rule lags by about a window
+    CHECK(a.segment_f1 >= 0.0);
+    CHECK(a.segment_f1 <= 1.0);
+}

@@ -51,3 +51,31 @@ std::string to_json(const ClipResults& results, const std::vector<LabelledClip>&
 
 }  // namespace host
 }  // namespace actionstring
+
+namespace actionstring {
+namespace host {
+
+/// Online labelling of unsegmented streams, judged frame by frame.
+struct OnlineResults {
+    std::size_t frames = 0;
+    double frame_accuracy = 0;
+    double segment_precision = 0, segment_recall = 0, segment_f1 = 0;  ///< Temporal IoU ≥ 0.5, one-to-one.
+    double mean_delay_s = 0;      ///< From a true segment's start to its first correct label (found segments).
+    int missed_segments = 0;      ///< True segments never labelled correctly.
+    double label_changes_per_min = 0, true_changes_per_min = 0;
+    double flicker_per_min = 0;   ///< Label changes per minute beyond the true ones (≥ 0).
+};
+
+/// Scores a labelled timeline: per frame the true and predicted label (−1
+/// unknown), its time in seconds, and where each independent stream starts
+/// (segments and label changes never span two streams; the last start is the end).
+OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<int>& predicted, const std::vector<double>& times,
+                             const std::vector<std::size_t>& stream_starts);
+
+/// Concatenates each subject's clips in a seeded shuffled order (the timeline
+/// is known by construction), streams every frame with its timestamp through
+/// the annotator as a device would, and scores the label after each frame.
+OnlineResults evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed);
+
+}  // namespace host
+}  // namespace actionstring
