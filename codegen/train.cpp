@@ -33,6 +33,8 @@ void print_train_usage(std::FILE* out) {
                  "  --pca D                 project poses to D dimensions, 0 = none [%d]\n"
                  "  --feature-rate HZ       frames per second used to fit the GMM and tree [%g]\n"
                  "  --em-iterations N       [%d]     --em-tolerance X  relative [%g]\n"
+                 "  --em-restarts N         EM runs from seeds seed..seed+N-1; the highest training\n"
+                 "                          likelihood is kept [%d]\n"
                  "  --scale none|hip-width  size normalisation of poses [none]\n"
                  "  --epsilon E             split clusters whose L1 diameter is >= E [%g]\n"
                  "  --max-characters K      cap on tree leaves [%d]\n"
@@ -51,7 +53,7 @@ void print_train_usage(std::FILE* out) {
                  "  --validate LIST         report clip accuracy on LIST after training\n"
                  "  --sweep                 with --validate: vary one setting at a time around the\n"
                  "                          given ones and print a table (choose on validation data)\n",
-                 d.components, d.covariance_floor, d.pca_dim, d.feature_rate_hz, d.em_max_iterations, d.em_tolerance,
+                 d.components, d.covariance_floor, d.pca_dim, d.feature_rate_hz, d.em_max_iterations, d.em_tolerance, d.em_restarts,
                  d.epsilon, d.max_characters, d.string_rate_hz, d.sigma, d.neighbours, d.window_seconds, d.step_seconds,
                  d.seed);
 }
@@ -83,6 +85,7 @@ bool apply(ArgumentReader& args, const std::string& name, const std::string& val
     else if (name == "feature-rate") o.feature_rate_hz = number(0.1, 10000);
     else if (name == "em-iterations") o.em_max_iterations = static_cast<int>(number(1, 100000));
     else if (name == "em-tolerance") o.em_tolerance = number(0, 1);
+    else if (name == "em-restarts") o.em_restarts = static_cast<int>(number(1, 64));
     else if (name == "scale") o.scale_mode = static_cast<ScaleMode>(choice({"none", "hip-width"}));
     else if (name == "epsilon") o.epsilon = number(1e-9, 1e9);
     else if (name == "max-characters") o.max_characters = static_cast<int>(number(1, 4096));
@@ -237,10 +240,15 @@ int run_train(int argc, char** argv) {
         std::printf("model:            %s\n", out_path.c_str());
         std::printf("frames:           %zu read, %zu rejected; %zu feature samples at %g Hz\n", report.frames_read,
                     report.frames_rejected, report.feature_samples, options.feature_rate_hz);
-        std::printf("features:         D %zu -> d %u, J %u (%s covariance), EM %zu iterations%s%s\n", view.pose_dim(),
-                    view.feature_dim, view.component_count, view.covariance == Covariance::full ? "full" : "diagonal",
+        std::printf("features:         D %zu -> d %u, J %u (%s covariance), EM %zu iterations%s%s, log-likelihood %.1f\n",
+                    view.pose_dim(), view.feature_dim, view.component_count, view.covariance == Covariance::full ? "full" : "diagonal",
                     report.em.objective.size(), report.em.converged ? ", converged" : ", NOT converged",
-                    report.em.reseeded.empty() ? "" : " (components re-seeded)");
+                    report.em.reseeded.empty() ? "" : " (components re-seeded)",
+                    report.em.log_likelihood.empty() ? 0.0 : report.em.log_likelihood.back());
+        std::printf("EM restarts:      %zu, kept seed %u (objectives:", report.em_restart_objectives.size(),
+                    options.seed + static_cast<std::uint32_t>(report.em_restart_chosen));
+        for (double objective : report.em_restart_objectives) std::printf(" %.1f", objective);
+        std::printf(")\n");
         std::printf("characters:       K %d (epsilon %g)\n", report.characters, options.epsilon);
         std::printf("representatives:  %d of %d strings (sigma %g, %s, %s normalisation)\n", report.representatives,
                     report.strings, options.sigma, variant_name(options.variant), normalization_name(options.normalization));

@@ -8,6 +8,7 @@
 #include <memory>
 #include <set>
 #include <stdexcept>
+#include <thread>
 
 #include "actionstring/capacity.hpp"
 #include "actionstring/encoder.hpp"
@@ -41,6 +42,7 @@ void check_options(const TrainingOptions& o) {
     require(o.neighbours >= 1, "k must be ≥ 1");
     require(o.window_seconds > 0 && o.step_seconds > 0, "window and step must be positive");
     require(o.em_max_iterations >= 1, "EM needs at least one iteration");
+    require(o.em_restarts >= 1 && o.em_restarts <= 64, "EM restarts must be between 1 and 64");
     require(o.max_characters >= 1 && o.max_characters <= 4096, "the character limit must be between 1 and 4096");
 }
 
@@ -170,8 +172,33 @@ ModelData train_model(const std::vector<LabelledClip>& clips, const TrainingOpti
     // 3. GMM by EM.
     if (options.progress) options.progress("fitting the GMM by EM");
     stage = Clock::now();
-    const GmmFit fit = fit_gmm(samples, options.components, options.covariance, options.covariance_floor,
-                               options.em_max_iterations, options.em_tolerance, options.seed);
+    // Restarts run in parallel; each is independent and the choice is fixed
+    // (highest final objective, earliest on ties), so threads change nothing.
+    std::vector<GmmFit> fits(static_cast<std::size_t>(options.em_restarts));
+    std::vector<std::exception_ptr> failures(fits.size());
+    const std::size_t workers = std::max(1u, std::min(2u, std::thread::hardware_concurrency()));
+    for (std::size_t batch = 0; batch < fits.size(); batch += workers) {
+        std::vector<std::thread> threads;
+        for (std::size_t k = batch; k < std::min(fits.size(), batch + workers); ++k)
+            threads.emplace_back([&, k] {
+                try {
+                    fits[k] = fit_gmm(samples, options.components, options.covariance, options.covariance_floor,
+                                      options.em_max_iterations, options.em_tolerance, options.seed + static_cast<std::uint32_t>(k));
+                } catch (...) {
+                    failures[k] = std::current_exception();
+                }
+            });
+        for (std::thread& t : threads) t.join();
+    }
+    for (const auto& failure : failures)
+        if (failure) std::rethrow_exception(failure);
+    std::size_t chosen = 0;
+    for (std::size_t k = 0; k < fits.size(); ++k) {
+        r.em_restart_objectives.push_back(fits[k].report.objective.back());
+        if (fits[k].report.objective.back() > fits[chosen].report.objective.back()) chosen = k;
+    }
+    r.em_restart_chosen = static_cast<int>(chosen);
+    const GmmFit& fit = fits[chosen];
     set_gmm(m, fit.means, fit.covariances, fit.weights, options.covariance);
     r.em = fit.report;
     r.stage_seconds.emplace_back("GMM (EM)", seconds_since(stage));
