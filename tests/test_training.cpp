@@ -207,3 +207,18 @@ TEST_CASE("generated headers carry the banner, the checksum and exact literals")
     std::snprintf(literal, sizeof literal, "%af", static_cast<double>(world.model.gmm_means[0]));
     CHECK(header.find(literal) != std::string::npos);
 }
+
+TEST_CASE("EM restarts run in parallel yet give identical models, keeping the best objective") {
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 3, 400);
+    TrainingOptions options = toy_options();
+    options.em_restarts = 3;
+    TrainingReport first, second;
+    ModelData a = train_model(train, options, &first);
+    ModelData b = train_model(train, options, &second);
+    CHECK(serialize_model(a) == serialize_model(b));
+    REQUIRE(first.em_restart_objectives.size() == 3);
+    const auto best = std::max_element(first.em_restart_objectives.begin(), first.em_restart_objectives.end());
+    CHECK(first.em_restart_chosen == static_cast<int>(best - first.em_restart_objectives.begin()));
+    CHECK(first.em_restart_objectives == second.em_restart_objectives);
+}
