@@ -19,5 +19,8 @@ int run_codegen(int argc, char** argv);
 /// `actionstring eval --model MODEL --clips LIST`: clip recognition beside baselines.
 int run_eval(int argc, char** argv);
 
+/// `actionstring annotate --model MODEL FILE`: the label timeline of a recording.
+int run_annotate(int argc, char** argv);
+
 }  // namespace cli
 }  // namespace actionstring

@@ -17,6 +17,7 @@ void print_usage(std::FILE* out) {
                  "  train      train a model from a clip list and write the model artifact\n"
                  "  codegen    turn a model artifact into a header of constexpr tables\n"
                  "  eval       clip accuracy of a model on a list, beside baselines\n"
+                 "  annotate   the label timeline of a recording (TSV or JSON)\n"
                  "  info       describe a motion file: joints, frames, duration, rate, bounds\n"
                  "  version    print the library version\n"
                  "\n"
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(command, "train") == 0) return actionstring::cli::run_train(argc - 1, argv + 1);
     if (std::strcmp(command, "codegen") == 0) return actionstring::cli::run_codegen(argc - 1, argv + 1);
     if (std::strcmp(command, "eval") == 0) return actionstring::cli::run_eval(argc - 1, argv + 1);
+    if (std::strcmp(command, "annotate") == 0) return actionstring::cli::run_annotate(argc - 1, argv + 1);
     std::fprintf(stderr, "actionstring: unknown command '%s'\n\n", command);
     print_usage(stderr);
     return 2;

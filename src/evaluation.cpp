@@ -350,3 +350,27 @@ OnlineResults evaluate_online(const ModelView& model, const std::vector<Labelled
 
 }  // namespace host
 }  // namespace actionstring
+
+namespace actionstring {
+namespace host {
+
+std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip) {
+    auto annotator = std::make_unique<Annotator<HostCapacity>>();
+    if (annotator->init(model) != Status::ok) throw std::invalid_argument("the model does not fit the host annotator");
+    std::vector<LabelSpan> spans;
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        annotator->push_frame(static_cast<std::int64_t>(std::llround(clip.times[f] * 1e6)), clip.frame(f));
+        const int label = annotator->label() == unknown_label ? -1 : static_cast<int>(annotator->label());
+        if (spans.empty() || spans.back().label != label) {
+            if (!spans.empty()) spans.back().end_s = clip.times[f];
+            spans.push_back({clip.times[f], clip.times[f], label, 0.0, 0});
+        }
+        LabelSpan& span = spans.back();
+        span.mean_confidence += (static_cast<double>(annotator->confidence()) - span.mean_confidence) / static_cast<double>(++span.frames);
+        span.end_s = clip.times[f];
+    }
+    return spans;
+}
+
+}  // namespace host
+}  // namespace actionstring

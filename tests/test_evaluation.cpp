@@ -92,3 +92,28 @@ TEST_CASE("online evaluation streams concatenated toy clips deterministically") 
     CHECK(a.segment_f1 >= 0.0);
     CHECK(a.segment_f1 <= 1.0);
 }
+
+TEST_CASE("annotate_clip returns a contiguous label timeline covering the clip") {
+    ToyWorld world = make_toy_world();
+    const ModelView view = world.model.view();
+    const auto frames = toy_stream(world, {0, 1, 2, 3}, {});
+    const Clip clip = toy_clip(frames, "stream");
+    const auto spans = annotate_clip(view, clip);
+    REQUIRE(!spans.empty());
+    CHECK(spans.front().start_s == clip.times.front());
+    CHECK(spans.front().label == -1);  // nothing until the first window completes
+    CHECK(spans.back().end_s == clip.times.back());
+    std::size_t frames_covered = 0;
+    for (std::size_t i = 0; i < spans.size(); ++i) {
+        frames_covered += spans[i].frames;
+        CHECK(spans[i].label < static_cast<int>(view.label_count));
+        CHECK(spans[i].mean_confidence >= 0.0);
+        CHECK(spans[i].mean_confidence <= 1.0);
+        if (i > 0) {
+            CHECK(spans[i].start_s == spans[i - 1].end_s);
+            CHECK(spans[i].label != spans[i - 1].label);
+        }
+    }
+    CHECK(frames_covered == clip.frame_count());
+    CHECK(spans.size() >= 4);  // the four actions show up
+}

@@ -79,3 +79,21 @@ OnlineResults evaluate_online(const ModelView& model, const std::vector<Labelled
 
 }  // namespace host
 }  // namespace actionstring
+
+namespace actionstring {
+namespace host {
+
+/// One stretch of time with a constant label from the annotator.
+struct LabelSpan {
+    double start_s = 0, end_s = 0;  ///< Times of the first frame and of the frame after the span (or the last frame).
+    int label = -1;                 ///< −1 for unknown.
+    double mean_confidence = 0;     ///< Over the span's frames.
+    std::size_t frames = 0;
+};
+
+/// Streams a clip frame by frame through the annotator and returns the label
+/// timeline: consecutive frames with the same label form one span.
+std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip);
+
+}  // namespace host
+}  // namespace actionstring
