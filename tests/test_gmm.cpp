@@ -2,7 +2,9 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -158,4 +160,57 @@ TEST_CASE("projection computes P (x - m) in the model's layout") {
     REQUIRE(project_pose(view, pose, feature) == Status::ok);
     CHECK(feature[0] == 1.0f);
     CHECK(feature[1] == doctest::Approx(0.5 * 1 - 2 * 4));
+}
+
+namespace {
+// Distance in units in the last place between a float and the exactly rounded
+// value of a double, counted on the float grid.
+double ulp_error(float approx, double exact) {
+    const float rounded = static_cast<float>(exact);
+    const float next = std::nextafter(rounded, std::numeric_limits<float>::infinity());
+    const double ulp = static_cast<double>(next) - static_cast<double>(rounded);
+    return std::fabs(static_cast<double>(approx) - exact) / ulp;
+}
+}  // namespace
+
+TEST_CASE("the portable exp is within 2 ulp of exp on the runtime's range") {
+    double worst = 0.0;
+    // Posterior terms are exp(log_joint - peak) ≤ 1; the sweep covers both signs.
+    for (int i = 0; i <= 400000; ++i) {
+        const float x = -87.0f + 175.0f * static_cast<float>(i) / 400000.0f;
+        const double exact = std::exp(static_cast<double>(x));
+        if (exact < 1.2e-38) continue;  // below FLT_MIN the runtime flushes to zero
+        worst = std::max(worst, ulp_error(detail::exp_portable(x), exact));
+    }
+    CHECK(worst <= 2.0);
+    CHECK(detail::exp_portable(0.0f) == 1.0f);
+    CHECK(detail::exp_portable(-1000.0f) == 0.0f);
+    CHECK(detail::exp_portable(1000.0f) == std::numeric_limits<float>::infinity());
+    CHECK(detail::exp_portable(-std::numeric_limits<float>::infinity()) == 0.0f);
+    CHECK(detail::is_nan(detail::exp_portable(std::numeric_limits<float>::quiet_NaN())));
+    CHECK(detail::is_finite(detail::exp_portable(88.7f)));
+}
+
+TEST_CASE("the portable log is accurate from subnormals to the largest float") {
+    double worst_absolute = 0.0, worst_ulp_near_one = 0.0;
+    for (int i = 0; i <= 400000; ++i) {
+        // Log-spaced over the whole positive range, subnormals included.
+        const double x = std::exp(-103.0 + 191.0 * i / 400000.0);
+        const float xf = static_cast<float>(x);
+        if (!(xf > 0.0f) || !std::isfinite(xf)) continue;
+        const double exact = std::log(static_cast<double>(xf));
+        const double err = std::fabs(static_cast<double>(detail::log_portable(xf)) - exact);
+        // Near 1 the result is small: judge it in ulp there, absolutely elsewhere.
+        if (std::fabs(exact) < 0.5)
+            worst_ulp_near_one = std::max(worst_ulp_near_one, ulp_error(detail::log_portable(xf), exact));
+        else worst_absolute = std::max(worst_absolute, err / std::fabs(exact));
+    }
+    CHECK(worst_ulp_near_one <= 3.0);  // the (m−1)/(m+1) division costs one more ulp near 1
+    CHECK(worst_absolute < 2.5e-7);  // relative: about 2 ulp
+    CHECK(detail::log_portable(1.0f) == 0.0f);
+    CHECK(detail::log_portable(0.0f) == -std::numeric_limits<float>::infinity());
+    CHECK(detail::is_nan(detail::log_portable(-1.0f)));
+    CHECK(detail::is_nan(detail::log_portable(std::numeric_limits<float>::quiet_NaN())));
+    CHECK(detail::log_portable(std::numeric_limits<float>::infinity()) ==
+          std::numeric_limits<float>::infinity());
 }

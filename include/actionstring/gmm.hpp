@@ -122,13 +122,13 @@ inline Status gmm_posterior(const ModelView& model, const float* feature, float*
     if (!detail::is_finite(peak)) return Status::pose_out_of_range;
     float sum = 0.0f;
     for (std::size_t j = 0; j < J; ++j) {
-        posterior[j] = std::exp(posterior[j] - peak);
+        posterior[j] = detail::exp_portable(posterior[j] - peak);
         sum += posterior[j];
     }
     // sum ≥ 1: the peak term is exp(0).
     const float inverse = 1.0f / sum;
     for (std::size_t j = 0; j < J; ++j) posterior[j] *= inverse;
-    if (log_likelihood != nullptr) *log_likelihood = peak + std::log(sum);
+    if (log_likelihood != nullptr) *log_likelihood = peak + detail::log_portable(sum);
     return Status::ok;
 }
 
