@@ -22,5 +22,8 @@ int run_eval(int argc, char** argv);
 /// `actionstring annotate --model MODEL FILE`: the label timeline of a recording.
 int run_annotate(int argc, char** argv);
 
+/// `actionstring stream-table --clips LIST --out HEADER`: a recorded stream as constexpr tables.
+int run_stream_table(int argc, char** argv);
+
 }  // namespace cli
 }  // namespace actionstring

@@ -18,6 +18,8 @@ void print_usage(std::FILE* out) {
                  "  codegen    turn a model artifact into a header of constexpr tables\n"
                  "  eval       clip accuracy of a model on a list, beside baselines\n"
                  "  annotate   the label timeline of a recording (TSV or JSON)\n"
+                 "  stream-table  write clips of a list as one replay stream of constexpr\n"
+                 "             tables (for the firmware, port/firmware)\n"
                  "  info       describe a motion file: joints, frames, duration, rate, bounds\n"
                  "  version    print the library version\n"
                  "\n"
@@ -46,6 +48,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(command, "train") == 0) return actionstring::cli::run_train(argc - 1, argv + 1);
     if (std::strcmp(command, "codegen") == 0) return actionstring::cli::run_codegen(argc - 1, argv + 1);
     if (std::strcmp(command, "eval") == 0) return actionstring::cli::run_eval(argc - 1, argv + 1);
+    if (std::strcmp(command, "stream-table") == 0) return actionstring::cli::run_stream_table(argc - 1, argv + 1);
     if (std::strcmp(command, "annotate") == 0) return actionstring::cli::run_annotate(argc - 1, argv + 1);
     std::fprintf(stderr, "actionstring: unknown command '%s'\n\n", command);
     print_usage(stderr);

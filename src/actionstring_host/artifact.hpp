@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "actionstring_host/clip.hpp"
 #include "actionstring_host/model_data.hpp"
 
 namespace actionstring {
@@ -37,6 +39,19 @@ std::string artifact_checksum(std::string_view text);
 /// Capacity that fits exactly) and `kModelChecksum`, in namespace `ns`.
 std::string generate_header(ModelData& model, const std::string& checksum, const std::string& ns,
                             const std::string& source_name);
+
+/// One clip of a replay stream and the label it is known to show.
+struct StreamSegment {
+    const Clip* clip = nullptr;  ///< Borrowed: must outlive the call.
+    std::string label;
+    std::size_t max_frames = static_cast<std::size_t>(-1);
+};
+
+/// A header of constexpr tables holding `segments` concatenated into one
+/// stream (times in µs, positions in metres, exactly as read), for a firmware
+/// to replay. `command` is recorded in the DO-NOT-EDIT banner.
+std::string generate_stream_header(const std::vector<StreamSegment>& segments, const std::string& ns,
+                                   const std::string& command);
 
 }  // namespace host
 }  // namespace actionstring

@@ -1,0 +1,148 @@
+// actionstring firmware replay: runs a recorded stream (a generated header of
+// constexpr tables) through the annotator frame by frame and prints what a
+// device would act on. The same source builds for the host (port/posix) and
+// for a Cortex-M4F (port/cortex_m); lines that do not start with '#' must be
+// identical on both, which tests/firmware checks. '#' lines carry measurements
+// (per-frame cycles, state bytes, stack) that differ by platform.
+//
+// No heap, no exceptions, no stdio: output goes through port::log_write().
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <new>
+
+#include "actionstring/annotator.hpp"
+#include "actionstring_port.hpp"
+#include ACTIONSTRING_REPLAY_MODEL_HEADER
+#include ACTIONSTRING_REPLAY_STREAM_HEADER
+
+namespace model = ACTIONSTRING_REPLAY_MODEL_NAMESPACE;
+namespace stream = actionstring_stream;
+using Cap = model::ModelCapacity;
+using Annotator = actionstring::Annotator<Cap>;
+
+namespace {
+
+/// One output line assembled in a fixed buffer, then written in one go.
+class Line {
+public:
+    Line& text(const char* s) {
+        while (*s != '\0' && length_ + 2 < sizeof buffer_) buffer_[length_++] = *s++;
+        return *this;
+    }
+    Line& number(std::uint64_t value) {
+        char digits[24];
+        std::size_t n = 0;
+        do {
+            digits[n++] = static_cast<char>('0' + value % 10u);
+            value /= 10u;
+        } while (value != 0u);
+        while (n > 0 && length_ + 2 < sizeof buffer_) buffer_[length_++] = digits[--n];
+        return *this;
+    }
+    Line& hex(std::uint32_t value) {
+        for (int shift = 28; shift >= 0; shift -= 4) {
+            const auto nibble = static_cast<unsigned>(value >> static_cast<unsigned>(shift)) & 0xFu;
+            if (length_ + 2 < sizeof buffer_) buffer_[length_++] = "0123456789abcdef"[nibble];
+        }
+        return *this;
+    }
+    void write() {
+        buffer_[length_++] = '\n';
+        buffer_[length_] = '\0';
+        actionstring::port::log_write(buffer_);
+        length_ = 0;
+    }
+
+private:
+    char buffer_[192] = {};
+    std::size_t length_ = 0;
+};
+
+std::uint32_t float_bits(float value) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
+
+std::uint32_t fnv1a(std::uint32_t hash, std::uint32_t value) {
+    for (int byte = 0; byte < 4; ++byte) {
+        hash ^= (value >> (8 * byte)) & 0xFFu;
+        hash *= 16777619u;
+    }
+    return hash;
+}
+
+#if defined(__arm__)
+// A loop of known length: 2 instructions per iteration (subs, bne). Measuring it
+// converts the clock into instructions where the clock counts instructions
+// (QEMU with -icount) and gives cycles per instruction on real silicon.
+std::uint32_t calibration_cycles(std::uint32_t iterations) {
+    const std::uint64_t begin = actionstring::port::cycle_count();
+    __asm__ volatile("1: subs %0, %0, #1\n\tbne 1b" : "+r"(iterations) : : "cc");
+    return static_cast<std::uint32_t>(actionstring::port::cycle_count() - begin);
+}
+#endif
+
+// The state lives in zero-initialised storage (.bss), not in an initialised
+// object the start-up code would have to copy from flash.
+alignas(Annotator) unsigned char annotator_storage[sizeof(Annotator)];
+
+}  // namespace
+
+int main() {
+    static_assert(stream::kJointCount == model::kModel.joint_count, "the stream's skeleton is the model's");
+    Annotator& annotator = *new (annotator_storage) Annotator();
+    Line line;
+    if (annotator.init(model::kModel) != actionstring::Status::ok) {
+        line.text("model rejected: ").text(actionstring::status_name(annotator.init(model::kModel))).write();
+        return 1;
+    }
+    line.text("replay: ").number(stream::kFrameCount).text(" frames, ").number(stream::kSegmentCount)
+        .text(" clips, model ").text(model::kModelChecksum).write();
+    line.text("# port ").text(actionstring::port::name()).write();
+    line.text("# state bytes: annotator ").number(sizeof(Annotator)).text(" encoder ")
+        .number(sizeof(actionstring::StringEncoder<Cap>)).text(" matcher ").number(sizeof(actionstring::WindowMatcher<Cap>)).write();
+#if defined(__arm__)
+    line.text("# calibration instructions 2000000 cycles ").number(calibration_cycles(1000000u)).write();
+#endif
+
+    std::uint32_t hash = 2166136261u;
+    std::uint32_t windows = 0, rejected = 0;
+    std::uint32_t segment = 0;
+    actionstring::LabelId shown = actionstring::unknown_label;
+    for (std::uint32_t f = 0; f < stream::kFrameCount; ++f) {
+        if (segment < stream::kSegmentCount && stream::kSegmentFirstFrame[segment] == f)
+            line.text("truth ").number(f).text(" ").text(stream::kSegmentLabel[segment++]).write();
+        const float* positions = stream::kFramePositions + static_cast<std::size_t>(f) * stream::kJointCount * 3u;
+        const std::uint64_t begin = actionstring::port::cycle_count();
+        const actionstring::FrameResult result = annotator.push_frame(stream::kFrameTimeUs[f], positions);
+        const std::uint64_t cycles = actionstring::port::cycle_count() - begin;
+        line.text("# cycles ").number(f).text(" ").number(cycles).text(" ").number(result.characters).text(" ")
+            .number(result.windows_completed).write();
+        if (result.status != actionstring::Status::ok && result.status != actionstring::Status::stream_restarted) {
+            ++rejected;
+            line.text("rejected ").number(f).text(" ").text(actionstring::status_name(result.status)).write();
+        }
+        if (result.windows_completed > 0) {
+            ++windows;
+            const actionstring::WindowResult& window = *annotator.last_window();
+            line.text("window ").number(f).text(" chars ").number(window.first_character).text(" ")
+                .text(annotator.label_name()).text(" confidence ").hex(float_bits(annotator.confidence())).write();
+        }
+        if (annotator.label() != shown) {
+            shown = annotator.label();
+            line.text("label ").number(f).text(" ").text(annotator.label_name()).write();
+        }
+        hash = fnv1a(hash, static_cast<std::uint32_t>(annotator.label()));
+        hash = fnv1a(hash, float_bits(annotator.confidence()));
+    }
+    line.text("end: frames ").number(stream::kFrameCount).text(" windows ").number(windows).text(" rejected ")
+        .number(rejected).text(" characters ").number(annotator.characters()).text(" labels fnv1a32 ").hex(hash).write();
+#if defined(__arm__)
+    line.text("# stack bytes used ").number(actionstring_board_stack_used()).text(" of ")
+        .number(actionstring_board_stack_size()).write();
+#endif
+    annotator.~Annotator();
+    return 0;
+}
