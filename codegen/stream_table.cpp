@@ -17,18 +17,21 @@ namespace cli {
 int run_stream_table(int argc, char** argv) {
     std::string list_path, out_path, ns = "actionstring_stream";
     double first = 0, count = 1, stride = 1, max_seconds = 0;
+    bool as_text = false;
     ArgumentReader args("stream-table", argc, argv);
     while (args.more()) {
         const std::string arg = args.next();
         if (arg == "--help" || arg == "-h") {
             std::printf("usage: actionstring stream-table --clips LIST [--first I] [--count N] [--stride K]\n"
                         "                                 [--max-seconds S]"
-                        "                                 [--namespace NS] --out HEADER\n\n"
+                        "                                 [--namespace NS] [--text] --out HEADER\n\n"
                         "Concatenates N clips of LIST, every K-th from clip I (in list order; each clip at\n"
                         "most S seconds, 0 = whole) into one stream and writes it as a header of constexpr tables: frame\n"
                         "times in microseconds, joint positions in metres exactly as read, and where each\n"
                         "clip starts with its label. The firmware replay (port/firmware) embeds it. The\n"
-                        "header holds dataset content: generate it at build time, never commit it.\n");
+                        "header holds dataset content: generate it at build time, never commit it.\n"
+                        "--text writes the same frames as text instead: per line the time in microseconds\n"
+                        "and the coordinates as exact hexadecimal floats.\n");
             return 0;
         }
         if (arg == "--clips") list_path = args.value(arg);
@@ -38,6 +41,7 @@ int run_stream_table(int argc, char** argv) {
         else if (arg == "--max-seconds") max_seconds = args.number(arg, 0, 1e6);
         else if (arg == "--namespace") ns = args.value(arg);
         else if (arg == "--out") out_path = args.value(arg);
+        else if (arg == "--text") as_text = true;
         else return args.unknown(arg);
     }
     if (!args.ok()) return 2;
@@ -68,7 +72,8 @@ int run_stream_table(int argc, char** argv) {
         char described[256];
         std::snprintf(described, sizeof described, "actionstring stream-table --clips <%s> --first %zu --count %zu --stride %zu --max-seconds %g",
                       list_path.substr(list_path.find_last_of('/') + 1).c_str(), begin, picked.size(), step, max_seconds);
-        const std::string text = host::generate_stream_header(segments, ns, described);
+        const std::string text =
+            as_text ? host::generate_stream_text(segments) : host::generate_stream_header(segments, ns, described);
         std::ofstream out(out_path, std::ios::binary);
         out << text;
         out.close();

@@ -21,8 +21,8 @@ run_suite() {
 }
 
 start=$(date +%s)
-run_suite release -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++
+run_suite release -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DCMAKE_C_COMPILER=gcc
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
-    run_suite asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DACTIONSTRING_SANITIZE=ON \
+    run_suite asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DACTIONSTRING_SANITIZE=ON \
         -DACTIONSTRING_FUZZ=ON -DACTIONSTRING_FUZZ_SECONDS="${ACTIONSTRING_FUZZ_SECONDS:-30}"
 echo "actionstring: all test suites passed in $(( $(date +%s) - start )) s" >&2

@@ -381,14 +381,23 @@ std::string generate_header(ModelData& m, const std::string& checksum, const std
     return out.str();
 }
 
-std::string generate_stream_header(const std::vector<StreamSegment>& segments, const std::string& ns,
-                                   const std::string& command) {
-    if (segments.empty()) throw std::invalid_argument("a stream needs at least one clip");
-    const std::size_t joints = segments.front().clip->joint_count();
+namespace {
+
+struct ConcatenatedStream {
+    std::size_t joints = 0;
     std::vector<long long> times_us;
     std::vector<float> positions;
     std::vector<std::uint32_t> segment_first_frame;
     std::vector<std::string> segment_labels;
+};
+
+ConcatenatedStream concatenate(const std::vector<StreamSegment>& segments) {
+    ConcatenatedStream stream;
+    if (segments.empty()) throw std::invalid_argument("a stream needs at least one clip");
+    const std::size_t joints = segments.front().clip->joint_count();
+    stream.joints = joints;
+    auto& times_us = stream.times_us;
+    auto& positions = stream.positions;
     double offset_s = 0.0;  // shifts each clip to start one frame period after the previous one
     for (const StreamSegment& segment : segments) {
         const Clip& clip = *segment.clip;
@@ -400,14 +409,38 @@ std::string generate_stream_header(const std::vector<StreamSegment>& segments, c
         const double period = clip.frame_count() > 1 ? clip.duration() / static_cast<double>(clip.frame_count() - 1) : 1.0 / 120.0;
         if (!times_us.empty()) offset_s = static_cast<double>(times_us.back()) * 1e-6 + period - clip.times.front();
         else offset_s = -clip.times.front();
-        segment_first_frame.push_back(static_cast<std::uint32_t>(times_us.size()));
-        segment_labels.push_back(segment.label);
+        stream.segment_first_frame.push_back(static_cast<std::uint32_t>(times_us.size()));
+        stream.segment_labels.push_back(segment.label);
         for (std::size_t f = 0; f < frames; ++f) {
             times_us.push_back(std::llround((clip.times[f] + offset_s) * 1e6));
             positions.insert(positions.end(), clip.frame(f), clip.frame(f) + joints * 3);
         }
     }
     if (times_us.empty()) throw std::invalid_argument("the stream has no frames");
+    return stream;
+}
+
+}  // namespace
+
+std::string generate_stream_text(const std::vector<StreamSegment>& segments) {
+    const ConcatenatedStream stream = concatenate(segments);
+    std::string text;
+    for (std::size_t f = 0; f < stream.times_us.size(); ++f) {
+        text += std::to_string(stream.times_us[f]);
+        for (std::size_t k = 0; k < stream.joints * 3; ++k) text += ' ' + hex_float(stream.positions[f * stream.joints * 3 + k]);
+        text += '\n';
+    }
+    return text;
+}
+
+std::string generate_stream_header(const std::vector<StreamSegment>& segments, const std::string& ns,
+                                   const std::string& command) {
+    const ConcatenatedStream stream = concatenate(segments);
+    const std::size_t joints = stream.joints;
+    const auto& times_us = stream.times_us;
+    const auto& positions = stream.positions;
+    const auto& segment_first_frame = stream.segment_first_frame;
+    const auto& segment_labels = stream.segment_labels;
     auto integer = [](auto x) { return std::to_string(static_cast<long long>(x)); };
     auto quoted = [](const std::string& text) {
         std::string literal = "\"";

@@ -3,11 +3,13 @@
 # twin from one real recording, runs both, and checks that every label line is
 # identical; then checks the firmware for heap symbols and reports flash, RAM,
 # stack and instructions per frame.
-#   run_replay.sh CLI SOURCE_DIR WORK_DIR
-# CLI is a built `actionstring`. Exits 77 (CTest: skipped) when the HDM05
+#   run_replay.sh CLI SOURCE_DIR WORK_DIR [C_API_TEST]
+# CLI is a built `actionstring`. C_API_TEST, when given, is tests/c_api's
+# program: it replays the same frames through the C API, and its windows must
+# equal the C++ build's too. Exits 77 (CTest: skipped) when the HDM05
 # data is absent; 1 on any mismatch or failure.
 set -eu
-cli=$1 source=$(cd "$2" && pwd) work=$3
+cli=$1 source=$(cd "$2" && pwd) work=$3 c_api_test=${4:-}
 data=${ACTIONSTRING_DATA:-$source/../shared/data}
 list=$data/hdm05/val.tsv
 if [ ! -f "$list" ]; then
@@ -51,6 +53,18 @@ if ! cmp -s "$work/host.labels" "$work/cortex_m4.labels"; then
 fi
 grep -q '^end: ' "$work/cortex_m4.labels" || { echo "the firmware did not finish the stream"; exit 1; }
 echo "labels: firmware and host agree on every line ($(grep -c '^window ' "$work/host.labels") windows, $(grep '^end: ' "$work/host.labels"))"
+
+if [ -n "$c_api_test" ]; then
+    "$cli" stream-table --clips "$list" --count 6 --stride 7 --max-seconds 5 --text --out "$work/stream.txt" 2>/dev/null
+    "$c_api_test" "$work/stream.txt" >"$work/c_api.windows"
+    awk '/^window / { print "window", $2, $5, "confidence", $7 }' "$work/host.labels" >"$work/host.windows"
+    if ! cmp -s "$work/host.windows" "$work/c_api.windows"; then
+        echo "the C API's windows differ from the C++ build's:"
+        diff "$work/host.windows" "$work/c_api.windows" | head -20
+        exit 1
+    fi
+    echo "C API: the same $(wc -l <"$work/c_api.windows") windows, labels and confidences as the C++ build"
+fi
 
 # No heap: none of these may be linked in.
 heap=$(arm-none-eabi-nm "$elf" | grep -E ' (malloc|_malloc_r|free|_sbrk|_sbrk_r|_Znwj|_Znaj|_Znwm|_Znam|__cxa_allocate_exception)$' || true)

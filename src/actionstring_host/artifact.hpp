@@ -53,5 +53,9 @@ struct StreamSegment {
 std::string generate_stream_header(const std::vector<StreamSegment>& segments, const std::string& ns,
                                    const std::string& command);
 
+/// The same stream as text: one line per frame, the time in µs then the
+/// coordinates as C99 hexadecimal floats (exact), for programs in other languages.
+std::string generate_stream_text(const std::vector<StreamSegment>& segments);
+
 }  // namespace host
 }  // namespace actionstring

@@ -1,0 +1,116 @@
+// actionstring C API over the runtime and one generated model header.
+#define ACTIONSTRING_C_BUILDING
+#include "actionstring_c.h"
+
+#include <cstdint>
+#include <new>
+
+#include "actionstring/annotator.hpp"
+#include ACTIONSTRING_C_MODEL_HEADER
+
+namespace {
+
+namespace model = ACTIONSTRING_C_MODEL_NAMESPACE;
+using Annotator = actionstring::Annotator<model::ModelCapacity>;
+
+// Distinguishes a state set up by actionstring_init() from stray memory.
+constexpr std::uint32_t kMagic = 0x41535452u;  // "ASTR"
+
+struct State {
+    std::uint32_t magic = kMagic;
+    Annotator annotator;
+};
+
+static_assert(ACTIONSTRING_OK == static_cast<int>(actionstring::Status::ok), "status values match");
+static_assert(ACTIONSTRING_TIME_WENT_BACKWARDS == static_cast<int>(actionstring::Status::time_went_backwards), "status values match");
+static_assert(ACTIONSTRING_NOT_INITIALIZED == static_cast<int>(actionstring::Status::not_initialized), "status values match");
+
+actionstring_status code(actionstring::Status status) { return static_cast<actionstring_status>(status); }
+
+State* live(actionstring_state* handle) {
+    auto* state = reinterpret_cast<State*>(handle);
+    return state != nullptr && state->magic == kMagic ? state : nullptr;
+}
+const State* live(const actionstring_state* handle) {
+    const auto* state = reinterpret_cast<const State*>(handle);
+    return state != nullptr && state->magic == kMagic ? state : nullptr;
+}
+
+}  // namespace
+
+extern "C" {
+
+size_t actionstring_state_size(void) { return sizeof(State); }
+size_t actionstring_state_alignment(void) { return alignof(State); }
+
+actionstring_status actionstring_init(void* memory, size_t size, actionstring_state** handle) {
+    if (handle != nullptr) *handle = nullptr;
+    if (memory == nullptr || handle == nullptr || size < sizeof(State) ||
+        reinterpret_cast<std::uintptr_t>(memory) % alignof(State) != 0)
+        return ACTIONSTRING_INVALID_ARGUMENT;
+    auto* state = new (memory) State();
+    const actionstring::Status status = state->annotator.init(model::kModel);
+    if (status != actionstring::Status::ok) {
+        state->magic = 0;
+        return code(status);
+    }
+    *handle = reinterpret_cast<actionstring_state*>(state);
+    return ACTIONSTRING_OK;
+}
+
+actionstring_status actionstring_push_frame(actionstring_state* handle, int64_t time_us, const float* positions,
+                                            size_t position_count, actionstring_frame_result* result) {
+    actionstring_frame_result out{ACTIONSTRING_OK, 0, 0};
+    State* state = live(handle);
+    if (state == nullptr) out.status = ACTIONSTRING_NOT_INITIALIZED;
+    else if (positions == nullptr || position_count != static_cast<size_t>(model::kModel.joint_count) * 3u)
+        out.status = ACTIONSTRING_INVALID_ARGUMENT;
+    else {
+        const actionstring::FrameResult frame = state->annotator.push_frame(time_us, positions);
+        out.status = code(frame.status);
+        out.characters = frame.characters;
+        out.windows_completed = frame.windows_completed;
+    }
+    if (result != nullptr) *result = out;
+    return out.status;
+}
+
+actionstring_status actionstring_reset(actionstring_state* handle) {
+    State* state = live(handle);
+    if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    state->annotator.reset();
+    return ACTIONSTRING_OK;
+}
+
+int32_t actionstring_label(const actionstring_state* handle) {
+    const State* state = live(handle);
+    if (state == nullptr || state->annotator.label() == actionstring::unknown_label) return -1;
+    return static_cast<int32_t>(state->annotator.label());
+}
+
+float actionstring_confidence(const actionstring_state* handle) {
+    const State* state = live(handle);
+    return state == nullptr ? 0.0f : state->annotator.confidence();
+}
+
+const char* actionstring_label_name(const actionstring_state* handle) {
+    const State* state = live(handle);
+    return state == nullptr ? "unknown" : state->annotator.label_name();
+}
+
+uint32_t actionstring_joint_count(void) { return model::kModel.joint_count; }
+uint32_t actionstring_label_count(void) { return model::kModel.label_count; }
+
+const char* actionstring_label_name_of(int32_t label) {
+    if (label < 0 || static_cast<uint32_t>(label) >= model::kModel.label_count) return "unknown";
+    return model::kModel.label_names[label];
+}
+
+const char* actionstring_model_checksum(void) { return model::kModelChecksum; }
+
+const char* actionstring_status_name(actionstring_status status) {
+    if (status < 0 || status > ACTIONSTRING_NOT_INITIALIZED) return "unknown_status";
+    return actionstring::status_name(static_cast<actionstring::Status>(status));
+}
+
+}  // extern "C"

@@ -1,0 +1,169 @@
+/* The C API from C: contract checks on a synthetic stream, then (given a
+ * stream file written by `actionstring stream-table --text`) a real recording,
+ * printing one line per completed window in the replay firmware's format so
+ * port/firmware/run_replay.sh can compare it with the C++ build.
+ *   test_c_api [STREAM.txt] */
+#include <math.h>
+#include <stdalign.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "actionstring_c.h"
+
+static int failures = 0;
+#define CHECK(condition)                                                          \
+    do {                                                                          \
+        if (!(condition)) {                                                       \
+            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #condition); \
+            ++failures;                                                           \
+        }                                                                         \
+    } while (0)
+
+/* Room for the state wherever the platform's strictest alignment suffices. */
+static alignas(max_align_t) unsigned char state_memory[64 * 1024];
+
+enum { kMaxJoints = 64 };
+
+/* A standing skeleton swaying slowly: every joint offset from a hip centre. */
+static void synthetic_frame(uint32_t joints, int frame, float* xyz) {
+    const float sway = 0.05f * sinf(0.05f * (float)frame);
+    for (uint32_t j = 0; j < joints; ++j) {
+        xyz[3 * j + 0] = 0.1f * (float)(j % 5) - 0.2f + sway;
+        xyz[3 * j + 1] = 0.9f + 0.05f * (float)(j % 7) - 0.15f;
+        xyz[3 * j + 2] = 0.08f * (float)(j % 3) + 0.02f * (float)(j % 11);
+    }
+}
+
+static void contract_checks(void) {
+    const size_t size = actionstring_state_size();
+    const size_t alignment = actionstring_state_alignment();
+    const uint32_t joints = actionstring_joint_count();
+    actionstring_state* state = NULL;
+    float frame[3 * kMaxJoints];
+    actionstring_frame_result result;
+
+    CHECK(size > 0 && size <= sizeof state_memory);
+    CHECK(alignment > 0 && (alignment & (alignment - 1)) == 0 && alignment <= alignof(max_align_t));
+    CHECK(joints > 0 && joints <= kMaxJoints);
+    CHECK(actionstring_label_count() > 0);
+    CHECK(strncmp(actionstring_model_checksum(), "fnv1a64:", 8) == 0);
+
+    /* Bad set-up never yields a state. */
+    CHECK(actionstring_init(NULL, size, &state) == ACTIONSTRING_INVALID_ARGUMENT && state == NULL);
+    CHECK(actionstring_init(state_memory, size - 1, &state) == ACTIONSTRING_INVALID_ARGUMENT && state == NULL);
+    CHECK(actionstring_init(state_memory, size, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
+    if (alignment > 1)
+        CHECK(actionstring_init(state_memory + 1, size, &state) == ACTIONSTRING_INVALID_ARGUMENT && state == NULL);
+
+    /* Memory that never went through init is refused, not trusted. */
+    memset(state_memory, 0xAB, sizeof state_memory);
+    synthetic_frame(joints, 0, frame);
+    CHECK(actionstring_push_frame((actionstring_state*)(void*)state_memory, 0, frame, 3 * joints, &result) ==
+          ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(result.status == ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_push_frame(NULL, 0, frame, 3 * joints, NULL) == ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_reset(NULL) == ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_label(NULL) == -1);
+    CHECK(strcmp(actionstring_label_name(NULL), "unknown") == 0);
+
+    CHECK(actionstring_init(state_memory, size, &state) == ACTIONSTRING_OK && state != NULL);
+    CHECK(actionstring_label(state) == -1);
+    CHECK(strcmp(actionstring_label_name(state), "unknown") == 0);
+    CHECK(actionstring_confidence(state) == 0.0f);
+
+    /* Wrong element count or a null frame: rejected before the runtime sees it. */
+    CHECK(actionstring_push_frame(state, 0, frame, 3 * joints - 1, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_push_frame(state, 0, NULL, 3 * joints, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
+
+    /* Ten seconds at 60 Hz; one NaN frame, one lost-tracking frame, one frame from the past. */
+    uint32_t accepted = 0, characters = 0;
+    for (int f = 0; f < 600; ++f) {
+        const int64_t time_us = (int64_t)f * 16667;
+        synthetic_frame(joints, f, frame);
+        if (f == 100) frame[4] = NAN;
+        if (f == 200) memset(frame, 0, sizeof(float) * 3 * joints);
+        const int64_t stamp = f == 300 ? time_us - 100000 : time_us;
+        const actionstring_status status = actionstring_push_frame(state, stamp, frame, 3 * joints, &result);
+        CHECK(status == result.status);
+        if (f == 100) CHECK(status == ACTIONSTRING_NON_FINITE_INPUT);
+        else if (f == 200) CHECK(status == ACTIONSTRING_TRACKING_LOST);
+        else if (f == 300) CHECK(status == ACTIONSTRING_TIME_WENT_BACKWARDS);
+        else CHECK(status == ACTIONSTRING_OK);
+        if (status == ACTIONSTRING_OK) ++accepted;
+        characters += result.characters;
+        const int32_t label = actionstring_label(state);
+        CHECK(label >= -1 && label < (int32_t)actionstring_label_count());
+        const float confidence = actionstring_confidence(state);
+        CHECK(confidence >= 0.0f && confidence <= 1.0f);
+        CHECK(strcmp(actionstring_label_name(state), actionstring_label_name_of(label)) == 0);
+    }
+    CHECK(accepted == 597);
+    CHECK(characters > 50); /* about 12 characters per second of accepted frames */
+    CHECK(actionstring_label(state) >= 0); /* windows completed: a label was chosen */
+
+    CHECK(actionstring_reset(state) == ACTIONSTRING_OK);
+    CHECK(actionstring_label(state) == -1);
+    CHECK(strcmp(actionstring_status_name(ACTIONSTRING_TRACKING_LOST), "tracking_lost") == 0);
+    CHECK(strcmp(actionstring_status_name(12345), "unknown_status") == 0);
+    CHECK(strcmp(actionstring_label_name_of(-1), "unknown") == 0);
+    CHECK(strcmp(actionstring_label_name_of((int32_t)actionstring_label_count()), "unknown") == 0);
+}
+
+/* Each line: time_us, then joints × 3 floats (C99 hex or decimal). */
+static int replay_file(const char* path) {
+    FILE* file = fopen(path, "r");
+    if (file == NULL) {
+        fprintf(stderr, "%s: cannot open\n", path);
+        return 1;
+    }
+    const uint32_t joints = actionstring_joint_count();
+    actionstring_state* state = NULL;
+    if (actionstring_init(state_memory, sizeof state_memory, &state) != ACTIONSTRING_OK) {
+        fclose(file);
+        return 1;
+    }
+    static char line[64 * 1024];
+    float frame[3 * kMaxJoints];
+    uint32_t index = 0, windows = 0;
+    while (fgets(line, sizeof line, file) != NULL) {
+        char* cursor = line;
+        char* end = NULL;
+        const long long time_us = strtoll(cursor, &end, 10);
+        int ok = end != cursor;
+        for (uint32_t k = 0; ok && k < 3 * joints; ++k) {
+            cursor = end;
+            frame[k] = strtof(cursor, &end);
+            ok = end != cursor;
+        }
+        if (!ok) {
+            fprintf(stderr, "%s:%u: expected a time and %u coordinates\n", path, index + 1, 3 * joints);
+            fclose(file);
+            return 1;
+        }
+        actionstring_frame_result result;
+        actionstring_push_frame(state, time_us, frame, 3 * joints, &result);
+        if (result.windows_completed > 0) {
+            float confidence = actionstring_confidence(state);
+            uint32_t bits;
+            memcpy(&bits, &confidence, sizeof bits);
+            printf("window %u %s confidence %08x\n", index, actionstring_label_name(state), bits);
+            ++windows;
+        }
+        ++index;
+    }
+    fclose(file);
+    CHECK(index > 0 && windows > 0);
+    return 0;
+}
+
+int main(int argc, char** argv) {
+    contract_checks();
+    if (argc > 1 && replay_file(argv[1]) != 0) return 1;
+    if (failures != 0) {
+        fprintf(stderr, "%d check(s) failed\n", failures);
+        return 1;
+    }
+    return 0;
+}
