@@ -381,17 +381,7 @@ std::string generate_header(ModelData& m, const std::string& checksum, const std
     return out.str();
 }
 
-namespace {
-
-struct ConcatenatedStream {
-    std::size_t joints = 0;
-    std::vector<long long> times_us;
-    std::vector<float> positions;
-    std::vector<std::uint32_t> segment_first_frame;
-    std::vector<std::string> segment_labels;
-};
-
-ConcatenatedStream concatenate(const std::vector<StreamSegment>& segments) {
+ConcatenatedStream concatenate_stream(const std::vector<StreamSegment>& segments) {
     ConcatenatedStream stream;
     if (segments.empty()) throw std::invalid_argument("a stream needs at least one clip");
     const std::size_t joints = segments.front().clip->joint_count();
@@ -420,10 +410,8 @@ ConcatenatedStream concatenate(const std::vector<StreamSegment>& segments) {
     return stream;
 }
 
-}  // namespace
-
 std::string generate_stream_text(const std::vector<StreamSegment>& segments) {
-    const ConcatenatedStream stream = concatenate(segments);
+    const ConcatenatedStream stream = concatenate_stream(segments);
     std::string text;
     for (std::size_t f = 0; f < stream.times_us.size(); ++f) {
         text += std::to_string(stream.times_us[f]);
@@ -435,7 +423,7 @@ std::string generate_stream_text(const std::vector<StreamSegment>& segments) {
 
 std::string generate_stream_header(const std::vector<StreamSegment>& segments, const std::string& ns,
                                    const std::string& command) {
-    const ConcatenatedStream stream = concatenate(segments);
+    const ConcatenatedStream stream = concatenate_stream(segments);
     const std::size_t joints = stream.joints;
     const auto& times_us = stream.times_us;
     const auto& positions = stream.positions;

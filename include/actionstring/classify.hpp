@@ -39,7 +39,7 @@ inline Classification classify_distances(const ModelView& model, const float* di
     const std::size_t k = model.neighbours < R ? model.neighbours : R;
 
     // Insertion into a sorted list of the k nearest: k is small.
-    std::uint16_t nearest[MaxRepresentatives];
+    std::uint16_t nearest[MaxRepresentatives] = {};  // (zeroed only to quiet a false maybe-uninitialized)
     std::size_t found = 0;
     for (std::size_t r = 0; r < R; ++r) {
         const float d = distances[r];

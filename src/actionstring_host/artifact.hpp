@@ -47,6 +47,20 @@ struct StreamSegment {
     std::size_t max_frames = static_cast<std::size_t>(-1);
 };
 
+/// Clips joined into one stream: each starts one frame period after the
+/// previous one ends, so the times never jump or go back.
+struct ConcatenatedStream {
+    std::size_t joints = 0;
+    std::vector<long long> times_us;              ///< Per frame.
+    std::vector<float> positions;                 ///< frames × joints × xyz, metres.
+    std::vector<std::uint32_t> segment_first_frame;
+    std::vector<std::string> segment_labels;
+    std::size_t frame_count() const noexcept { return times_us.size(); }
+    const float* frame(std::size_t f) const noexcept { return positions.data() + f * joints * 3; }
+};
+/// Throws std::invalid_argument for no frames or clips of different skeletons.
+ConcatenatedStream concatenate_stream(const std::vector<StreamSegment>& segments);
+
 /// A header of constexpr tables holding `segments` concatenated into one
 /// stream (times in µs, positions in metres, exactly as read), for a firmware
 /// to replay. `command` is recorded in the DO-NOT-EDIT banner.

@@ -1,0 +1,457 @@
+// Per-frame latency of the annotator and of each runtime stage on a real
+// stream, the incremental matcher against batch recomputation, state and table
+// bytes, heap allocations, and how the cost scales with the model's size.
+//
+//   actionstring_frame_latency [--passes N] [--json FILE] [--markdown FILE] [--no-scaling]
+//
+// Stream: every clip of hdm05/val.tsv joined in list order (120 Hz). Models:
+// the committed example header (J = 20) and a J = 40 model trained here on
+// hdm05/train.tsv with otherwise the same settings. One warm-up pass, then N
+// timed passes (default 20); each call timed alone with the steady clock,
+// whose own overhead is measured and reported (not subtracted).
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <new>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "actionstring/actionstring.hpp"
+#include "actionstring_host/artifact.hpp"
+#include "actionstring_host/evaluation.hpp"
+#include "actionstring_host/readers.hpp"
+#include "actionstring_host/training.hpp"
+#include "actionstring_port.hpp"
+#include "hdm05_model.hpp"
+#include "synthetic_model.hpp"
+
+using namespace actionstring;
+
+// ---- heap allocations made while the runtime runs (there must be none) ----------
+namespace {
+volatile std::uint32_t g_sink;  // keeps timed results alive
+std::atomic<bool> g_counting{false};
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+    if (g_counting.load(std::memory_order_relaxed)) ++g_allocations;
+    if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+    throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace {
+
+struct Stats {
+    std::size_t n = 0;
+    double median = 0, p99 = 0, p999 = 0, max = 0, mean = 0;
+};
+
+Stats summarize(std::vector<std::int64_t> values) {
+    Stats s;
+    if (values.empty()) return s;
+    std::sort(values.begin(), values.end());
+    auto at = [&](double q) {
+        return static_cast<double>(values[std::min(values.size() - 1, static_cast<std::size_t>(q * static_cast<double>(values.size())))]);
+    };
+    s.n = values.size();
+    s.median = at(0.5);
+    s.p99 = at(0.99);
+    s.p999 = at(0.999);
+    s.max = static_cast<double>(values.back());
+    double total = 0;
+    for (const auto v : values) total += static_cast<double>(v);
+    s.mean = total / static_cast<double>(values.size());
+    return s;
+}
+
+struct Row {
+    std::string model, what;
+    Stats stats;
+};
+
+struct Report {
+    std::vector<Row> latency;
+    std::vector<std::string> notes;
+    std::ostringstream json_models;
+    std::ostringstream markdown_extra;
+};
+
+template <class Time>
+std::int64_t timed(Time&& call) {
+    const std::int64_t begin = port::monotonic_ns();
+    call();
+    return port::monotonic_ns() - begin;
+}
+
+std::int64_t clock_overhead_ns() {
+    std::vector<std::int64_t> gaps;
+    for (int i = 0; i < 100000; ++i) gaps.push_back(timed([] {}));
+    return static_cast<std::int64_t>(summarize(gaps).median);
+}
+
+std::string machine_description() {
+    std::string cpu = "unknown CPU";
+    std::ifstream info("/proc/cpuinfo");
+    for (std::string line; std::getline(info, line);)
+        if (line.rfind("model name", 0) == 0) {
+            cpu = line.substr(line.find(':') + 2);
+            break;
+        }
+    char text[512];
+    std::snprintf(text, sizeof text, "%s, %u hardware threads; compiler %s", cpu.c_str(),
+                  std::thread::hardware_concurrency(), __VERSION__);
+    return text;
+}
+
+/// Table bytes of each part of a model.
+void table_bytes(const ModelView& m, std::ostringstream& json, std::ostringstream& md, const std::string& name) {
+    const std::size_t d = m.feature_dim, J = m.component_count;
+    const std::size_t pose = 3u * m.pose_joint_count;
+    const std::size_t normalise = m.pose_joint_count * sizeof(std::uint16_t);
+    const std::size_t pca = m.has_projection() ? (pose + pose * d) * sizeof(float) : 0;
+    const std::size_t gmm = (J * d + J * m.factor_size() + 2 * J) * sizeof(float);
+    const std::size_t tree = m.node_count * (J * sizeof(float) + 2 * sizeof(std::int16_t) + sizeof(Character)) +
+                             static_cast<std::size_t>(m.character_count) * m.character_count * sizeof(float);
+    const std::size_t strings = (m.representative_count + 1u) * sizeof(std::uint32_t) +
+                                m.total_representative_chars() * sizeof(Character) + m.representative_count * sizeof(LabelId);
+    json << "\"table_bytes\": {\"normalise\": " << normalise << ", \"pca\": " << pca << ", \"gmm\": " << gmm
+         << ", \"tree_and_W\": " << tree << ", \"strings\": " << strings << "}";
+    md << "| " << name << " | " << normalise << " | " << pca << " | " << gmm << " | " << tree << " | " << strings << " | "
+       << normalise + pca + gmm + tree + strings << " |\n";
+}
+
+/// Everything measured on one model over the real stream.
+template <class Cap>
+void measure_model(const std::string& name, const ModelView& model, const host::ConcatenatedStream& stream, int passes,
+                   Report& report, std::ostringstream& memory_md, std::ostringstream& tables_md) {
+    auto annotator = std::make_unique<Annotator<Cap>>();
+    if (annotator->init(model) != Status::ok) {
+        std::fprintf(stderr, "%s: the model does not fit the capacity\n", name.c_str());
+        std::exit(1);
+    }
+    const std::size_t frames = stream.frame_count();
+    std::vector<std::int64_t> all, character_frames, window_frames, plain_frames;
+    long allocations = 0;
+    for (int pass = 0; pass <= passes; ++pass) {
+        annotator->reset();
+        g_allocations = 0;
+        for (std::size_t f = 0; f < frames; ++f) {
+            FrameResult result;
+            const std::int64_t ns = timed([&] {
+                g_counting.store(true, std::memory_order_relaxed);
+                result = annotator->push_frame(stream.times_us[f], stream.frame(f));
+                g_counting.store(false, std::memory_order_relaxed);
+            });
+            if (pass == 0) continue;  // warm-up
+            all.push_back(ns);
+            (result.characters > 0 ? character_frames : plain_frames).push_back(ns);
+            if (result.windows_completed > 0) window_frames.push_back(ns);
+        }
+        if (pass > 0) allocations += g_allocations.load();
+    }
+    report.latency.push_back({name, "annotator: every frame", summarize(all)});
+    report.latency.push_back({name, "annotator: frames without a character", summarize(plain_frames)});
+    report.latency.push_back({name, "annotator: frames that emit a character", summarize(character_frames)});
+    report.latency.push_back({name, "annotator: frames that complete a window", summarize(window_frames)});
+
+    // Stages, each called alone on every frame of the stream.
+    std::vector<std::int64_t> normalise_ns, project_ns, posterior_ns, descent_ns;
+    float pose[Cap::max_pose_dim], feature[Cap::max_feature_dim], posterior[Cap::max_components];
+    for (int pass = 0; pass <= passes; ++pass)
+        for (std::size_t f = 0; f < frames; ++f) {
+            Status status = Status::ok;
+            const std::int64_t a = timed([&] { status = normalize_pose(model, stream.frame(f), pose); });
+            if (status != Status::ok) continue;
+            const float* input = pose;
+            std::int64_t b = 0;
+            if (model.has_projection()) {
+                b = timed([&] { project_pose(model, pose, feature); });
+                input = feature;
+            }
+            const std::int64_t c = timed([&] { status = gmm_posterior<Cap::max_feature_dim>(model, input, posterior); });
+            if (status != Status::ok) continue;
+            Character character = 0;
+            const std::int64_t d = timed([&] { character = descend_tree(model, posterior); });
+            g_sink = character;
+            if (pass == 0) continue;
+            normalise_ns.push_back(a);
+            if (model.has_projection()) project_ns.push_back(b);
+            posterior_ns.push_back(c);
+            descent_ns.push_back(d);
+        }
+    report.latency.push_back({name, "stage: normalise", summarize(normalise_ns)});
+    if (!project_ns.empty()) report.latency.push_back({name, "stage: project (PCA)", summarize(project_ns)});
+    report.latency.push_back({name, "stage: GMM posterior", summarize(posterior_ns)});
+    report.latency.push_back({name, "stage: tree descent", summarize(descent_ns)});
+
+    // The stream's action string, as the encoder emits it.
+    auto encoder = std::make_unique<StringEncoder<Cap>>();
+    encoder->init(model, AnnotatorConfig{}.max_gap_us);
+    std::vector<Character> string;
+    for (std::size_t f = 0; f < frames; ++f) {
+        const EncodedFrame e = encoder->push_frame(stream.times_us[f], stream.frame(f));
+        if (!e.accepted()) continue;
+        string.insert(string.end(), e.from_previous, e.previous);
+        string.insert(string.end(), e.from_current, e.current);
+    }
+
+    // Matcher: incremental per character, against the batch DP over each completed window.
+    auto matcher = std::make_unique<WindowMatcher<Cap>>();
+    matcher->init(model);
+    const std::size_t R = model.representative_count, window = model.window_chars;
+    std::vector<std::int64_t> push_ns, classify_ns, batch_window_ns;
+    std::int64_t incremental_total = 0, batch_total = 0;
+    std::size_t windows = 0, identical = 0, compared = 0;
+    std::vector<detail::Cell> workspace;
+    std::vector<float> batch(R);
+    for (int pass = 0; pass <= passes; ++pass) {
+        matcher->reset();
+        for (std::size_t i = 0; i < string.size(); ++i) {
+            bool completed = false;
+            const std::int64_t ns = timed([&] { completed = matcher->push(string[i]); });
+            if (pass > 0) {
+                push_ns.push_back(ns);
+                incremental_total += ns;
+            }
+            if (!completed) continue;
+            Classification label;
+            const std::int64_t c = timed([&] { label = classify_distances<Cap::max_representatives>(model, matcher->completed_distances()); });
+            g_sink = label.label;
+            const std::size_t start = static_cast<std::size_t>(matcher->completed_window_start());
+            const std::size_t length = i + 1 - start;
+            const std::int64_t b = timed([&] {
+                for (std::size_t r = 0; r < R; ++r) {
+                    const std::size_t rep_length = model.representative_length(r);
+                    workspace.resize(string_distance_cells(length, rep_length));
+                    string_distance(string.data() + start, length, model.representative_chars + model.representative_offsets[r],
+                                    rep_length, character_weights(model), MatchOptions{model.variant, model.normalization},
+                                    workspace.data(), &batch[r]);
+                }
+            });
+            if (pass == 0) continue;
+            ++windows;
+            classify_ns.push_back(c);
+            batch_window_ns.push_back(b);
+            batch_total += b;
+            for (std::size_t r = 0; r < R; ++r, ++compared)
+                identical += std::memcmp(&batch[r], matcher->completed_distances() + r, sizeof(float)) == 0;
+        }
+    }
+    (void)window;
+    report.latency.push_back({name, "stage: matcher update (per character)", summarize(push_ns)});
+    report.latency.push_back({name, "stage: classification (per window)", summarize(classify_ns)});
+    report.latency.push_back({name, "batch DP of one whole window (all representatives)", summarize(batch_window_ns)});
+    const double ratio = incremental_total > 0 ? static_cast<double>(batch_total) / static_cast<double>(incremental_total) : 0;
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "%s: matching the %zu windows of the stream's %zu-character string: incremental %.3f ms, batch "
+                  "recomputation of each window %.3f ms (%.1f× more); %zu of %zu distances bit-identical",
+                  name.c_str(), windows / static_cast<std::size_t>(passes), string.size(), static_cast<double>(incremental_total) / passes / 1e6,
+                  static_cast<double>(batch_total) / passes / 1e6, ratio, identical, compared);
+    report.notes.push_back(line);
+    std::snprintf(line, sizeof line, "%s: heap allocations during %d timed passes of %zu frames: %ld", name.c_str(), passes,
+                  frames, allocations);
+    report.notes.push_back(line);
+
+    memory_md << "| " << name << " | " << sizeof(Annotator<Cap>) << " | " << sizeof(StringEncoder<Cap>) << " | "
+              << sizeof(WindowMatcher<Cap>) << " |\n";
+    std::ostringstream tables_json;
+    table_bytes(model, tables_json, tables_md, name);
+    if (report.json_models.tellp() > 0) report.json_models << ", ";
+    report.json_models << "{\"name\": \"" << name << "\", \"components\": " << model.component_count
+                       << ", \"feature_dim\": " << model.feature_dim << ", \"characters\": " << model.character_count
+                       << ", \"representatives\": " << R << ", \"window_chars\": " << model.window_chars
+                       << ", \"state_bytes\": {\"annotator\": " << sizeof(Annotator<Cap>) << ", \"encoder\": "
+                       << sizeof(StringEncoder<Cap>) << ", \"matcher\": " << sizeof(WindowMatcher<Cap>) << "}, "
+                       << tables_json.str() << ", \"incremental_vs_batch\": {\"incremental_ns\": " << incremental_total / passes
+                       << ", \"batch_ns\": " << batch_total / passes << ", \"ratio\": " << ratio
+                       << ", \"identical\": " << identical << ", \"compared\": " << compared << "}, \"allocations\": " << allocations
+                       << "}";
+}
+
+// ---- scaling on synthetic models (cost only) ----------------------------------
+using ScalingCap = Capacity<31, 30, 64, 96, 96, 8192, 4, false>;
+
+struct ScalingPoint {
+    std::string varied;
+    bench::ModelSize size;
+    Stats every, character;
+};
+
+ScalingPoint measure_scaling(const std::string& varied, const bench::ModelSize& size) {
+    host::ModelData data;
+    bench::make_random_model(data, size);
+    data.normalization = LengthNormalization::none;
+    const ModelView model = data.view();
+    auto annotator = std::make_unique<Annotator<ScalingCap>>();
+    if (annotator->init(model) != Status::ok) {
+        std::fprintf(stderr, "scaling model rejected\n");
+        std::exit(1);
+    }
+    const auto frames = bench::random_walk_frames(31, 120 * 30);
+    std::vector<std::int64_t> every, character;
+    for (int pass = 0; pass <= 3; ++pass) {
+        annotator->reset();
+        for (std::size_t f = 0; f < frames.size(); ++f) {
+            FrameResult result;
+            const std::int64_t ns = timed([&] {
+                result = annotator->push_frame(static_cast<std::int64_t>(f) * 8333, frames[f].data());
+            });
+            if (pass == 0) continue;
+            every.push_back(ns);
+            if (result.characters > 0) character.push_back(ns);
+        }
+    }
+    return {varied, size, summarize(every), summarize(character)};
+}
+
+/// One pass of the committed model's annotator over the stream: the only code
+/// bench/callgrind_frame.sh counts instructions in (--toggle-collect).
+__attribute__((noinline)) std::uint32_t callgrind_pass(Annotator<actionstring_hdm05::ModelCapacity>& annotator,
+                                                       const host::ConcatenatedStream& stream) {
+    std::uint32_t characters = 0;
+    for (std::size_t f = 0; f < stream.frame_count(); ++f)
+        characters += annotator.push_frame(stream.times_us[f], stream.frame(f)).characters;
+    return characters;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int passes = 20;
+    std::string json_path, markdown_path;
+    bool scaling = true, callgrind = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--passes" && i + 1 < argc) passes = std::max(1, std::atoi(argv[++i]));
+        else if (arg == "--json" && i + 1 < argc) json_path = argv[++i];
+        else if (arg == "--markdown" && i + 1 < argc) markdown_path = argv[++i];
+        else if (arg == "--no-scaling") scaling = false;
+        else if (arg == "--callgrind-pass") callgrind = true;
+        else {
+            std::fprintf(stderr, "usage: actionstring_frame_latency [--passes N] [--json FILE] [--markdown FILE] [--no-scaling]\n"
+                                 "       actionstring_frame_latency --callgrind-pass   (see bench/callgrind_frame.sh)\n");
+            return 2;
+        }
+    }
+    const char* env = std::getenv("ACTIONSTRING_DATA");
+    const std::string data = env != nullptr ? env : std::string(ACTIONSTRING_SOURCE_DIR) + "/../shared/data";
+    std::vector<host::Clip> clips;
+    std::vector<host::LabelledClip> training;
+    try {
+        for (const auto& entry : host::read_clip_list(data + "/hdm05/val.tsv")) clips.push_back(host::read_clip(entry));
+        if (!callgrind)
+            for (const auto& entry : host::read_clip_list(data + "/hdm05/train.tsv"))
+            training.push_back({host::read_clip(entry), entry.label, entry.subject});
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "actionstring_frame_latency: %s\nThe benchmark replays real HDM05 recordings: set ACTIONSTRING_DATA "
+                             "to the datasets folder.\n", error.what());
+        return 1;
+    }
+    std::vector<host::StreamSegment> segments;
+    for (const auto& clip : clips) segments.push_back({&clip, "", static_cast<std::size_t>(-1)});
+    const host::ConcatenatedStream stream = host::concatenate_stream(segments);
+    if (callgrind) {
+        auto annotator = std::make_unique<Annotator<actionstring_hdm05::ModelCapacity>>();
+        annotator->init(actionstring_hdm05::kModel);
+        const std::uint32_t characters = callgrind_pass(*annotator, stream);
+        std::printf("frames %zu characters %u\n", stream.frame_count(), characters);
+        return 0;
+    }
+
+    host::TrainingOptions options;  // the committed model's settings (models/hdm05.config) but J = 40
+    options.components = 40;
+    const auto train_start = port::monotonic_ns();
+    host::ModelData model40 = host::train_model(training, options, nullptr);
+    const double train_seconds = static_cast<double>(port::monotonic_ns() - train_start) * 1e-9;
+
+    Report report;
+    const std::int64_t overhead = clock_overhead_ns();
+    std::ostringstream memory_md, tables_md;
+    measure_model<actionstring_hdm05::ModelCapacity>("committed hdm05 (J=20)", actionstring_hdm05::kModel, stream, passes,
+                                                     report, memory_md, tables_md);
+    using Cap40 = Capacity<31, 30, 24, 40, 64, 4096, 4, false>;
+    measure_model<Cap40>("hdm05 J=40", model40.view(), stream, passes, report, memory_md, tables_md);
+
+    std::vector<ScalingPoint> points;
+    if (scaling) {
+        bench::ModelSize base;
+        base.covariance = Covariance::full;
+        points.push_back(measure_scaling("base", base));
+        for (int J : {20, 80}) { auto s = base; s.components = J; points.push_back(measure_scaling("J", s)); }
+        for (int d : {12, 48}) { auto s = base; s.feature_dim = d; points.push_back(measure_scaling("d", s)); }
+        for (int K : {32, 256}) { auto s = base; s.characters = K; points.push_back(measure_scaling("K", s)); }
+        for (int R : {15, 90}) { auto s = base; s.representatives = R; points.push_back(measure_scaling("representatives", s)); }
+        for (double w : {1.0, 4.0}) {
+            auto s = base; s.window_seconds = w; s.step_seconds = w / 4; s.representative_length = static_cast<int>(w * 15);
+            points.push_back(measure_scaling("window", s));
+        }
+    }
+
+    const std::string machine = machine_description();
+    std::ostringstream md;
+    md << "Machine: " << machine << ". Stream: the " << clips.size() << " clips of hdm05/val.tsv joined, "
+       << stream.frame_count() << " frames at 120 Hz; " << passes << " timed passes after one warm-up pass. Clock overhead "
+       << "(an empty timed call, median): " << overhead << " ns, included in every figure.\n\n"
+       << "| model | measured | n | median ns | p99 ns | p99.9 ns | max ns |\n|---|---|---:|---:|---:|---:|---:|\n";
+    char cell[256];
+    for (const auto& row : report.latency) {
+        std::snprintf(cell, sizeof cell, "| %s | %s | %zu | %.0f | %.0f | %.0f | %.0f |\n", row.model.c_str(), row.what.c_str(),
+                      row.stats.n, row.stats.median, row.stats.p99, row.stats.p999, row.stats.max);
+        md << cell;
+    }
+    md << "\n";
+    for (const auto& note : report.notes) md << "- " << note << "\n";
+    std::snprintf(cell, sizeof cell, "- training the J=40 model on hdm05/train.tsv (%zu clips): %.1f s\n", training.size(), train_seconds);
+    md << cell;
+    md << "\n| state bytes | annotator | encoder | matcher |\n|---|---:|---:|---:|\n" << memory_md.str();
+    md << "\n| table bytes | normalise | PCA | GMM | tree + W | strings | total |\n|---|---:|---:|---:|---:|---:|---:|\n"
+       << tables_md.str();
+    if (!points.empty()) {
+        md << "\nScaling on random models (31 joints, full covariance; base J=40, d=24, K=64, 30 representatives of 30 "
+              "characters, 2 s windows every 0.5 s at 12 characters/s), 3 passes over a 30 s 120 Hz stream:\n\n"
+              "| varied | J | d | K | representatives | window s | median ns (all frames) | median ns (character frames) | p99.9 ns |\n"
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        for (const auto& p : points) {
+            std::snprintf(cell, sizeof cell, "| %s | %d | %d | %d | %d | %.1f | %.0f | %.0f | %.0f |\n", p.varied.c_str(),
+                          p.size.components, p.size.feature_dim, p.size.characters, p.size.representatives,
+                          p.size.window_seconds, p.every.median, p.character.median, p.every.p999);
+            md << cell;
+        }
+    }
+    std::fputs(md.str().c_str(), stdout);
+    if (!markdown_path.empty()) std::ofstream(markdown_path) << md.str();
+    if (!json_path.empty()) {
+        std::ofstream json(json_path);
+        json << "{\n  \"machine\": " << host::json_string(machine) << ",\n  \"frames\": " << stream.frame_count()
+             << ",\n  \"passes\": " << passes << ",\n  \"clock_overhead_ns\": " << overhead << ",\n  \"latency_ns\": [";
+        for (std::size_t i = 0; i < report.latency.size(); ++i) {
+            const auto& r = report.latency[i];
+            json << (i ? ",\n    " : "\n    ") << "{\"model\": " << host::json_string(r.model) << ", \"measured\": "
+                 << host::json_string(r.what) << ", \"n\": " << r.stats.n << ", \"median\": " << r.stats.median
+                 << ", \"p99\": " << r.stats.p99 << ", \"p99_9\": " << r.stats.p999 << ", \"max\": " << r.stats.max
+                 << ", \"mean\": " << r.stats.mean << "}";
+        }
+        json << "\n  ],\n  \"models\": [" << report.json_models.str() << "],\n  \"training_seconds_j40\": " << train_seconds
+             << ",\n  \"scaling\": [";
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const auto& p = points[i];
+            json << (i ? ",\n    " : "\n    ") << "{\"varied\": \"" << p.varied << "\", \"components\": " << p.size.components
+                 << ", \"feature_dim\": " << p.size.feature_dim << ", \"characters\": " << p.size.characters
+                 << ", \"representatives\": " << p.size.representatives << ", \"window_seconds\": " << p.size.window_seconds
+                 << ", \"median_ns\": " << p.every.median << ", \"character_median_ns\": " << p.character.median
+                 << ", \"p99_9_ns\": " << p.every.p999 << "}";
+        }
+        json << "\n  ]\n}\n";
+    }
+    return 0;
+}
