@@ -13,8 +13,14 @@ jobs=$(nproc 2>/dev/null || echo 2)
 run_suite() {
     local name=$1; shift
     local dir="$root/build/$name"
+    # A build folder configured with other settings is rebuilt from scratch:
+    # CMake drops its whole cache when a compiler changes, and the build type with it.
+    if [ -f "$dir/CMakeCache.txt" ] && [ "$(cat "$dir/.suite-settings" 2>/dev/null)" != "$*" ]; then
+        rm -rf "$dir"
+    fi
     echo "== $name: configure and build" >&2
     cmake -S "$root" -B "$dir" -DACTIONSTRING_WARNINGS_AS_ERRORS=ON "$@" >/dev/null
+    printf '%s' "$*" >"$dir/.suite-settings"
     cmake --build "$dir" -j"$jobs"
     echo "== $name: tests" >&2
     ctest --test-dir "$dir" --output-on-failure -j"$jobs"
