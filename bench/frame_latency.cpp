@@ -207,7 +207,7 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     // Matcher: incremental per character, against the batch DP over each completed window.
     auto matcher = std::make_unique<WindowMatcher<Cap>>();
     matcher->init(model);
-    const std::size_t R = model.representative_count, window = model.window_chars;
+    const std::size_t R = model.representative_count;
     std::vector<std::int64_t> push_ns, classify_ns, batch_window_ns;
     std::int64_t incremental_total = 0, batch_total = 0;
     std::size_t windows = 0, identical = 0, compared = 0;
@@ -246,7 +246,6 @@ void measure_model(const std::string& name, const ModelView& model, const host::
                 identical += std::memcmp(&batch[r], matcher->completed_distances() + r, sizeof(float)) == 0;
         }
     }
-    (void)window;
     report.latency.push_back({name, "stage: matcher update (per character)", summarize(push_ns)});
     report.latency.push_back({name, "stage: classification (per window)", summarize(classify_ns)});
     report.latency.push_back({name, "batch DP of one whole window (all representatives)", summarize(batch_window_ns)});

@@ -94,8 +94,9 @@ int main() {
     static_assert(stream::kJointCount == model::kModel.joint_count, "the stream's skeleton is the model's");
     Annotator& annotator = *new (annotator_storage) Annotator();
     Line line;
-    if (annotator.init(model::kModel) != actionstring::Status::ok) {
-        line.text("model rejected: ").text(actionstring::status_name(annotator.init(model::kModel))).write();
+    const actionstring::Status status = annotator.init(model::kModel);
+    if (status != actionstring::Status::ok) {
+        line.text("model rejected: ").text(actionstring::status_name(status)).write();
         return 1;
     }
     line.text("replay: ").number(stream::kFrameCount).text(" frames, ").number(stream::kSegmentCount)
