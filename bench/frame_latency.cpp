@@ -357,7 +357,7 @@ int main(int argc, char** argv) {
         return 1;
     }
     std::vector<host::StreamSegment> segments;
-    for (const auto& clip : clips) segments.push_back({&clip, "", static_cast<std::size_t>(-1)});
+    for (const auto& clip : clips) segments.push_back({&clip, "", 0.0});
     const host::ConcatenatedStream stream = host::concatenate_stream(segments);
     if (callgrind) {
         auto annotator = std::make_unique<Annotator<actionstring_hdm05::ModelCapacity>>();

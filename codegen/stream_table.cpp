@@ -23,7 +23,7 @@ int run_stream_table(int argc, char** argv) {
         const std::string arg = args.next();
         if (arg == "--help" || arg == "-h") {
             std::printf("usage: actionstring stream-table --clips LIST [--first I] [--count N] [--stride K]\n"
-                        "                                 [--max-seconds S]"
+                        "                                 [--max-seconds S]\n"
                         "                                 [--namespace NS] [--text] --out HEADER\n\n"
                         "Concatenates N clips of LIST, every K-th from clip I (in list order; each clip at\n"
                         "most S seconds, 0 = whole) into one stream and writes it as a header of constexpr tables: frame\n"
@@ -58,16 +58,7 @@ int run_stream_table(int argc, char** argv) {
         std::vector<host::StreamSegment> segments;
         for (const std::size_t i : picked) {
             clips.push_back(host::read_clip(entries[i]));
-            host::StreamSegment segment;
-            segment.clip = &clips.back();
-            segment.label = entries[i].label;
-            if (max_seconds > 0) {
-                const double period = clips.back().frame_count() > 1
-                                          ? clips.back().duration() / static_cast<double>(clips.back().frame_count() - 1)
-                                          : 1.0;
-                segment.max_frames = static_cast<std::size_t>(max_seconds / period) + 1;
-            }
-            segments.push_back(segment);
+            segments.push_back({&clips.back(), entries[i].label, max_seconds});
         }
         char described[256];
         std::snprintf(described, sizeof described, "actionstring stream-table --clips <%s> --first %zu --count %zu --stride %zu --max-seconds %g",

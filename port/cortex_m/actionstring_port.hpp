@@ -30,20 +30,17 @@ inline void log_write(const char* text) noexcept { actionstring_board_write(text
 
 /// Reports a broken invariant and stops the program with a failure status.
 [[noreturn]] inline void fail(const char* what, const char* file, int line) noexcept {
-    actionstring_board_write(file);
-    char digits[12];
-    int n = 0;
-    char reversed[12];
+    // "file:line: what" without printf, which would bring the C library's stdio in.
+    char line_text[12] = {};
+    char* digit = line_text + sizeof line_text - 1;
     unsigned value = line < 0 ? 0u : static_cast<unsigned>(line);
     do {
-        reversed[n++] = static_cast<char>('0' + value % 10u);
+        *--digit = static_cast<char>('0' + value % 10u);
         value /= 10u;
-    } while (value != 0u && n < 11);
-    digits[0] = ':';
-    int k = 1;
-    while (n > 0) digits[k++] = reversed[--n];
-    digits[k] = '\0';
-    actionstring_board_write(digits);
+    } while (value != 0u && digit > line_text + 1);
+    *--digit = ':';
+    actionstring_board_write(file);
+    actionstring_board_write(digit);
     actionstring_board_write(": ");
     actionstring_board_write(what);
     actionstring_board_write("\n");

@@ -23,7 +23,8 @@ mkdir -p "$work"
 work=$(cd "$work" && pwd)
 
 # One clip in seven of the validation list (six actions), at most 5 s each.
-"$cli" stream-table --clips "$list" --count 6 --stride 7 --max-seconds 5 --out "$work/stream.hpp.new"
+stream_table() { "$cli" stream-table --clips "$list" --count 6 --stride 7 --max-seconds 5 "$@"; }
+stream_table --out "$work/stream.hpp.new"
 cmp -s "$work/stream.hpp.new" "$work/stream.hpp" 2>/dev/null || mv "$work/stream.hpp.new" "$work/stream.hpp"
 rm -f "$work/stream.hpp.new"
 
@@ -55,7 +56,7 @@ grep -q '^end: ' "$work/cortex_m4.labels" || { echo "the firmware did not finish
 echo "labels: firmware and host agree on every line ($(grep -c '^window ' "$work/host.labels") windows, $(grep '^end: ' "$work/host.labels"))"
 
 if [ -n "$c_api_test" ]; then
-    "$cli" stream-table --clips "$list" --count 6 --stride 7 --max-seconds 5 --text --out "$work/stream.txt" 2>/dev/null
+    stream_table --text --out "$work/stream.txt" 2>/dev/null
     "$c_api_test" "$work/stream.txt" >"$work/c_api.windows"
     awk '/^window / { print "window", $2, $5, "confidence", $7 }' "$work/host.labels" >"$work/host.windows"
     if ! cmp -s "$work/host.windows" "$work/c_api.windows"; then

@@ -44,7 +44,7 @@ std::string generate_header(ModelData& model, const std::string& checksum, const
 struct StreamSegment {
     const Clip* clip = nullptr;  ///< Borrowed: must outlive the call.
     std::string label;
-    std::size_t max_frames = static_cast<std::size_t>(-1);
+    double max_seconds = 0.0;  ///< Keep at most this much of the clip; 0 keeps all of it.
 };
 
 /// Clips joined into one stream: each starts one frame period after the
