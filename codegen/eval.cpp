@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,8 @@ void print_eval_usage(std::FILE* out) {
     std::fprintf(out,
                  "usage: actionstring eval --model MODEL --clips LIST [--train LIST] [--json FILE]\n"
                  "                         [--online] [--seed N] [--rate HZ] [--roles R,L,R]\n"
+                 "                         [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
+                 "                         [--skip-penalty X] [--unknown-cost X] [--report DIR]\n"
                  "\n"
                  "Classifies every clip of LIST with the runtime's own code and reports clip\n"
                  "accuracy, per-class precision and recall, the confusion matrix, the unknown rate\n"
@@ -28,7 +31,13 @@ void print_eval_usage(std::FILE* out) {
                  "1-NN over all training strings (no representatives).\n"
                  "With --online it also concatenates each subject's clips in a seeded shuffled\n"
                  "order and streams them frame by frame through the annotator, as a device would,\n"
-                 "reporting frame accuracy, segment F1 (IoU >= 0.5), label delay and flicker.\n");
+                 "reporting frame accuracy, segment F1 (IoU >= 0.5), label delay and flicker for\n"
+                 "each rule: the segmenter's settled labels (the annotator's timeline, final\n"
+                 "--settle seconds after the frame [2]), its live labels (no delay), and the\n"
+                 "paper's latest-window rule. The segmenter options are AnnotatorConfig's\n"
+                 "(defaults in segmenter.hpp; --unknown-cost inf turns 'no action' off).\n"
+                 "--report DIR writes SVG pictures (confusion matrix, true vs predicted timelines)\n"
+                 "and a Markdown summary linking them.\n");
 }
 
 std::vector<host::LabelledClip> load(const std::string& path, const host::ReadOptions& read) {
@@ -36,6 +45,23 @@ std::vector<host::LabelledClip> load(const std::string& path, const host::ReadOp
     for (const host::ClipListEntry& entry : host::read_clip_list(path))
         clips.push_back({host::read_clip(entry, read), entry.label, entry.subject});
     return clips;
+}
+
+void print_online(const char* rule, const host::OnlineResults& r) {
+    std::printf("  %-28s frame accuracy %.3f, segment F1 %.3f (P %.3f, R %.3f), mean delay %.2f s, %d missed, flicker %.1f/min\n",
+                rule, r.frame_accuracy, r.segment_f1, r.segment_precision, r.segment_recall, r.mean_delay_s, r.missed_segments,
+                r.flicker_per_min);
+}
+
+std::string online_json(const host::OnlineResults& r) {
+    std::ostringstream out;
+    out.precision(6);
+    out << "{\"frames\": " << r.frames << ", \"frame_accuracy\": " << r.frame_accuracy << ", \"segment_f1\": " << r.segment_f1
+        << ", \"segment_precision\": " << r.segment_precision << ", \"segment_recall\": " << r.segment_recall
+        << ", \"mean_delay_s\": " << r.mean_delay_s << ", \"missed_segments\": " << r.missed_segments
+        << ", \"flicker_per_min\": " << r.flicker_per_min << ", \"label_changes_per_min\": " << r.label_changes_per_min
+        << ", \"true_changes_per_min\": " << r.true_changes_per_min << "}";
+    return out.str();
 }
 
 void print_results(const host::ClipResults& r) {
@@ -49,6 +75,8 @@ int run_eval(int argc, char** argv) {
     host::ReadOptions read;
     bool online = false;
     std::uint32_t seed = 1;
+    AnnotatorConfig config;
+    std::string report_dir;
     ArgumentReader args("eval", argc, argv);
     while (args.more()) {
         const std::string arg = args.next();
@@ -64,7 +92,10 @@ int run_eval(int argc, char** argv) {
         else if (arg == "--online") online = true;
         else if (arg == "--seed") seed = static_cast<std::uint32_t>(args.number(arg, 0, 4294967295.0));
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
-        else return args.unknown(arg);
+        else if (!parse_segmenter_option(args, arg, config.segmenter)) {
+            if (arg == "--report") report_dir = args.value(arg);
+            else return args.unknown(arg);
+        }
     }
     if (!args.ok()) return 2;
     if (model_path.empty() || clips_path.empty()) {
@@ -82,8 +113,9 @@ int run_eval(int argc, char** argv) {
             results.push_back(host::evaluate_pose_dtw(view, train, clips));
         }
         const std::vector<double> frame_ns = host::annotator_frame_times(view, clips);
-        host::OnlineResults stream;
-        if (online) stream = host::evaluate_online(view, clips, seed);
+        host::OnlineReport online_report;
+        if (online) online_report = host::evaluate_online(view, clips, seed, config);
+        const host::OnlineResults& stream = online_report.settled;
         auto at = [&](double q) {
             return frame_ns.empty() ? 0.0 : frame_ns[std::min(frame_ns.size() - 1, static_cast<std::size_t>(q * static_cast<double>(frame_ns.size())))];
         };
@@ -100,12 +132,13 @@ int run_eval(int argc, char** argv) {
             for (int v : main.confusion[t]) std::printf(" %3d", v);
             std::printf("\n");
         }
-        if (online)
-            std::printf("\nonline (clips concatenated per subject, seed %u, %zu frames): frame accuracy %.3f, segment F1 %.3f "
-                        "(P %.3f, R %.3f), mean delay %.2f s, %d segments missed, flicker %.1f changes/min beyond the true %.1f\n",
-                        seed, stream.frames, stream.frame_accuracy, stream.segment_f1, stream.segment_precision,
-                        stream.segment_recall, stream.mean_delay_s, stream.missed_segments, stream.flicker_per_min,
-                        stream.true_changes_per_min);
+        if (online) {
+            std::printf("\nonline: clips concatenated per subject (seed %u), %zu frames, %.1f true label changes/min\n", seed,
+                        stream.frames, stream.true_changes_per_min);
+            print_online("segmenter, settled labels", online_report.settled);
+            print_online("segmenter, live labels", online_report.live);
+            print_online("paper: latest window wins", online_report.window);
+        }
         std::printf("\nannotator per frame (host build, HostCapacity, %zu frames): median %.0f ns, p99 %.0f ns, max %.0f ns\n",
                     frame_ns.size(), at(0.5), at(0.99), frame_ns.empty() ? 0.0 : frame_ns.back());
         if (!json_path.empty()) {
@@ -117,11 +150,10 @@ int run_eval(int argc, char** argv) {
             for (std::size_t i = 1; i < results.size(); ++i) out << (i > 1 ? ", " : "") << host::to_json(results[i], clips);
             out << "]";
             if (online)
-                out << ", \"frame_accuracy\": " << stream.frame_accuracy << ", \"online\": {\"frames\": " << stream.frames
-                    << ", \"frame_accuracy\": " << stream.frame_accuracy << ", \"segment_f1\": " << stream.segment_f1
-                    << ", \"segment_precision\": " << stream.segment_precision << ", \"segment_recall\": " << stream.segment_recall
-                    << ", \"mean_delay_s\": " << stream.mean_delay_s << ", \"missed_segments\": " << stream.missed_segments
-                    << ", \"flicker_per_min\": " << stream.flicker_per_min << ", \"seed\": " << seed << "}";
+                out << ", \"frame_accuracy\": " << stream.frame_accuracy << ", \"online\": {\"seed\": " << seed
+                    << ", \"settle_delay_s\": " << static_cast<double>(config.segmenter.settle_delay_us) * 1e-6
+                    << ", \"settled\": " << online_json(online_report.settled) << ", \"live\": " << online_json(online_report.live)
+                    << ", \"latest_window\": " << online_json(online_report.window) << "}";
             out << "}\n";
             if (!out) {
                 std::fprintf(stderr, "actionstring eval: cannot write %s\n", json_path.c_str());

@@ -2,9 +2,13 @@
 #pragma once
 
 #include <cstdio>
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <string>
 
+#include "actionstring/segmenter.hpp"
 #include "actionstring_host/clip.hpp"
 
 namespace actionstring {
@@ -67,6 +71,20 @@ inline host::RoleNames parse_roles(ArgumentReader& args, const std::string& text
     names.left_hip = text.substr(first + 1, second - first - 1);
     names.right_hip = text.substr(second + 1);
     return names;
+}
+
+/// The segmenter's settings shared by eval and annotate. Returns false when
+/// `option` is not one of them (the caller then tries its own).
+inline bool parse_segmenter_option(ArgumentReader& args, const std::string& option, SegmenterConfig& config) {
+    const double unbounded = std::numeric_limits<double>::infinity();
+    if (option == "--settle")
+        config.settle_delay_us = static_cast<std::int64_t>(std::llround(args.number(option, 0, 60) * 1e6));
+    else if (option == "--segment-penalty") config.segment_penalty = static_cast<float>(args.number(option, 0, 1e6));
+    else if (option == "--stay-penalty") config.stay_penalty = static_cast<float>(args.number(option, 0, 1e6));
+    else if (option == "--skip-penalty") config.skip_penalty = static_cast<float>(args.number(option, 0, 1e6));
+    else if (option == "--unknown-cost") config.unknown_cost = static_cast<float>(args.number(option, 0, unbounded));
+    else return false;
+    return true;
 }
 
 }  // namespace cli

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "actionstring/annotator.hpp"
+#include "actionstring_host/artifact.hpp"
 #include "actionstring/normalize.hpp"
 #include "actionstring/sampler.hpp"
 #include "actionstring/string_distance.hpp"
@@ -244,7 +245,7 @@ std::vector<Segment> runs(const std::vector<int>& labels) {
 }  // namespace
 
 OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<int>& predicted, const std::vector<double>& times,
-                             const std::vector<std::size_t>& stream_starts) {
+                             const std::vector<std::size_t>& stream_starts, const std::vector<double>* emitted) {
     OnlineResults r;
     r.frames = truth.size();
     if (r.frames == 0) return r;
@@ -268,6 +269,7 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
         std::vector<bool> used(predicted_runs.size(), false);
         for (const Segment& segment : predicted_runs) predicted_segments += segment.label >= 0;
         for (const Segment& segment : true_runs) {
+            if (segment.label == -1) continue;  // "no action": judged frame by frame only
             ++true_segments;
             for (std::size_t q = 0; q < predicted_runs.size(); ++q) {
                 const Segment& guess = predicted_runs[q];
@@ -289,7 +291,8 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
                     break;
                 }
             if (first < segment.end) {
-                delay_sum += times[begin + first] - times[begin + segment.begin];
+                const double shown = emitted ? (*emitted)[begin + first] : times[begin + first];
+                delay_sum += shown - times[begin + segment.begin];
                 ++found;
             } else {
                 ++r.missed_segments;
@@ -310,42 +313,111 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
     return r;
 }
 
-OnlineResults evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed) {
+StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config, const std::vector<double>& times_s,
+                          const float* positions, std::size_t joints) {
+    auto annotator = std::make_unique<Annotator<HostCapacity>>();
+    if (annotator->init(model, config) != Status::ok)
+        throw std::invalid_argument("the model or the segmenter settings do not fit the host annotator");
+    const std::size_t frames = times_s.size();
+    StreamLabels out;
+    out.window.assign(frames, -1);
+    out.live.assign(frames, -1);
+    out.settled.assign(frames, -1);
+    out.settled_at_s.assign(frames, 0.0);
+    auto id = [](LabelId label) { return label == unknown_label ? -1 : static_cast<int>(label); };
+    // Characters of every stream epoch (a restart begins a new one), with their final label and when it came.
+    std::vector<int> char_label;
+    std::vector<double> char_emitted;
+    std::vector<long long> frame_char(frames, -1);
+    std::size_t epoch = 0;  // index in char_label of the current epoch's character 0
+    auto flush = [&](double now) {
+        // A stream that ends (or restarts) reports what its best explanation says of the unsettled tail.
+        const std::uint64_t count = annotator->characters();
+        for (std::uint64_t c = annotator->has_settled() ? annotator->settled_character() + 1 : 0; c < count; ++c) {
+            char_label[epoch + c] = id(annotator->provisional_label(c));
+            char_emitted[epoch + c] = now;
+        }
+    };
+    for (std::size_t f = 0; f < frames; ++f) {
+        const double now = times_s[f];
+        const FrameResult r = annotator->push_frame(static_cast<std::int64_t>(std::llround(now * 1e6)), positions + f * joints * 3);
+        if (r.status == Status::stream_restarted) {
+            // The old epoch's unsettled tail is gone with the reset; it stays unknown, emitted now.
+            for (std::size_t c = epoch; c < char_label.size(); ++c)
+                if (char_label[c] == -3) char_label[c] = -1, char_emitted[c] = now;
+            epoch = char_label.size();
+        }
+        while (char_label.size() < epoch + annotator->characters()) {
+            char_label.push_back(-3);  // not settled yet
+            char_emitted.push_back(now);
+        }
+        if (r.characters_settled > 0) {
+            const std::uint64_t last = annotator->settled_character();
+            for (std::uint64_t k = 0; k < r.characters_settled; ++k) {
+                const std::uint64_t c = last - (r.characters_settled - 1 - k);
+                char_label[epoch + c] = id(annotator->settled_label(c));
+                char_emitted[epoch + c] = now;
+            }
+        }
+        out.window[f] = id(annotator->label());
+        out.live[f] = id(annotator->live_label());
+        if (annotator->characters() > 0) frame_char[f] = static_cast<long long>(epoch + annotator->characters() - 1);
+    }
+    flush(frames ? times_s.back() : 0.0);
+    for (std::size_t f = 0; f < frames; ++f) {
+        if (frame_char[f] < 0) {
+            out.settled_at_s[f] = times_s[f];
+            continue;
+        }
+        const auto c = static_cast<std::size_t>(frame_char[f]);
+        out.settled[f] = char_label[c] == -3 ? -1 : char_label[c];
+        out.settled_at_s[f] = std::max(char_emitted[c], times_s[f]);
+    }
+    return out;
+}
+
+OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed,
+                             const AnnotatorConfig& config) {
     std::vector<std::string> names(model.label_names, model.label_names + model.label_count);
     std::map<std::string, std::vector<std::size_t>> by_subject;
     for (std::size_t c = 0; c < clips.size(); ++c) by_subject[clips[c].subject].push_back(c);
     std::mt19937 rng(seed);
-    auto annotator = std::make_unique<Annotator<HostCapacity>>();
-    if (annotator->init(model) != Status::ok) throw std::invalid_argument("the model does not fit the host annotator");
 
-    std::vector<int> truth, predicted;
-    std::vector<double> times;
+    OnlineReport report;
+    std::vector<int> truth, window, live, settled;
+    std::vector<double> times, settled_at;
     std::vector<std::size_t> stream_starts;
     for (auto& subject : by_subject) {
         std::vector<std::size_t>& order = subject.second;
         std::shuffle(order.begin(), order.end(), rng);
-        annotator->reset();
-        stream_starts.push_back(truth.size());
-        double offset = 0;
-        for (const std::size_t c : order) {
-            const Clip& clip = clips[c].clip;
-            const auto found = std::find(names.begin(), names.end(), clips[c].label);
+        std::vector<StreamSegment> segments;
+        for (const std::size_t c : order) segments.push_back({&clips[c].clip, clips[c].label, 0.0});
+        const ConcatenatedStream stream = concatenate_stream(segments);
+        StreamTimeline timeline;
+        timeline.name = "subject " + subject.first;
+        for (std::size_t f = 0; f < stream.frame_count(); ++f) timeline.times_s.push_back(static_cast<double>(stream.times_us[f]) * 1e-6);
+        timeline.truth.assign(stream.frame_count(), -1);
+        for (std::size_t s = 0; s < stream.segment_labels.size(); ++s) {
+            const auto found = std::find(names.begin(), names.end(), stream.segment_labels[s]);
             const int label = found == names.end() ? -2 : static_cast<int>(found - names.begin());
-            const double start = clip.times.empty() ? 0.0 : clip.times.front();
-            for (std::size_t f = 0; f < clip.frame_count(); ++f) {
-                const double t = offset + clip.times[f] - start;
-                annotator->push_frame(static_cast<std::int64_t>(std::llround(t * 1e6)), clip.frame(f));
-                const LabelId out = annotator->label();
-                truth.push_back(label);
-                predicted.push_back(out == unknown_label ? -1 : static_cast<int>(out));
-                times.push_back(t);
-            }
-            const double period = clip.frame_count() > 1 ? clip.duration() / static_cast<double>(clip.frame_count() - 1) : 1.0 / 30;
-            offset += clip.duration() + period;
+            const std::size_t end = s + 1 < stream.segment_first_frame.size() ? stream.segment_first_frame[s + 1] : stream.frame_count();
+            for (std::size_t f = stream.segment_first_frame[s]; f < end; ++f) timeline.truth[f] = label;
         }
+        timeline.labels = label_stream(model, config, timeline.times_s, stream.positions.data(), stream.joints);
+        stream_starts.push_back(truth.size());
+        truth.insert(truth.end(), timeline.truth.begin(), timeline.truth.end());
+        times.insert(times.end(), timeline.times_s.begin(), timeline.times_s.end());
+        window.insert(window.end(), timeline.labels.window.begin(), timeline.labels.window.end());
+        live.insert(live.end(), timeline.labels.live.begin(), timeline.labels.live.end());
+        settled.insert(settled.end(), timeline.labels.settled.begin(), timeline.labels.settled.end());
+        settled_at.insert(settled_at.end(), timeline.labels.settled_at_s.begin(), timeline.labels.settled_at_s.end());
+        report.streams.push_back(std::move(timeline));
     }
     stream_starts.push_back(truth.size());
-    return score_timeline(truth, predicted, times, stream_starts);
+    report.settled = score_timeline(truth, settled, times, stream_starts, &settled_at);
+    report.live = score_timeline(truth, live, times, stream_starts);
+    report.window = score_timeline(truth, window, times, stream_starts);
+    return report;
 }
 
 }  // namespace host
@@ -354,19 +426,21 @@ OnlineResults evaluate_online(const ModelView& model, const std::vector<Labelled
 namespace actionstring {
 namespace host {
 
-std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip) {
-    auto annotator = std::make_unique<Annotator<HostCapacity>>();
-    if (annotator->init(model) != Status::ok) throw std::invalid_argument("the model does not fit the host annotator");
+std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip, const AnnotatorConfig& config) {
+    const StreamLabels labels = label_stream(model, config, clip.times, clip.positions.data(), clip.joint_count());
     std::vector<LabelSpan> spans;
+    std::size_t agreeing = 0;
     for (std::size_t f = 0; f < clip.frame_count(); ++f) {
-        annotator->push_frame(static_cast<std::int64_t>(std::llround(clip.times[f] * 1e6)), clip.frame(f));
-        const int label = annotator->label() == unknown_label ? -1 : static_cast<int>(annotator->label());
+        const int label = labels.settled[f];
         if (spans.empty() || spans.back().label != label) {
             if (!spans.empty()) spans.back().end_s = clip.times[f];
             spans.push_back({clip.times[f], clip.times[f], label, 0.0, 0});
+            agreeing = 0;
         }
         LabelSpan& span = spans.back();
-        span.mean_confidence += (static_cast<double>(annotator->confidence()) - span.mean_confidence) / static_cast<double>(++span.frames);
+        agreeing += labels.live[f] == label;
+        ++span.frames;
+        span.agreement = static_cast<double>(agreeing) / static_cast<double>(span.frames);
         span.end_s = clip.times[f];
     }
     return spans;

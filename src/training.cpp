@@ -281,6 +281,13 @@ ModelData train_model(const std::vector<LabelledClip>& clips, const TrainingOpti
     m.step_chars = static_cast<std::uint16_t>(std::max(1L, std::lround(options.step_seconds * options.string_rate_hz)));
     m.neighbours = static_cast<std::uint16_t>(std::min<int>(options.neighbours, r.representatives));
     m.unknown_distance = options.unknown_distance < 0 ? detail::infinity() : static_cast<float>(options.unknown_distance);
+    if (!HostCapacity::fits(m.view()))
+        throw std::invalid_argument(std::to_string(r.representatives) + " representatives of " +
+                                    std::to_string(m.view().total_representative_chars()) +
+                                    " characters in all exceed what the host tools can run (" +
+                                    std::to_string(HostCapacity::max_representatives) + " and " +
+                                    std::to_string(HostCapacity::max_representative_chars) +
+                                    "): raise --sigma, or lower --string-rate");
     return m;
 }
 

@@ -1,8 +1,13 @@
 // actionstring — the per-frame annotator: every stage in order (DESIGN §2).
 //
 // push_frame(): StringEncoder (normalise → project → GMM posterior → tree
-// descent, at the string rate) → WindowMatcher (one DP line per open window
-// and representative) → kNN label whenever a window completes.
+// descent, at the string rate) → two labelling rules fed the same characters:
+//  * WindowMatcher (one DP line per open window and representative) → kNN
+//    label whenever a window completes: the paper's rule, label();
+//  * ActionSegmenter (the string explained as representatives end to end) →
+//    a live label and, settle_delay later, a final label per character:
+//    live_label(), settled_label(). This rule labels streams of actions far
+//    better (models/README.md has the figures).
 #pragma once
 
 #include <cstddef>
@@ -13,6 +18,7 @@
 #include "actionstring/encoder.hpp"
 #include "actionstring/matcher.hpp"
 #include "actionstring/model.hpp"
+#include "actionstring/segmenter.hpp"
 #include "actionstring/status.hpp"
 
 namespace actionstring {
@@ -23,6 +29,8 @@ struct AnnotatorConfig {
     /// frames, a paused source) restarts the stream: open windows are
     /// discarded and the label becomes unknown. Must be ≥ the string period.
     std::int64_t max_gap_us = 1000000;
+    /// Settings of the segmenter (settle delay, penalties, unknown cost).
+    SegmenterConfig segmenter;
 };
 
 /// What one push_frame() did.
@@ -36,6 +44,10 @@ struct FrameResult {
     std::uint32_t characters = 0;
     /// Windows that completed during this frame (the last one is last_window()).
     std::uint32_t windows_completed = 0;
+    /// Characters whose label the segmenter settled during this frame (the
+    /// last one is settled_character(); one per character once the stream is
+    /// settle_chars() long).
+    std::uint32_t characters_settled = 0;
 };
 
 /// One completed sliding window and the label it voted for.
@@ -58,6 +70,7 @@ public:
     Status init(const ModelView& model, const AnnotatorConfig& config = {}) noexcept {
         model_ = nullptr;
         Status status = matcher_.init(model);
+        if (status == Status::ok) status = segmenter_.init(model, config.segmenter);
         if (status == Status::ok) status = encoder_.init(model, config.max_gap_us);
         if (status != Status::ok) return status;
         model_ = &model;
@@ -69,6 +82,7 @@ public:
     void reset() noexcept {
         encoder_.reset();
         matcher_.reset();
+        segmenter_.reset();
         has_window_ = false;
         window_ = WindowResult{};
         last_character_ = 0;
@@ -90,6 +104,7 @@ public:
         if (!encoded.accepted()) return result;
         if (encoded.status == Status::stream_restarted) {
             matcher_.reset();
+            segmenter_.reset();
             has_window_ = false;
         }
         emit(encoded.previous, encoded.from_previous, result);
@@ -113,6 +128,28 @@ public:
     const float* last_window_distances() const noexcept {
         return has_window_ ? matcher_.completed_distances() : nullptr;
     }
+    /// The segmenter's label for the newest character: no delay, but it may
+    /// still change as the action goes on. unknown_label before the first character.
+    LabelId live_label() const noexcept { return segmenter_.live_label(); }
+    /// Whether a character has settled since the stream (re)started.
+    bool has_settled() const noexcept { return segmenter_.has_settled(); }
+    /// Index of the last settled character, and its final label.
+    std::uint64_t settled_character() const noexcept { return segmenter_.settled_character(); }
+    LabelId settled_label() const noexcept { return segmenter_.settled_label(); }
+    /// Final label of any of the last ActionSegmenter::settled_history()
+    /// settled characters (a frame can settle several); unknown_label otherwise.
+    LabelId settled_label(std::uint64_t character) const noexcept { return segmenter_.settled_label(character); }
+    /// The current best explanation's label for a character not settled yet
+    /// (the last settle_chars() + 1): what to report when a stream ends.
+    LabelId provisional_label(std::uint64_t character) const noexcept {
+        return segmenter_.provisional_label(character);
+    }
+    /// Characters between a character and its settled label.
+    std::uint32_t settle_chars() const noexcept { return segmenter_.settle_chars(); }
+    /// Time of a character's tick (any character of the current stream).
+    std::int64_t character_time_us(std::uint64_t character) const noexcept {
+        return encoder_.tick_time_us(character);
+    }
     /// Characters in the current stream's string so far.
     std::uint64_t characters() const noexcept { return matcher_.characters_pushed(); }
     /// The most recent character (meaningful once characters() > 0).
@@ -125,6 +162,7 @@ private:
             const std::uint64_t index = matcher_.characters_pushed();
             last_character_ = character;
             ++result.characters;
+            if (segmenter_.push(character)) ++result.characters_settled;
             if (!matcher_.push(character)) continue;
             ++result.windows_completed;
             has_window_ = true;
@@ -139,6 +177,7 @@ private:
     const ModelView* model_ = nullptr;
     StringEncoder<Cap> encoder_;
     WindowMatcher<Cap> matcher_;
+    ActionSegmenter<Cap> segmenter_;
     bool has_window_ = false;
     WindowResult window_;
     Character last_character_ = 0;

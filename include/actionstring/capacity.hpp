@@ -21,9 +21,11 @@ namespace actionstring {
 /// @tparam Windows             sliding windows open at once (≥ ceil(window / step))
 /// @tparam PathLengths         whether the state can track warping-path lengths
 ///                             (needed only for LengthNormalization::path)
+/// @tparam SettleChars         longest settle delay of the segmenter, in characters
 template <std::size_t Joints, std::size_t PoseJoints, std::size_t FeatureDim,
           std::size_t Components, std::size_t Representatives,
-          std::size_t RepresentativeChars, std::size_t Windows, bool PathLengths = true>
+          std::size_t RepresentativeChars, std::size_t Windows, bool PathLengths = true,
+          std::size_t SettleChars = 48>
 struct Capacity {
     static_assert(Joints > 0 && PoseJoints > 0 && FeatureDim > 0 && Components > 0 &&
                       Representatives > 0 && RepresentativeChars > 0 && Windows > 0,
@@ -36,6 +38,7 @@ struct Capacity {
     static constexpr std::size_t max_representative_chars = RepresentativeChars;
     static constexpr std::size_t max_windows = Windows;
     static constexpr bool path_lengths = PathLengths;
+    static constexpr std::size_t max_settle_chars = SettleChars;
     /// DP cells one window keeps: one row or column of length(rep) + 1 per representative.
     static constexpr std::size_t cells_per_window = RepresentativeChars + Representatives;
 
@@ -57,8 +60,8 @@ struct Capacity {
     static constexpr bool fits(const ModelView& m) noexcept { return fits_features(m) && fits_matching(m); }
 };
 
-/// Bounds for host tools: Kinect v2 and ASF skeletons, J ≤ 64, up to 64
-/// representatives of 64 characters, windows up to 8 steps long.
-using HostCapacity = Capacity<32, 32, 96, 64, 64, 4096, 8>;
+/// Bounds for host tools: Kinect v2 and ASF skeletons, J ≤ 64, up to 256
+/// representatives of 64 characters on average, windows up to 8 steps long.
+using HostCapacity = Capacity<32, 32, 96, 64, 256, 16384, 8>;
 
 }  // namespace actionstring

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "actionstring/annotator.hpp"
+#include "actionstring/capacity.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring_host/training.hpp"
 
@@ -67,15 +69,47 @@ struct OnlineResults {
 };
 
 /// Scores a labelled timeline: per frame the true and predicted label (−1
-/// unknown), its time in seconds, and where each independent stream starts
-/// (segments and label changes never span two streams; the last start is the end).
+/// unknown or "no action", −2 a label the model does not know), its time in
+/// seconds, and where each independent stream starts (segments and label
+/// changes never span two streams; the last start is the end). `emitted`, when
+/// given, is when each frame's label was output (a settled label comes later
+/// than its frame); label delay is measured to that time.
 OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<int>& predicted, const std::vector<double>& times,
-                             const std::vector<std::size_t>& stream_starts);
+                             const std::vector<std::size_t>& stream_starts, const std::vector<double>* emitted = nullptr);
+
+/// Per frame, what each online rule of the annotator said (−1 unknown).
+struct StreamLabels {
+    std::vector<int> window;            ///< The paper's rule: the latest window's label, output at the frame.
+    std::vector<int> live;              ///< The segmenter's live label, output at the frame.
+    std::vector<int> settled;           ///< The segmenter's final label of the frame's character.
+    std::vector<double> settled_at_s;   ///< When that final label was output.
+};
+
+/// Streams frames (times in seconds, joints × 3 floats each) through one
+/// annotator exactly as a device would, and collects every rule's labels. The
+/// unsettled tail at the end is reported from the best explanation then.
+StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config, const std::vector<double>& times_s,
+                          const float* positions, std::size_t joints);
+
+/// One evaluated stream, for reports and pictures.
+struct StreamTimeline {
+    std::string name;
+    std::vector<double> times_s;
+    std::vector<int> truth;  ///< −1 "no action", −2 a label the model does not know.
+    StreamLabels labels;
+};
+
+/// Scores of the three rules on the same streams, and the streams themselves.
+struct OnlineReport {
+    OnlineResults settled, live, window;
+    std::vector<StreamTimeline> streams;
+};
 
 /// Concatenates each subject's clips in a seeded shuffled order (the timeline
 /// is known by construction), streams every frame with its timestamp through
-/// the annotator as a device would, and scores the label after each frame.
-OnlineResults evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed);
+/// the annotator as a device would, and scores every rule's labels.
+OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed,
+                             const AnnotatorConfig& config = {});
 
 }  // namespace host
 }  // namespace actionstring
@@ -87,13 +121,15 @@ namespace host {
 struct LabelSpan {
     double start_s = 0, end_s = 0;  ///< Times of the first frame and of the frame after the span (or the last frame).
     int label = -1;                 ///< −1 for unknown.
-    double mean_confidence = 0;     ///< Over the span's frames.
+    /// Share of the span's frames whose live label (decided without the settle
+    /// delay) already said the final label: 1 = clear from the first frame.
+    double agreement = 0;
     std::size_t frames = 0;
 };
 
-/// Streams a clip frame by frame through the annotator and returns the label
-/// timeline: consecutive frames with the same label form one span.
-std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip);
+/// Streams a clip frame by frame through the annotator and returns the
+/// timeline of settled labels: consecutive frames with the same label form one span.
+std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip, const AnnotatorConfig& config = {});
 
 }  // namespace host
 }  // namespace actionstring

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -10,6 +11,13 @@ namespace actionstring {
 namespace detail {
 
 constexpr float infinity() noexcept { return std::numeric_limits<float>::infinity(); }
+
+/// Smallest power of two ≥ value (value ≥ 1).
+constexpr std::size_t next_power_of_two(std::size_t value) noexcept {
+    std::size_t power = 1;
+    while (power < value) power *= 2;
+    return power;
+}
 
 // Bit tests rather than std::isfinite so the checks survive -ffinite-math-only,
 // which a firmware build may turn on for speed elsewhere in the image.

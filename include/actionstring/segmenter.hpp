@@ -1,0 +1,224 @@
+// actionstring — online segmentation of the character stream (DESIGN §1.8).
+//
+// The paper labels a stream by its most recent sliding window. Windows of a
+// fixed length straddle the boundaries of actions shorter than a window, and
+// the label changes only when a window completes. This stage instead explains
+// the whole string so far as a sequence of representatives laid end to end
+// (one-pass connected DTW, as in connected-word recognition):
+//
+//   C_r[i](t) = W(rep_r[i], c_t) + min( C_r[i−1](t−1)            advance
+//                                      C_r[i](t−1) + stay          repeat a character
+//                                      C_r[i−2](t−1) + skip )      skip a character
+//   C_r[1](t) also starts a new segment from E(t−1) + segment_penalty, where
+//   E(t) = min_r C_r[n_r](t) is the best explanation ending exactly at t
+//   (or E(t−1) + unknown_cost, a character of "no action").
+//
+// Every stream character adds exactly one W term, so explanations of the same
+// string compare fairly whatever their segment lengths. Each cell also carries
+// the index where its segment started, and a short ring of segment ends lets
+// the best current hypothesis be traced back: the label of the character
+// `settle_chars` back is final and is emitted; the newest one is the live guess.
+// State: two words per representative character plus the ring; work per
+// character: one pass over the representative characters.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "actionstring/capacity.hpp"
+#include "actionstring/detail/math.hpp"
+#include "actionstring/model.hpp"
+#include "actionstring/status.hpp"
+
+namespace actionstring {
+
+/// Settings of the online segmentation (units: entries of W, the model's
+/// character distances). The defaults were chosen by cross-validation over the
+/// HDM05 training actors (models/README.md), never on a test list.
+struct SegmenterConfig {
+    /// How long after a character its label becomes final. Longer sees more
+    /// of the action before deciding; the paper's rule answers one window late.
+    std::int64_t settle_delay_us = 2000000;
+    /// Cost of starting another segment (discourages flicker).
+    float segment_penalty = 3.0f;
+    /// Extra cost of matching two stream characters to one representative character.
+    float stay_penalty = 0.3f;
+    /// Extra cost of skipping a representative character.
+    float skip_penalty = 0.3f;
+    /// Cost per character of "no action" (labelled unknown); infinity turns it off.
+    float unknown_cost = detail::infinity();
+};
+
+/// Online segmentation state with storage fixed by `Cap`. Holds a pointer to
+/// the ModelView passed to init(): it must outlive the segmenter (or the next
+/// init()).
+template <class Cap>
+class ActionSegmenter {
+public:
+    /// Binds a model (W, representatives, labels, string period). Returns
+    /// invalid_model, model_exceeds_capacity (more representative characters
+    /// than Cap, or a settle delay longer than Cap::max_settle_chars), or
+    /// invalid_argument (a negative or NaN setting); ok otherwise.
+    Status init(const ModelView& model, const SegmenterConfig& config = {}) noexcept {
+        model_ = nullptr;
+        const Status status = validate_matching_tables(model);
+        if (status != Status::ok) return status;
+        if (!(config.settle_delay_us >= 0) || !(config.segment_penalty >= 0.0f) || !(config.stay_penalty >= 0.0f) ||
+            !(config.skip_penalty >= 0.0f) || !(config.unknown_cost >= 0.0f) || !detail::is_finite(config.segment_penalty) ||
+            !detail::is_finite(config.stay_penalty) || !detail::is_finite(config.skip_penalty))
+            return Status::invalid_argument;
+        if (model.representative_count > Cap::max_representatives ||
+            model.total_representative_chars() > Cap::max_representative_chars)
+            return Status::model_exceeds_capacity;
+        const std::int64_t period = model.string_period_us;
+        const std::int64_t settle = (config.settle_delay_us + period / 2) / period;
+        if (settle + 1 > static_cast<std::int64_t>(ring_size)) return Status::model_exceeds_capacity;
+        settle_chars_ = static_cast<std::uint32_t>(settle);
+        config_ = config;
+        model_ = &model;
+        reset();
+        return Status::ok;
+    }
+
+    /// Forgets the stream; the model stays bound.
+    void reset() noexcept {
+        pushed_ = 0;
+        last_end_ = 0.0f;
+        best_ = Hypothesis{};
+        for (std::size_t i = 0; i < Cap::max_representative_chars; ++i) {
+            costs_[i] = detail::infinity();
+            starts_[i] = 0;
+        }
+        for (auto& end : ends_) end = SegmentEnd{};
+        for (auto& label : settled_) label = unknown_label;
+    }
+
+    bool initialized() const noexcept { return model_ != nullptr; }
+
+    /// Feeds the next character. Returns true when it settled a character
+    /// (the one settle_chars() back): its label is then in settled_label().
+    bool push(Character character) noexcept {
+        if (model_ == nullptr || character >= model_->character_count) return false;
+        const ModelView& m = *model_;
+        const CharacterWeights w = character_weights(m);
+        const std::uint32_t now = static_cast<std::uint32_t>(pushed_);
+        // Costs are stored relative to the previous step's best so they stay small on endless streams.
+        const float shift = best_.cost;
+        const float previous_end = pushed_ == 0 ? 0.0f : last_end_ - shift;
+        const float entry = previous_end + config_.segment_penalty;
+
+        Hypothesis best;
+        SegmentEnd end{unknown_rep, now};
+        float end_cost = previous_end + config_.unknown_cost;
+        best = Hypothesis{end_cost, unknown_rep, now};
+        for (std::size_t r = 0; r < m.representative_count; ++r) {
+            const Character* rep = m.representative_chars + m.representative_offsets[r];
+            const std::size_t n = m.representative_length(r);
+            float* cost = costs_ + m.representative_offsets[r];  // cell i is cost[i − 1]
+            std::uint32_t* start = starts_ + m.representative_offsets[r];
+            // Descending, so cells i−1 and i−2 still hold the previous step.
+            for (std::size_t i = n; i >= 1; --i) {
+                float value = i >= 2 ? cost[i - 2] - shift : entry;
+                std::uint32_t from = i >= 2 ? start[i - 2] : now;
+                const float stay = cost[i - 1] - shift + config_.stay_penalty;
+                if (stay < value) value = stay, from = start[i - 1];
+                const float skip = i >= 3 ? cost[i - 3] - shift + config_.skip_penalty
+                                          : (i == 2 ? entry + config_.skip_penalty : detail::infinity());
+                if (skip < value) value = skip, from = i >= 3 ? start[i - 3] : now;
+                value += w(rep[i - 1], character);
+                cost[i - 1] = value;
+                start[i - 1] = from;
+                if (value < best.cost) best = Hypothesis{value, static_cast<std::uint16_t>(r), from};
+            }
+            if (cost[n - 1] < end_cost) {
+                end_cost = cost[n - 1];
+                end = SegmentEnd{static_cast<std::uint16_t>(r), start[n - 1]};
+            }
+        }
+        ends_[now % ring_size] = end;
+        last_end_ = end_cost;
+        best_ = best;
+        ++pushed_;
+        if (pushed_ <= settle_chars_) return false;
+        const std::uint64_t settled = pushed_ - 1 - settle_chars_;
+        settled_[settled % ring_size] = label_at(settled);
+        return true;
+    }
+
+    /// Label of the best explanation's newest character (no delay, may change).
+    LabelId live_label() const noexcept { return pushed_ == 0 ? unknown_label : label_of(best_.rep); }
+    /// Whether any character is settled yet.
+    bool has_settled() const noexcept { return pushed_ > settle_chars_; }
+    /// Index of the last settled character (meaningful when has_settled()).
+    std::uint64_t settled_character() const noexcept { return pushed_ - 1 - settle_chars_; }
+    /// Final label of the last settled character.
+    LabelId settled_label() const noexcept { return settled_label(settled_character()); }
+    /// Final label of a settled character among the last settled_history();
+    /// unknown_label for any other index.
+    LabelId settled_label(std::uint64_t index) const noexcept {
+        if (!has_settled() || index > settled_character() || settled_character() - index >= ring_size) return unknown_label;
+        return settled_[index % ring_size];
+    }
+    /// How many settled labels settled_label(index) remembers.
+    static constexpr std::size_t settled_history() noexcept { return ring_size; }
+    /// What the current best explanation says of a character that is not yet
+    /// settled (index within the last settle_chars() + 1): to flush the end of
+    /// a stream. Returns unknown_label for other indices.
+    LabelId provisional_label(std::uint64_t index) const noexcept {
+        if (pushed_ == 0 || index >= pushed_ || pushed_ - 1 - index > settle_chars_) return unknown_label;
+        return label_at(index);
+    }
+    std::uint32_t settle_chars() const noexcept { return settle_chars_; }
+    std::uint64_t characters_pushed() const noexcept { return pushed_; }
+
+private:
+    static constexpr std::uint16_t unknown_rep = 0xFFFF;
+    // A power of two, so that slot = index mod 2^32 mod ring_size stays
+    // consistent when the 32-bit index wraps.
+    static constexpr std::size_t ring_size = detail::next_power_of_two(Cap::max_settle_chars + 1);
+
+    struct Hypothesis {
+        float cost = 0.0f;
+        std::uint16_t rep = unknown_rep;
+        std::uint32_t start = 0;  ///< Stream index (mod 2^32) of its segment's first character.
+    };
+    struct SegmentEnd {
+        std::uint16_t rep = unknown_rep;
+        std::uint32_t start = 0;
+    };
+
+    LabelId label_of(std::uint16_t rep) const noexcept {
+        return rep == unknown_rep ? unknown_label : model_->representative_labels[rep];
+    }
+
+    // Walks the best explanation back from the newest character. Ages are
+    // compared modulo 2^32, so the walk is exact on streams of any length.
+    LabelId label_at(std::uint64_t index) const noexcept {
+        const std::uint32_t newest = static_cast<std::uint32_t>(pushed_ - 1);
+        const std::uint32_t target_age = static_cast<std::uint32_t>(pushed_ - 1 - index);
+        std::uint16_t rep = best_.rep;
+        std::uint32_t start = best_.start;
+        for (std::uint32_t guard = 0; guard <= ring_size; ++guard) {
+            const std::uint32_t start_age = newest - start;
+            if (start_age >= target_age) return label_of(rep);
+            const std::uint32_t previous = start - 1u;  // the end of the segment before
+            const SegmentEnd& end = ends_[previous % ring_size];
+            rep = end.rep;
+            start = end.start;
+        }
+        return unknown_label;  // not reached: each step moves at least one character back
+    }
+
+    const ModelView* model_ = nullptr;
+    SegmenterConfig config_;
+    std::uint32_t settle_chars_ = 0;
+    std::uint64_t pushed_ = 0;
+    float last_end_ = 0.0f;
+    Hypothesis best_;
+    float costs_[Cap::max_representative_chars] = {};
+    std::uint32_t starts_[Cap::max_representative_chars] = {};
+    SegmentEnd ends_[ring_size] = {};
+    LabelId settled_[ring_size] = {};
+};
+
+}  // namespace actionstring
