@@ -70,9 +70,10 @@ public:
         if (model.representative_count > Cap::max_representatives ||
             model.total_representative_chars() > Cap::max_representative_chars)
             return Status::model_exceeds_capacity;
+        if (model.string_period_us == 0) return Status::invalid_model;
         const std::int64_t period = model.string_period_us;
         const std::int64_t settle = (config.settle_delay_us + period / 2) / period;
-        if (settle + 1 > static_cast<std::int64_t>(ring_size)) return Status::model_exceeds_capacity;
+        if (settle > static_cast<std::int64_t>(Cap::max_settle_chars)) return Status::model_exceeds_capacity;
         settle_chars_ = static_cast<std::uint32_t>(settle);
         config_ = config;
         model_ = &model;

@@ -1,0 +1,282 @@
+// The online segmenter: incremental labels == a plain full-table reference,
+// exact recovery of streams made of the representatives, "no action", limits.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "actionstring/capacity.hpp"
+#include "actionstring/segmenter.hpp"
+
+using namespace actionstring;
+
+namespace {
+
+using SegmenterCap = Capacity<1, 1, 1, 1, 8, 512, 1, false, 40>;
+
+// Matching tables of a small model whose W holds multiples of 1/4, so every
+// sum is exact and the reference and the incremental state agree bit for bit.
+struct Tables {
+    std::vector<float> w;
+    std::vector<std::uint32_t> offsets{0};
+    std::vector<Character> strings;
+    std::vector<LabelId> labels;
+    const char* names[4] = {"a", "b", "c", "d"};
+    ModelView view;
+
+    void finish(int K) {
+        view.character_count = static_cast<std::uint16_t>(K);
+        view.character_distances = w.data();
+        view.representative_count = static_cast<std::uint16_t>(labels.size());
+        view.representative_offsets = offsets.data();
+        view.representative_chars = strings.data();
+        view.representative_labels = labels.data();
+        view.label_count = 4;
+        view.label_names = names;
+        view.window_chars = 4;
+        view.step_chars = 2;
+        view.neighbours = 1;
+        view.string_period_us = 100000;  // 10 characters per second
+    }
+    void add(const std::vector<Character>& rep, LabelId label) {
+        strings.insert(strings.end(), rep.begin(), rep.end());
+        offsets.push_back(static_cast<std::uint32_t>(strings.size()));
+        labels.push_back(label);
+    }
+};
+
+Tables random_tables(std::mt19937& rng) {
+    auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    Tables t;
+    const int K = uniform(2, 10);
+    for (int a = 0; a < K * K; ++a) t.w.push_back(static_cast<float>(uniform(0, 8)) * 0.25f);
+    const int R = uniform(1, 6);
+    for (int r = 0; r < R; ++r) {
+        std::vector<Character> rep(static_cast<std::size_t>(uniform(1, 12)));
+        for (auto& c : rep) c = static_cast<Character>(uniform(0, K - 1));
+        t.add(rep, static_cast<LabelId>(uniform(0, 3)));
+    }
+    t.finish(K);
+    return t;
+}
+
+// The recurrence of segmenter.hpp over the whole stream at once: absolute
+// costs (no shift), every column and every segment end kept, and for each
+// character t the label that the best explanation at t + settle gives it.
+std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig& config, std::uint32_t settle,
+                                       const std::vector<Character>& stream) {
+    const float inf = std::numeric_limits<float>::infinity();
+    const std::size_t T = stream.size(), R = m.representative_count;
+    struct End { int rep; std::size_t start; };
+    std::vector<End> ends(T);
+    std::vector<float> end_cost(T);
+    std::vector<std::vector<float>> cost(R);
+    std::vector<std::vector<std::size_t>> start(R);
+    for (std::size_t r = 0; r < R; ++r) cost[r].assign(m.representative_length(r) + 1, inf), start[r].assign(m.representative_length(r) + 1, 0);
+    std::vector<LabelId> settled(T, unknown_label);
+    auto weight = [&](Character a, Character b) { return m.character_distances[a * m.character_count + b]; };
+    auto label = [&](int rep) { return rep < 0 ? unknown_label : m.representative_labels[rep]; };
+    for (std::size_t t = 0; t < T; ++t) {
+        const float before = t == 0 ? 0.0f : end_cost[t - 1];
+        const float entry = before + config.segment_penalty;
+        float best = before + config.unknown_cost, best_end = best;
+        int best_rep = -1, end_rep = -1;
+        std::size_t best_start = t, end_start = t;
+        std::vector<std::vector<float>> next = cost;
+        std::vector<std::vector<std::size_t>> next_start = start;
+        for (std::size_t r = 0; r < R; ++r) {
+            const std::size_t n = m.representative_length(r);
+            const Character* rep = m.representative_chars + m.representative_offsets[r];
+            for (std::size_t i = 1; i <= n; ++i) {
+                float v = i >= 2 ? cost[r][i - 1] : entry;
+                std::size_t from = i >= 2 ? start[r][i - 1] : t;
+                if (cost[r][i] + config.stay_penalty < v) v = cost[r][i] + config.stay_penalty, from = start[r][i];
+                const float skip = i >= 3 ? cost[r][i - 2] + config.skip_penalty : (i == 2 ? entry + config.skip_penalty : inf);
+                if (skip < v) v = skip, from = i >= 3 ? start[r][i - 2] : t;
+                next[r][i] = v + weight(rep[i - 1], stream[t]);
+                next_start[r][i] = from;
+            }
+        }
+        // The incremental code scans representatives in order and cells from last to first.
+        for (std::size_t r = 0; r < R; ++r) {
+            const std::size_t n = m.representative_length(r);
+            for (std::size_t i = n; i >= 1; --i)
+                if (next[r][i] < best) best = next[r][i], best_rep = static_cast<int>(r), best_start = next_start[r][i];
+            if (next[r][n] < best_end) best_end = next[r][n], end_rep = static_cast<int>(r), end_start = next_start[r][n];
+        }
+        cost = next;
+        start = next_start;
+        ends[t] = {end_rep, end_start};
+        end_cost[t] = best_end;
+        if (t < settle) continue;
+        const std::size_t target = t - settle;
+        int rep = best_rep;
+        std::size_t s = best_start;
+        while (s > target) {
+            rep = ends[s - 1].rep;
+            s = ends[s - 1].start;
+        }
+        settled[target] = label(rep);
+    }
+    return settled;
+}
+
+}  // namespace
+
+TEST_CASE("settled labels equal a full-table reference of the same recurrence") {
+    std::mt19937 rng(2024);
+    auto segmenter = std::make_unique<ActionSegmenter<SegmenterCap>>();
+    for (int trial = 0; trial < 200; ++trial) {
+        Tables t = random_tables(rng);
+        SegmenterConfig config;
+        config.settle_delay_us = std::uniform_int_distribution<int>(0, 30)(rng) * 100000;
+        config.segment_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
+        config.stay_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
+        config.skip_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
+        if (trial % 3 == 0) config.unknown_cost = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
+        REQUIRE(segmenter->init(t.view, config) == Status::ok);
+        const std::uint32_t settle = segmenter->settle_chars();
+        CHECK(settle == static_cast<std::uint32_t>(config.settle_delay_us / 100000));
+        std::vector<Character> stream(static_cast<std::size_t>(std::uniform_int_distribution<int>(1, 150)(rng)));
+        for (auto& c : stream) c = static_cast<Character>(std::uniform_int_distribution<int>(0, t.view.character_count - 1)(rng));
+        const std::vector<LabelId> expected = reference_settled(t.view, config, settle, stream);
+        std::vector<LabelId> got(stream.size(), unknown_label);
+        for (std::size_t i = 0; i < stream.size(); ++i) {
+            const bool settled = segmenter->push(stream[i]);
+            CHECK(settled == (i >= settle));
+            if (!settled) continue;
+            CHECK(segmenter->settled_character() == i - settle);
+            got[i - settle] = segmenter->settled_label();
+        }
+        for (std::size_t i = 0; i + settle < stream.size(); ++i) {
+            INFO("trial ", trial, " character ", i);
+            CHECK(got[i] == expected[i]);
+            if (stream.size() - 1 - i < SegmenterCap::max_settle_chars) CHECK(segmenter->settled_label(i) == got[i]);
+        }
+    }
+}
+
+TEST_CASE("a stream made of the representatives is segmented exactly") {
+    // Three distinct characters per label, W = 0 on the diagonal and 2 elsewhere.
+    Tables t;
+    const int K = 12;
+    for (int a = 0; a < K; ++a)
+        for (int b = 0; b < K; ++b) t.w.push_back(a == b ? 0.0f : 2.0f);
+    t.add({0, 1, 2, 1, 0}, 0);
+    t.add({3, 4, 5, 5, 4, 3, 4}, 1);
+    t.add({6, 7, 8}, 2);
+    t.add({9, 10, 11, 10}, 3);
+    t.finish(K);
+    auto segmenter = std::make_unique<ActionSegmenter<SegmenterCap>>();
+    SegmenterConfig config;
+    config.settle_delay_us = 1000000;  // 10 characters
+    REQUIRE(segmenter->init(t.view, config) == Status::ok);
+    std::vector<Character> stream;
+    std::vector<LabelId> truth;
+    std::mt19937 rng(5);
+    for (int k = 0; k < 60; ++k) {
+        const std::size_t r = static_cast<std::size_t>(std::uniform_int_distribution<int>(0, 3)(rng));
+        for (std::uint32_t i = t.offsets[r]; i < t.offsets[r + 1]; ++i) {
+            // Stretch some characters in time as a slower performer would.
+            const int repeat = std::uniform_int_distribution<int>(0, 3)(rng) == 0 ? 2 : 1;
+            for (int j = 0; j < repeat; ++j) stream.push_back(t.strings[i]), truth.push_back(t.labels[r]);
+        }
+    }
+    std::size_t right = 0, settled = 0;
+    for (std::size_t i = 0; i < stream.size(); ++i) {
+        if (!segmenter->push(stream[i])) continue;
+        ++settled;
+        right += segmenter->settled_label() == truth[segmenter->settled_character()];
+    }
+    for (std::size_t i = stream.size() - segmenter->settle_chars(); i < stream.size(); ++i)
+        right += segmenter->provisional_label(i) == truth[i];
+    CHECK(settled == stream.size() - segmenter->settle_chars());
+    CHECK(right == stream.size());
+    CHECK(segmenter->live_label() == truth.back());
+}
+
+TEST_CASE("characters unlike every representative are 'no action' when the unknown cost allows") {
+    Tables t;
+    const int K = 4;
+    for (int a = 0; a < K; ++a)
+        for (int b = 0; b < K; ++b) t.w.push_back(a == b ? 0.0f : (a == 3 || b == 3 ? 2.0f : 1.0f));
+    t.add({0, 1, 2}, 1);
+    t.finish(K);
+    auto segmenter = std::make_unique<ActionSegmenter<SegmenterCap>>();
+    SegmenterConfig config;
+    config.settle_delay_us = 500000;
+    config.segment_penalty = 0.5f;
+    config.unknown_cost = 0.5f;
+    REQUIRE(segmenter->init(t.view, config) == Status::ok);
+    std::vector<Character> stream{3, 3, 3, 3, 3, 3, 0, 1, 2, 0, 1, 2, 3, 3, 3, 3, 3, 3, 3, 3};
+    std::vector<LabelId> got;
+    for (Character c : stream)
+        if (segmenter->push(c)) got.push_back(segmenter->settled_label());
+    for (std::size_t i = got.size(); i < stream.size(); ++i) got.push_back(segmenter->provisional_label(i));
+    const std::vector<LabelId> expected{unknown_label, unknown_label, unknown_label, unknown_label, unknown_label, unknown_label,
+                                        1, 1, 1, 1, 1, 1,
+                                        unknown_label, unknown_label, unknown_label, unknown_label, unknown_label, unknown_label,
+                                        unknown_label, unknown_label};
+    CHECK(got == expected);
+
+    // Without the unknown cost the same characters must go to the only action.
+    config.unknown_cost = std::numeric_limits<float>::infinity();
+    REQUIRE(segmenter->init(t.view, config) == Status::ok);
+    for (Character c : stream) segmenter->push(c);
+    CHECK(segmenter->live_label() == 1);
+}
+
+TEST_CASE("costs stay bounded on a long stream, and reset forgets it") {
+    std::mt19937 rng(11);
+    Tables t = random_tables(rng);
+    auto segmenter = std::make_unique<ActionSegmenter<SegmenterCap>>();
+    REQUIRE(segmenter->init(t.view) == Status::ok);
+    // Two copies fed the same characters, one restarted halfway: after a reset
+    // it must behave exactly like a fresh segmenter.
+    auto fresh = std::make_unique<ActionSegmenter<SegmenterCap>>();
+    REQUIRE(fresh->init(t.view) == Status::ok);
+    for (int i = 0; i < 200000; ++i) {
+        const auto c = static_cast<Character>(i * 7 % t.view.character_count);
+        segmenter->push(c);
+        if (i == 100000) segmenter->reset();
+        if (i > 100000) fresh->push(c);
+    }
+    CHECK(segmenter->characters_pushed() == 99999);
+    CHECK(segmenter->settled_label() == fresh->settled_label());
+    CHECK(segmenter->live_label() == fresh->live_label());
+    CHECK(segmenter->live_label() != unknown_label);
+}
+
+TEST_CASE("segmenter refuses bad settings and models it cannot hold") {
+    std::mt19937 rng(3);
+    Tables t = random_tables(rng);
+    auto segmenter = std::make_unique<ActionSegmenter<SegmenterCap>>();
+    SegmenterConfig config;
+    config.settle_delay_us = 4100000;  // 41 characters > 40
+    CHECK(segmenter->init(t.view, config) == Status::model_exceeds_capacity);
+    CHECK(!segmenter->initialized());
+    CHECK(!segmenter->push(0));
+    CHECK(segmenter->live_label() == unknown_label);
+    config = SegmenterConfig{};
+    config.segment_penalty = std::nanf("");
+    CHECK(segmenter->init(t.view, config) == Status::invalid_argument);
+    config = SegmenterConfig{};
+    config.stay_penalty = -1.0f;
+    CHECK(segmenter->init(t.view, config) == Status::invalid_argument);
+    config = SegmenterConfig{};
+    config.settle_delay_us = -1;
+    CHECK(segmenter->init(t.view, config) == Status::invalid_argument);
+    ModelView no_period = t.view;
+    no_period.string_period_us = 0;
+    CHECK(segmenter->init(no_period) == Status::invalid_model);
+    using Tiny = Capacity<1, 1, 1, 1, 1, 4, 1, false, 8>;
+    auto tiny = std::make_unique<ActionSegmenter<Tiny>>();
+    CHECK(tiny->init(t.view) != Status::ok);
+    // A character the model does not have is ignored.
+    REQUIRE(segmenter->init(t.view) == Status::ok);
+    CHECK(!segmenter->push(static_cast<Character>(t.view.character_count)));
+    CHECK(segmenter->characters_pushed() == 0);
+}
