@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "actionstring/capacity.hpp"
 #include "actionstring/classify.hpp"
@@ -22,6 +23,27 @@
 #include "actionstring/status.hpp"
 
 namespace actionstring {
+namespace detail {
+
+/// Stands in for the WindowMatcher when the capacity has no windows: counts
+/// characters and never completes a window.
+class NoWindows {
+public:
+    Status init(const ModelView&) noexcept { return Status::ok; }
+    void reset() noexcept { pushed_ = 0; }
+    bool push(Character) noexcept {
+        ++pushed_;
+        return false;
+    }
+    const float* completed_distances() const noexcept { return nullptr; }
+    std::uint64_t completed_window_start() const noexcept { return 0; }
+    std::uint64_t characters_pushed() const noexcept { return pushed_; }
+
+private:
+    std::uint64_t pushed_ = 0;
+};
+
+}  // namespace detail
 
 /// Stream settings that are not part of the model.
 struct AnnotatorConfig {
@@ -59,7 +81,8 @@ struct WindowResult {
 };
 
 /// The runtime recogniser. All storage is inside the object and fixed by `Cap`;
-/// it never allocates. Keeps a pointer to the ModelView given to init(): that
+/// it never allocates. With `Cap::without_windows` the paper's window rule is
+/// left out (label() stays unknown) and only the segmenter's state is paid for. Keeps a pointer to the ModelView given to init(): that
 /// object and its tables must outlive the annotator (or the next init()).
 template <class Cap>
 class Annotator {
@@ -176,7 +199,7 @@ private:
 
     const ModelView* model_ = nullptr;
     StringEncoder<Cap> encoder_;
-    WindowMatcher<Cap> matcher_;
+    std::conditional_t<Cap::has_windows, WindowMatcher<Cap>, detail::NoWindows> matcher_;
     ActionSegmenter<Cap> segmenter_;
     bool has_window_ = false;
     WindowResult window_;

@@ -18,7 +18,8 @@ namespace actionstring {
 /// @tparam Components          J, GMM components
 /// @tparam Representatives     R, representative strings
 /// @tparam RepresentativeChars total characters over all representatives
-/// @tparam Windows             sliding windows open at once (≥ ceil(window / step))
+/// @tparam Windows             sliding windows open at once (≥ ceil(window / step));
+///                             0 leaves the paper's window rule out of the Annotator
 /// @tparam PathLengths         whether the state can track warping-path lengths
 ///                             (needed only for LengthNormalization::path)
 /// @tparam SettleChars         longest settle delay of the segmenter, in characters
@@ -28,7 +29,7 @@ template <std::size_t Joints, std::size_t PoseJoints, std::size_t FeatureDim,
           std::size_t SettleChars = 48>
 struct Capacity {
     static_assert(Joints > 0 && PoseJoints > 0 && FeatureDim > 0 && Components > 0 &&
-                      Representatives > 0 && RepresentativeChars > 0 && Windows > 0,
+                      Representatives > 0 && RepresentativeChars > 0,
                   "every capacity must be positive");
     static constexpr std::size_t max_joints = Joints;
     static constexpr std::size_t max_pose_dim = 3 * PoseJoints;
@@ -39,6 +40,12 @@ struct Capacity {
     static constexpr std::size_t max_windows = Windows;
     static constexpr bool path_lengths = PathLengths;
     static constexpr std::size_t max_settle_chars = SettleChars;
+    /// Whether the Annotator runs the paper's sliding-window rule.
+    static constexpr bool has_windows = Windows > 0;
+    /// The same bounds without the window rule: the segmenter alone labels the
+    /// stream, and the window matcher's state (the largest part) is not paid for.
+    using without_windows = Capacity<Joints, PoseJoints, FeatureDim, Components, Representatives,
+                                     RepresentativeChars, 0, PathLengths, SettleChars>;
     /// DP cells one window keeps: one row or column of length(rep) + 1 per representative.
     static constexpr std::size_t cells_per_window = RepresentativeChars + Representatives;
 
@@ -52,7 +59,7 @@ struct Capacity {
     static constexpr bool fits_matching(const ModelView& m) noexcept {
         return m.representative_count <= max_representatives &&
                m.total_representative_chars() <= max_representative_chars &&
-               m.max_open_windows() <= max_windows &&
+               (max_windows == 0 || m.max_open_windows() <= max_windows) &&
                (path_lengths || m.normalization != LengthNormalization::path);
     }
 

@@ -60,7 +60,7 @@ actionstring_status actionstring_init(void* memory, size_t size, actionstring_st
 
 actionstring_status actionstring_push_frame(actionstring_state* handle, int64_t time_us, const float* positions,
                                             size_t position_count, actionstring_frame_result* result) {
-    actionstring_frame_result out{ACTIONSTRING_OK, 0, 0};
+    actionstring_frame_result out{ACTIONSTRING_OK, 0, 0, 0};
     State* state = live(handle);
     if (state == nullptr) out.status = ACTIONSTRING_NOT_INITIALIZED;
     else if (positions == nullptr || position_count != static_cast<size_t>(model::kModel.joint_count) * 3u)
@@ -70,6 +70,7 @@ actionstring_status actionstring_push_frame(actionstring_state* handle, int64_t 
         out.status = code(frame.status);
         out.characters = frame.characters;
         out.windows_completed = frame.windows_completed;
+        out.characters_settled = frame.characters_settled;
     }
     if (result != nullptr) *result = out;
     return out.status;
@@ -86,6 +87,25 @@ int32_t actionstring_label(const actionstring_state* handle) {
     const State* state = live(handle);
     if (state == nullptr || state->annotator.label() == actionstring::unknown_label) return -1;
     return static_cast<int32_t>(state->annotator.label());
+}
+
+int32_t actionstring_live_label(const actionstring_state* handle) {
+    const State* state = live(handle);
+    if (state == nullptr || state->annotator.live_label() == actionstring::unknown_label) return -1;
+    return static_cast<int32_t>(state->annotator.live_label());
+}
+
+int64_t actionstring_settled_character(const actionstring_state* handle) {
+    const State* state = live(handle);
+    if (state == nullptr || !state->annotator.has_settled()) return -1;
+    return static_cast<int64_t>(state->annotator.settled_character());
+}
+
+int32_t actionstring_settled_label(const actionstring_state* handle, int64_t character) {
+    const State* state = live(handle);
+    if (state == nullptr || character < 0) return -1;
+    const actionstring::LabelId label = state->annotator.settled_label(static_cast<std::uint64_t>(character));
+    return label == actionstring::unknown_label ? -1 : static_cast<int32_t>(label);
 }
 
 float actionstring_confidence(const actionstring_state* handle) {

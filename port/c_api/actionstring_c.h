@@ -55,6 +55,7 @@ typedef struct actionstring_frame_result {
     actionstring_status status;   /**< OK or STREAM_RESTARTED when accepted, else why rejected */
     uint32_t characters;          /**< characters appended to the action string */
     uint32_t windows_completed;   /**< windows that completed (and may have changed the label) */
+    uint32_t characters_settled;  /**< characters whose final label the segmenter decided */
 } actionstring_frame_result;
 
 /** Bytes and alignment the state needs. */
@@ -82,6 +83,14 @@ ACTIONSTRING_C_API int32_t actionstring_label(const actionstring_state* state);
 ACTIONSTRING_C_API float actionstring_confidence(const actionstring_state* state);
 /** Name of the current label, or "unknown". Static storage; never NULL. */
 ACTIONSTRING_C_API const char* actionstring_label_name(const actionstring_state* state);
+
+/** The segmenter's label for the newest character (no delay, may still change), or -1. */
+ACTIONSTRING_C_API int32_t actionstring_live_label(const actionstring_state* state);
+/** Index of the last character whose label is final, or -1 before the first one. */
+ACTIONSTRING_C_API int64_t actionstring_settled_character(const actionstring_state* state);
+/** Final label of a settled character (one of the most recent, e.g. those the last frame
+ *  reported in characters_settled), or -1 for unknown or a character not remembered. */
+ACTIONSTRING_C_API int32_t actionstring_settled_label(const actionstring_state* state, int64_t character);
 
 /** The model: joints per frame, labels, a label's name ("unknown" when out of range). */
 ACTIONSTRING_C_API uint32_t actionstring_joint_count(void);

@@ -18,7 +18,9 @@
 
 namespace model = ACTIONSTRING_REPLAY_MODEL_NAMESPACE;
 namespace stream = actionstring_stream;
-using Cap = model::ModelCapacity;
+// The segmenter alone labels the stream: it is the better rule on streams of
+// actions, and leaving the paper's window matcher out halves the state.
+using Cap = model::ModelCapacity::without_windows;
 using Annotator = actionstring::Annotator<Cap>;
 
 namespace {
@@ -59,12 +61,6 @@ private:
     std::size_t length_ = 0;
 };
 
-std::uint32_t float_bits(float value) {
-    std::uint32_t bits;
-    std::memcpy(&bits, &value, sizeof bits);
-    return bits;
-}
-
 std::uint32_t fnv1a(std::uint32_t hash, std::uint32_t value) {
     for (int byte = 0; byte < 4; ++byte) {
         hash ^= (value >> (8 * byte)) & 0xFFu;
@@ -88,6 +84,10 @@ std::uint32_t calibration_cycles(std::uint32_t iterations) {
 // object the start-up code would have to copy from flash.
 alignas(Annotator) unsigned char annotator_storage[sizeof(Annotator)];
 
+const char* name(actionstring::LabelId label) {
+    return label == actionstring::unknown_label ? "unknown" : model::kModel.label_names[label];
+}
+
 }  // namespace
 
 int main() {
@@ -103,13 +103,13 @@ int main() {
         .text(" clips, model ").text(model::kModelChecksum).write();
     line.text("# port ").text(actionstring::port::name()).write();
     line.text("# state bytes: annotator ").number(sizeof(Annotator)).text(" encoder ")
-        .number(sizeof(actionstring::StringEncoder<Cap>)).text(" matcher ").number(sizeof(actionstring::WindowMatcher<Cap>)).write();
+        .number(sizeof(actionstring::StringEncoder<Cap>)).text(" segmenter ").number(sizeof(actionstring::ActionSegmenter<Cap>)).write();
 #if defined(__arm__)
     line.text("# calibration instructions 2000000 cycles ").number(calibration_cycles(1000000u)).write();
 #endif
 
     std::uint32_t hash = 2166136261u;
-    std::uint32_t windows = 0, rejected = 0;
+    std::uint32_t settled = 0, rejected = 0;
     std::uint32_t segment = 0;
     actionstring::LabelId shown = actionstring::unknown_label;
     for (std::uint32_t f = 0; f < stream::kFrameCount; ++f) {
@@ -120,25 +120,24 @@ int main() {
         const actionstring::FrameResult result = annotator.push_frame(stream::kFrameTimeUs[f], positions);
         const std::uint64_t cycles = actionstring::port::cycle_count() - begin;
         line.text("# cycles ").number(f).text(" ").number(cycles).text(" ").number(result.characters).text(" ")
-            .number(result.windows_completed).write();
+            .number(result.characters_settled).write();
         if (result.status != actionstring::Status::ok && result.status != actionstring::Status::stream_restarted) {
             ++rejected;
             line.text("rejected ").number(f).text(" ").text(actionstring::status_name(result.status)).write();
         }
-        if (result.windows_completed > 0) {
-            ++windows;
-            const actionstring::WindowResult& window = *annotator.last_window();
-            line.text("window ").number(f).text(" chars ").number(window.first_character).text(" ")
-                .text(annotator.label_name()).text(" confidence ").hex(float_bits(annotator.confidence())).write();
+        // A device acts on settled labels: print each change with the character it starts at.
+        for (std::uint32_t k = 0; k < result.characters_settled; ++k) {
+            const std::uint64_t character = annotator.settled_character() - (result.characters_settled - 1u - k);
+            const actionstring::LabelId label = annotator.settled_label(character);
+            ++settled;
+            hash = fnv1a(hash, static_cast<std::uint32_t>(label));
+            if (label == shown) continue;
+            shown = label;
+            line.text("settled ").number(f).text(" char ").number(character).text(" ").text(name(label)).write();
         }
-        if (annotator.label() != shown) {
-            shown = annotator.label();
-            line.text("label ").number(f).text(" ").text(annotator.label_name()).write();
-        }
-        hash = fnv1a(hash, static_cast<std::uint32_t>(annotator.label()));
-        hash = fnv1a(hash, float_bits(annotator.confidence()));
+        hash = fnv1a(hash, static_cast<std::uint32_t>(annotator.live_label()));
     }
-    line.text("end: frames ").number(stream::kFrameCount).text(" windows ").number(windows).text(" rejected ")
+    line.text("end: frames ").number(stream::kFrameCount).text(" settled ").number(settled).text(" rejected ")
         .number(rejected).text(" characters ").number(annotator.characters()).text(" labels fnv1a32 ").hex(hash).write();
 #if defined(__arm__)
     line.text("# stack bytes used ").number(actionstring_board_stack_used()).text(" of ")

@@ -1,6 +1,6 @@
 /* The C API from C: contract checks on a synthetic stream, then (given a
  * stream file written by `actionstring stream-table --text`) a real recording,
- * printing one line per completed window in the replay firmware's format so
+ * printing each change of the settled label in the replay firmware's format so
  * port/firmware/run_replay.sh can compare it with the C++ build.
  *   test_c_api [STREAM.txt] */
 #include <math.h>
@@ -102,9 +102,17 @@ static void contract_checks(void) {
     CHECK(accepted == 597);
     CHECK(characters > 50); /* about 12 characters per second of accepted frames */
     CHECK(actionstring_label(state) >= 0); /* windows completed: a label was chosen */
+    CHECK(actionstring_live_label(state) >= 0);
+    CHECK(actionstring_settled_character(state) >= 0);
+    CHECK(actionstring_settled_label(state, actionstring_settled_character(state)) >= -1);
+    CHECK(actionstring_settled_label(state, -5) == -1);
+    CHECK(actionstring_settled_label(NULL, 0) == -1);
+    CHECK(actionstring_settled_character(NULL) == -1);
 
     CHECK(actionstring_reset(state) == ACTIONSTRING_OK);
     CHECK(actionstring_label(state) == -1);
+    CHECK(actionstring_live_label(state) == -1);
+    CHECK(actionstring_settled_character(state) == -1);
     CHECK(strcmp(actionstring_status_name(ACTIONSTRING_TRACKING_LOST), "tracking_lost") == 0);
     CHECK(strcmp(actionstring_status_name(12345), "unknown_status") == 0);
     CHECK(strcmp(actionstring_label_name_of(-1), "unknown") == 0);
@@ -126,7 +134,8 @@ static int replay_file(const char* path) {
     }
     static char line[64 * 1024];
     float frame[3 * kMaxJoints];
-    uint32_t index = 0, windows = 0;
+    uint32_t index = 0, windows = 0, settled = 0;
+    int32_t shown = -1;
     while (fgets(line, sizeof line, file) != NULL) {
         char* cursor = line;
         char* end = NULL;
@@ -144,17 +153,19 @@ static int replay_file(const char* path) {
         }
         actionstring_frame_result result;
         actionstring_push_frame(state, time_us, frame, 3 * joints, &result);
-        if (result.windows_completed > 0) {
-            float confidence = actionstring_confidence(state);
-            uint32_t bits;
-            memcpy(&bits, &confidence, sizeof bits);
-            printf("window %u %s confidence %08x\n", index, actionstring_label_name(state), bits);
-            ++windows;
+        windows += result.windows_completed;
+        for (uint32_t k = 0; k < result.characters_settled; ++k) {
+            const int64_t character = actionstring_settled_character(state) - (int64_t)(result.characters_settled - 1u - k);
+            const int32_t label = actionstring_settled_label(state, character);
+            ++settled;
+            if (label == shown) continue;
+            shown = label;
+            printf("settled %u char %lld %s\n", index, (long long)character, actionstring_label_name_of(label));
         }
         ++index;
     }
     fclose(file);
-    CHECK(index > 0 && windows > 0);
+    CHECK(index > 0 && windows > 0 && settled > 0);
     return 0;
 }
 
