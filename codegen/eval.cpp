@@ -10,6 +10,7 @@
 #include "actionstring_host/artifact.hpp"
 #include "actionstring_host/evaluation.hpp"
 #include "actionstring_host/readers.hpp"
+#include "actionstring_host/report.hpp"
 #include "commands.hpp"
 #include "options.hpp"
 
@@ -141,6 +142,11 @@ int run_eval(int argc, char** argv) {
         }
         std::printf("\nannotator per frame (host build, HostCapacity, %zu frames): median %.0f ns, p99 %.0f ns, max %.0f ns\n",
                     frame_ns.size(), at(0.5), at(0.99), frame_ns.empty() ? 0.0 : frame_ns.back());
+        if (!report_dir.empty()) {
+            host::write_report(report_dir, "Evaluation of " + model_path + " on " + clips_path, results, online ? &online_report : nullptr,
+                               std::vector<std::string>(view.label_names, view.label_names + view.label_count));
+            std::printf("\nreport: %s/report.md\n", report_dir.c_str());
+        }
         if (!json_path.empty()) {
             std::ofstream out(json_path);
             std::string json = host::to_json(main, clips);
