@@ -330,14 +330,6 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
     std::vector<double> char_emitted;
     std::vector<long long> frame_char(frames, -1);
     std::size_t epoch = 0;  // index in char_label of the current epoch's character 0
-    auto flush = [&](double now) {
-        // A stream that ends (or restarts) reports what its best explanation says of the unsettled tail.
-        const std::uint64_t count = annotator->characters();
-        for (std::uint64_t c = annotator->has_settled() ? annotator->settled_character() + 1 : 0; c < count; ++c) {
-            char_label[epoch + c] = id(annotator->provisional_label(c));
-            char_emitted[epoch + c] = now;
-        }
-    };
     for (std::size_t f = 0; f < frames; ++f) {
         const double now = times_s[f];
         const FrameResult r = annotator->push_frame(static_cast<std::int64_t>(std::llround(now * 1e6)), positions + f * joints * 3);
@@ -363,7 +355,11 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
         out.live[f] = id(annotator->live_label());
         if (annotator->characters() > 0) frame_char[f] = static_cast<long long>(epoch + annotator->characters() - 1);
     }
-    flush(frames ? times_s.back() : 0.0);
+    // At the end of the stream, the unsettled tail gets what the best explanation says of it then.
+    for (std::uint64_t c = annotator->has_settled() ? annotator->settled_character() + 1 : 0; c < annotator->characters(); ++c) {
+        char_label[epoch + c] = id(annotator->provisional_label(c));
+        char_emitted[epoch + c] = times_s.back();
+    }
     for (std::size_t f = 0; f < frames; ++f) {
         if (frame_char[f] < 0) {
             out.settled_at_s[f] = times_s[f];

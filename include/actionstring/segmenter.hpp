@@ -9,7 +9,7 @@
 //   C_r[i](t) = W(rep_r[i], c_t) + min( C_r[i−1](t−1)            advance
 //                                      C_r[i](t−1) + stay          repeat a character
 //                                      C_r[i−2](t−1) + skip )      skip a character
-//   C_r[1](t) also starts a new segment from E(t−1) + segment_penalty, where
+//   C_r[1](t) may also open the next segment from E(t−1) + segment_penalty, where
 //   E(t) = min_r C_r[n_r](t) is the best explanation ending exactly at t
 //   (or E(t−1) + unknown_cost, a character of "no action").
 //
@@ -108,10 +108,10 @@ public:
         const float previous_end = pushed_ == 0 ? 0.0f : last_end_ - shift;
         const float entry = previous_end + config_.segment_penalty;
 
-        Hypothesis best;
+        // "No action" for this one character is the first candidate for both.
         SegmentEnd end{unknown_rep, now};
         float end_cost = previous_end + config_.unknown_cost;
-        best = Hypothesis{end_cost, unknown_rep, now};
+        Hypothesis best{end_cost, unknown_rep, now};
         for (std::size_t r = 0; r < m.representative_count; ++r) {
             const Character* rep = m.representative_chars + m.representative_offsets[r];
             const std::size_t n = m.representative_length(r);
