@@ -28,8 +28,9 @@ void print_eval_usage(std::FILE* out) {
                  "Classifies every clip of LIST with the runtime's own code and reports clip\n"
                  "accuracy, per-class precision and recall, the confusion matrix, the unknown rate\n"
                  "and the annotator's per-frame time. With --train (the model's training list) the\n"
-                 "same run adds baselines on the same split: DTW 1-NN on normalised poses, and\n"
-                 "1-NN over all training strings (no representatives).\n"
+                 "same run adds baselines on the same split: 1-NN over all training strings (no\n"
+                 "representatives), the same with PCA-only characters (no GMM; paper Fig. 4),\n"
+                 "and DTW 1-NN on normalised poses.\n"
                  "With --online it also concatenates each subject's clips in a seeded shuffled\n"
                  "order and streams them frame by frame through the annotator, as a device would,\n"
                  "reporting frame accuracy, segment F1 (IoU >= 0.5), label delay and flicker for\n"
@@ -111,6 +112,7 @@ int run_eval(int argc, char** argv) {
         if (!train_path.empty()) {
             const auto train = load(train_path, read);
             results.push_back(host::evaluate_all_strings(view, train, clips));
+            results.push_back(host::evaluate_pca_characters(view, train, clips));
             results.push_back(host::evaluate_pose_dtw(view, train, clips));
         }
         const std::vector<double> frame_ns = host::annotator_frame_times(view, clips);

@@ -15,6 +15,9 @@
 #include "actionstring/annotator.hpp"
 #include "actionstring_host/artifact.hpp"
 #include "actionstring/normalize.hpp"
+#include "actionstring/projection.hpp"
+#include "actionstring/tree.hpp"
+#include "actionstring_host/clustering.hpp"
 #include "actionstring/sampler.hpp"
 #include "actionstring/string_distance.hpp"
 
@@ -153,6 +156,79 @@ ClipResults evaluate_all_strings(const ModelView& model, const std::vector<Label
             string_distance(query.data(), query.size(), references[t].data(), references[t].size(), character_weights(model),
                             MatchOptions{model.variant, model.normalization}, workspace.data(), &d);
             if (d < best) best = d, label = index_of(r.labels, train[t].label);
+        }
+        r.predictions.push_back(label);
+    }
+    summarise(r, clips);
+    return r;
+}
+
+ClipResults evaluate_pca_characters(const ModelView& model, const std::vector<LabelledClip>& train,
+                                   const std::vector<LabelledClip>& clips, std::uint32_t seed) {
+    std::vector<std::string> names(model.label_names, model.label_names + model.label_count);
+    ClipResults r = start("1-NN, PCA-only characters (no GMM)", names, clips);
+    const std::size_t d = model.feature_dim;
+    const double rate_hz = 1e6 / static_cast<double>(model.string_period_us);
+    // Features: the runtime's normalisation and projection at the string rate.
+    auto features_of = [&](const Clip& clip) {
+        std::vector<float> out;
+        std::vector<float> feature(d);
+        for (const std::vector<float>& pose : pose_sequence(model, clip, rate_hz)) {
+            project_pose(model, pose.data(), feature.data());
+            out.insert(out.end(), feature.begin(), feature.end());
+        }
+        return out;
+    };
+    std::vector<std::vector<float>> train_features;
+    std::vector<float> pooled;
+    for (const LabelledClip& t : train) {
+        train_features.push_back(features_of(t.clip));
+        pooled.insert(pooled.end(), train_features.back().begin(), train_features.back().end());
+    }
+    if (pooled.empty()) throw std::invalid_argument("PCA-only baseline: no usable training frames");
+    // The same top-down 2-means tree with as many leaves as the model has
+    // characters, built on projected poses instead of GMM posteriors; ε is
+    // tiny so the leaf count, not the diameter, ends the splitting.
+    const ClusterTree tree = build_cluster_tree(pooled, d, 1e-9, model.character_count, seed);
+    const std::size_t K = static_cast<std::size_t>(tree.character_count);
+    std::vector<const float*> leaf(K, nullptr);
+    for (std::size_t n = 0; n < tree.characters.size(); ++n)
+        if (tree.children[2 * n] < 0) leaf[tree.characters[n]] = &tree.centroids[n * d];
+    std::vector<float> distances(K * K, 0.0f);
+    for (std::size_t a = 0; a < K; ++a)
+        for (std::size_t b = 0; b < K; ++b) {
+            double sum = 0;
+            for (std::size_t k = 0; k < d; ++k) sum += std::pow(double(leaf[a][k]) - double(leaf[b][k]), 2.0);
+            distances[a * K + b] = static_cast<float>(std::sqrt(sum));
+        }
+    // The runtime's descent over this tree: a view whose "components" are the projected coordinates.
+    ModelView pca_view = model;
+    pca_view.component_count = static_cast<std::uint16_t>(d);
+    pca_view.node_count = static_cast<std::uint16_t>(tree.characters.size());
+    pca_view.node_centroids = tree.centroids.data();
+    pca_view.node_children = tree.children.data();
+    pca_view.node_characters = tree.characters.data();
+    const CharacterWeights weights{distances.data(), K};
+    auto string_of = [&](const std::vector<float>& features) {
+        std::vector<Character> string;
+        for (std::size_t i = 0; i + d <= features.size(); i += d) string.push_back(descend_tree(pca_view, features.data() + i));
+        return string;
+    };
+    std::vector<std::vector<Character>> references;
+    for (const auto& f : train_features) references.push_back(string_of(f));
+    std::vector<detail::Cell> workspace;
+    for (const LabelledClip& c : clips) {
+        const std::vector<Character> query = string_of(features_of(c.clip));
+        float best = detail::infinity();
+        int label = -1;
+        for (std::size_t t = 0; t < train.size(); ++t) {
+            if (query.empty() || references[t].empty()) continue;
+            workspace.resize(string_distance_cells(query.size(), references[t].size()));
+            float distance = 0;
+            if (string_distance(query.data(), query.size(), references[t].data(), references[t].size(), weights,
+                                MatchOptions{model.variant, model.normalization}, workspace.data(), &distance) != Status::ok)
+                continue;
+            if (distance < best) best = distance, label = index_of(r.labels, train[t].label);
         }
         r.predictions.push_back(label);
     }

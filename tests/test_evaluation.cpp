@@ -31,7 +31,7 @@ TEST_CASE("accuracy, unknown rate, confusion, precision and recall") {
     CHECK(std::count(json.begin(), json.end(), '[') == std::count(json.begin(), json.end(), ']'));
 }
 
-TEST_CASE("the model and both baselines recognise held-out toy performances") {
+TEST_CASE("the model and every baseline recognise held-out toy performances") {
     ToyWorld world = make_toy_world();
     TrainingOptions options;
     options.components = 6;
@@ -47,6 +47,14 @@ TEST_CASE("the model and both baselines recognise held-out toy performances") {
     CHECK(evaluate_all_strings(view, train, test).clip_accuracy >= 0.9);
     const ClipResults dtw = evaluate_pose_dtw(view, train, test);
     CHECK(dtw.clip_accuracy >= 0.9);
+    const ClipResults pca = evaluate_pca_characters(view, train, test);
+    CHECK(pca.clip_accuracy >= 0.9);
+    CHECK(pca.predictions == evaluate_pca_characters(view, train, test).predictions);
+    // A single character says nothing: every string is the same, so 1-NN
+    // cannot tell the four actions apart.
+    ModelView one_character = view;
+    one_character.character_count = 1;
+    CHECK(evaluate_pca_characters(one_character, train, test).clip_accuracy <= 0.5);
     CHECK(dtw.confusion.size() == 4);
     const auto times = annotator_frame_times(view, test);
     CHECK(times.size() > 1000);
