@@ -24,6 +24,8 @@ int run_annotate(int argc, char** argv);
 
 /// `actionstring stream-table --clips LIST --out HEADER`: a recorded stream as constexpr tables.
 int run_stream_table(int argc, char** argv);
+/// `actionstring interval-list`: a continuous dataset's timeline as a clip list with intervals.
+int run_interval_list(int argc, char** argv);
 
 }  // namespace cli
 }  // namespace actionstring

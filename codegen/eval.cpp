@@ -36,7 +36,10 @@ void print_eval_usage(std::FILE* out) {
                  "reporting frame accuracy, segment F1 (IoU >= 0.5), label delay and flicker for\n"
                  "each rule: the segmenter's settled labels (the annotator's timeline, final\n"
                  "--settle seconds after the frame [2]), its live labels (no delay), and the\n"
-                 "paper's latest-window rule. The segmenter options are AnnotatorConfig's\n"
+                 "paper's latest-window rule. A list with 'start' and 'end' columns names labelled\n"
+                 "intervals of continuous recordings: clips are the intervals, and --online\n"
+                 "streams each recording whole (frames outside every interval: no action).\n"
+                 "The segmenter options are AnnotatorConfig's\n"
                  "(defaults in segmenter.hpp; --unknown-cost inf turns 'no action' off).\n"
                  "--report DIR writes SVG pictures (confusion matrix, true vs predicted timelines)\n"
                  "and a Markdown summary linking them.\n");
@@ -50,15 +53,20 @@ std::vector<host::LabelledClip> load(const std::string& path, const host::ReadOp
 }
 
 void print_online(const char* rule, const host::OnlineResults& r) {
-    std::printf("  %-28s frame accuracy %.3f, segment F1 %.3f (P %.3f, R %.3f), mean delay %.2f s, %d missed, flicker %.1f/min\n",
-                rule, r.frame_accuracy, r.segment_f1, r.segment_precision, r.segment_recall, r.mean_delay_s, r.missed_segments,
+    std::printf("  %-28s frame accuracy %.3f", rule, r.frame_accuracy);
+    if (r.no_action_frames > 0)
+        std::printf(" (in actions %.3f, no action %.3f)", r.action_frame_accuracy, r.no_action_accuracy);
+    std::printf(", segment F1 %.3f (P %.3f, R %.3f), mean delay %.2f s, %d missed, flicker %.1f/min\n",
+                r.segment_f1, r.segment_precision, r.segment_recall, r.mean_delay_s, r.missed_segments,
                 r.flicker_per_min);
 }
 
 std::string online_json(const host::OnlineResults& r) {
     std::ostringstream out;
     out.precision(6);
-    out << "{\"frames\": " << r.frames << ", \"frame_accuracy\": " << r.frame_accuracy << ", \"segment_f1\": " << r.segment_f1
+    out << "{\"frames\": " << r.frames << ", \"frame_accuracy\": " << r.frame_accuracy << ", \"no_action_frames\": " << r.no_action_frames
+        << ", \"action_frame_accuracy\": " << r.action_frame_accuracy << ", \"no_action_accuracy\": " << r.no_action_accuracy
+        << ", \"segment_f1\": " << r.segment_f1
         << ", \"segment_precision\": " << r.segment_precision << ", \"segment_recall\": " << r.segment_recall
         << ", \"mean_delay_s\": " << r.mean_delay_s << ", \"missed_segments\": " << r.missed_segments
         << ", \"flicker_per_min\": " << r.flicker_per_min << ", \"label_changes_per_min\": " << r.label_changes_per_min
@@ -107,7 +115,10 @@ int run_eval(int argc, char** argv) {
     try {
         host::ModelData model = host::load_model(model_path);
         const ModelView view = model.view();
-        const auto clips = load(clips_path, read);
+        const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
+        const bool recordings = std::any_of(entries.begin(), entries.end(), [](const host::ClipListEntry& e) { return e.has_interval; });
+        std::vector<host::LabelledClip> clips;
+        for (const host::ClipListEntry& entry : entries) clips.push_back({host::read_clip(entry, read), entry.label, entry.subject});
         std::vector<host::ClipResults> results{host::evaluate_model(view, clips)};
         if (!train_path.empty()) {
             const auto train = load(train_path, read);
@@ -117,7 +128,9 @@ int run_eval(int argc, char** argv) {
         }
         const std::vector<double> frame_ns = host::annotator_frame_times(view, clips);
         host::OnlineReport online_report;
-        if (online) online_report = host::evaluate_online(view, clips, seed, config);
+        if (online)
+            online_report = recordings ? host::evaluate_recordings(view, host::read_recordings(entries, read), config)
+                                       : host::evaluate_online(view, clips, seed, config);
         const host::OnlineResults& stream = online_report.settled;
         auto at = [&](double q) {
             return frame_ns.empty() ? 0.0 : frame_ns[std::min(frame_ns.size() - 1, static_cast<std::size_t>(q * static_cast<double>(frame_ns.size())))];
@@ -136,8 +149,14 @@ int run_eval(int argc, char** argv) {
             std::printf("\n");
         }
         if (online) {
-            std::printf("\nonline: clips concatenated per subject (seed %u), %zu frames, %.1f true label changes/min\n", seed,
-                        stream.frames, stream.true_changes_per_min);
+            if (recordings)
+                std::printf("\nonline: %zu continuous recordings streamed whole, %zu frames, %.1f true label changes/min;\n"
+                            "%.3f of the frames are outside every interval (no action), so saying unknown everywhere scores that\n",
+                            online_report.streams.size(), stream.frames, stream.true_changes_per_min,
+                            stream.frames == 0 ? 0.0 : static_cast<double>(stream.no_action_frames) / static_cast<double>(stream.frames));
+            else
+                std::printf("\nonline: clips concatenated per subject (seed %u), %zu frames, %.1f true label changes/min\n", seed,
+                            stream.frames, stream.true_changes_per_min);
             print_online("segmenter, settled labels", online_report.settled);
             print_online("segmenter, live labels", online_report.live);
             print_online("paper: latest window wins", online_report.window);
@@ -158,7 +177,7 @@ int run_eval(int argc, char** argv) {
             for (std::size_t i = 1; i < results.size(); ++i) out << (i > 1 ? ", " : "") << host::to_json(results[i], clips);
             out << "]";
             if (online)
-                out << ", \"frame_accuracy\": " << stream.frame_accuracy << ", \"online\": {\"seed\": " << seed
+                out << ", \"frame_accuracy\": " << stream.frame_accuracy << ", \"online\": {\"streams\": " << (recordings ? "\"recordings\"" : "\"concatenated clips\"") << ", \"seed\": " << seed
                     << ", \"settle_delay_s\": " << static_cast<double>(config.segmenter.settle_delay_us) * 1e-6
                     << ", \"settled\": " << online_json(online_report.settled) << ", \"live\": " << online_json(online_report.live)
                     << ", \"latest_window\": " << online_json(online_report.window) << "}";

@@ -20,6 +20,8 @@ void print_usage(std::FILE* out) {
                  "  annotate   the label timeline of a recording (TSV or JSON)\n"
                  "  stream-table  write clips of a list as one replay stream of constexpr\n"
                  "             tables (for the firmware, port/firmware)\n"
+                 "  interval-list  a continuous dataset's timeline (UTKinect) as a clip list of\n"
+                 "             labelled intervals, for train and eval --online\n"
                  "  info       describe a motion file: joints, frames, duration, rate, bounds\n"
                  "  version    print the library version\n"
                  "\n"
@@ -49,6 +51,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(command, "codegen") == 0) return actionstring::cli::run_codegen(argc - 1, argv + 1);
     if (std::strcmp(command, "eval") == 0) return actionstring::cli::run_eval(argc - 1, argv + 1);
     if (std::strcmp(command, "stream-table") == 0) return actionstring::cli::run_stream_table(argc - 1, argv + 1);
+    if (std::strcmp(command, "interval-list") == 0) return actionstring::cli::run_interval_list(argc - 1, argv + 1);
     if (std::strcmp(command, "annotate") == 0) return actionstring::cli::run_annotate(argc - 1, argv + 1);
     std::fprintf(stderr, "actionstring: unknown command '%s'\n\n", command);
     print_usage(stderr);

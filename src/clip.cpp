@@ -69,16 +69,18 @@ std::vector<ClipListEntry> parse_clip_list(const std::string& name, std::string_
     std::string_view line;
     if (!scanner.next_content(line)) scanner.fail_at(0, "empty clip list: expected a header 'path label subject [skeleton]'");
     const std::vector<std::string_view> header = split_fields(line, '\t');
-    int path_column = -1, label_column = -1, subject_column = -1, skeleton_column = -1;
+    int path_column = -1, label_column = -1, subject_column = -1, skeleton_column = -1, start_column = -1, end_column = -1;
     for (std::size_t c = 0; c < header.size(); ++c) {
         int* column = header[c] == "path" ? &path_column : header[c] == "label" ? &label_column
-                    : header[c] == "subject" ? &subject_column : header[c] == "skeleton" ? &skeleton_column : nullptr;
+                    : header[c] == "subject" ? &subject_column : header[c] == "skeleton" ? &skeleton_column
+                    : header[c] == "start" ? &start_column : header[c] == "end" ? &end_column : nullptr;
         if (column == nullptr) continue;
         if (*column >= 0) scanner.fail("column " + quoted(header[c]) + " appears twice in the header");
         *column = static_cast<int>(c);
     }
     if (path_column < 0 || label_column < 0 || subject_column < 0)
         scanner.fail("expected a tab-separated header with columns path, label and subject");
+    if ((start_column < 0) != (end_column < 0)) scanner.fail("expected both 'start' and 'end' columns, or neither");
     auto resolve = [&](std::string_view relative) {
         const std::string path(relative);
         return path.front() == '/' || folder.empty() ? path : folder + "/" + path;
@@ -98,6 +100,14 @@ std::vector<ClipListEntry> parse_clip_list(const std::string& name, std::string_
         entry.label = std::string(field(label_column, "label"));
         entry.subject = std::string(field(subject_column, "subject"));
         if (skeleton_column >= 0) entry.skeleton = resolve(field(skeleton_column, "skeleton"));
+        if (start_column >= 0) {
+            entry.has_interval = true;
+            entry.start_s = parse_number(scanner, field(start_column, "start"), "a start time in seconds");
+            entry.end_s = parse_number(scanner, field(end_column, "end"), "an end time in seconds");
+            if (!(entry.end_s >= entry.start_s))
+                scanner.fail("expected the end time (" + std::string(fields[static_cast<std::size_t>(end_column)]) +
+                             ") not before the start time (" + std::string(fields[static_cast<std::size_t>(start_column)]) + ")");
+        }
         entry.line = scanner.line_number();
         entries.push_back(std::move(entry));
     }
@@ -149,7 +159,24 @@ Clip read_clip(const std::string& path, const ReadOptions& options, const std::s
 }
 
 Clip read_clip(const ClipListEntry& entry, const ReadOptions& options) {
-    return read_clip(entry.path, options, entry.skeleton);
+    Clip whole = read_clip(entry.path, options, entry.skeleton);
+    if (!entry.has_interval) return whole;
+    Clip cut = whole;
+    cut.times.clear();
+    cut.positions.clear();
+    cut.lost.clear();
+    const std::size_t stride = whole.joint_count() * 3;
+    for (std::size_t f = 0; f < whole.frame_count(); ++f) {
+        if (whole.times[f] < entry.start_s || whole.times[f] > entry.end_s) continue;
+        cut.times.push_back(whole.times[f]);
+        cut.positions.insert(cut.positions.end(), whole.frame(f), whole.frame(f) + stride);
+        if (!whole.lost.empty()) cut.lost.push_back(whole.lost[f]);
+    }
+    if (cut.times.empty())
+        throw ReadError(entry.path, 0, "no frame between " + std::to_string(entry.start_s) + " s and " + std::to_string(entry.end_s) +
+                                           " s (list line " + std::to_string(entry.line) + "); the file spans " +
+                                           std::to_string(whole.times.front()) + " to " + std::to_string(whole.times.back()) + " s");
+    return cut;
 }
 
 }  // namespace host

@@ -326,8 +326,17 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
     r.frames = truth.size();
     if (r.frames == 0) return r;
     std::size_t right = 0;
-    for (std::size_t i = 0; i < truth.size(); ++i) right += truth[i] == predicted[i];
+    std::size_t no_action = 0, no_action_right = 0;
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+        right += truth[i] == predicted[i];
+        no_action += truth[i] == -1;
+        no_action_right += truth[i] == -1 && predicted[i] == -1;
+    }
     r.frame_accuracy = static_cast<double>(right) / static_cast<double>(r.frames);
+    r.no_action_frames = no_action;
+    if (no_action < r.frames)
+        r.action_frame_accuracy = static_cast<double>(right - no_action_right) / static_cast<double>(r.frames - no_action);
+    if (no_action > 0) r.no_action_accuracy = static_cast<double>(no_action_right) / static_cast<double>(no_action);
 
     // Segments and label changes, per stream so boundaries between subjects do not count.
     int true_segments = 0, predicted_segments = 0, matched = 0, found = 0;
@@ -448,6 +457,38 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
     return out;
 }
 
+namespace {
+
+// Appends one stream's timeline to the pooled per-frame vectors.
+struct PooledTimelines {
+    std::vector<int> truth, window, live, settled;
+    std::vector<double> times, settled_at;
+    std::vector<std::size_t> stream_starts;
+
+    void add(const StreamTimeline& timeline) {
+        stream_starts.push_back(truth.size());
+        truth.insert(truth.end(), timeline.truth.begin(), timeline.truth.end());
+        times.insert(times.end(), timeline.times_s.begin(), timeline.times_s.end());
+        window.insert(window.end(), timeline.labels.window.begin(), timeline.labels.window.end());
+        live.insert(live.end(), timeline.labels.live.begin(), timeline.labels.live.end());
+        settled.insert(settled.end(), timeline.labels.settled.begin(), timeline.labels.settled.end());
+        settled_at.insert(settled_at.end(), timeline.labels.settled_at_s.begin(), timeline.labels.settled_at_s.end());
+    }
+    void score(OnlineReport& report) {
+        stream_starts.push_back(truth.size());
+        report.settled = score_timeline(truth, settled, times, stream_starts, &settled_at);
+        report.live = score_timeline(truth, live, times, stream_starts);
+        report.window = score_timeline(truth, window, times, stream_starts);
+    }
+};
+
+int model_label(const std::vector<std::string>& names, const std::string& label) {
+    const auto found = std::find(names.begin(), names.end(), label);
+    return found == names.end() ? -2 : static_cast<int>(found - names.begin());
+}
+
+}  // namespace
+
 OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed,
                              const AnnotatorConfig& config) {
     std::vector<std::string> names(model.label_names, model.label_names + model.label_count);
@@ -456,9 +497,7 @@ OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledC
     std::mt19937 rng(seed);
 
     OnlineReport report;
-    std::vector<int> truth, window, live, settled;
-    std::vector<double> times, settled_at;
-    std::vector<std::size_t> stream_starts;
+    PooledTimelines pooled;
     for (auto& subject : by_subject) {
         std::vector<std::size_t>& order = subject.second;
         std::shuffle(order.begin(), order.end(), rng);
@@ -470,25 +509,59 @@ OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledC
         for (std::size_t f = 0; f < stream.frame_count(); ++f) timeline.times_s.push_back(static_cast<double>(stream.times_us[f]) * 1e-6);
         timeline.truth.assign(stream.frame_count(), -1);
         for (std::size_t s = 0; s < stream.segment_labels.size(); ++s) {
-            const auto found = std::find(names.begin(), names.end(), stream.segment_labels[s]);
-            const int label = found == names.end() ? -2 : static_cast<int>(found - names.begin());
+            const int label = model_label(names, stream.segment_labels[s]);
             const std::size_t end = s + 1 < stream.segment_first_frame.size() ? stream.segment_first_frame[s + 1] : stream.frame_count();
             for (std::size_t f = stream.segment_first_frame[s]; f < end; ++f) timeline.truth[f] = label;
         }
         timeline.labels = label_stream(model, config, timeline.times_s, stream.positions.data(), stream.joints);
-        stream_starts.push_back(truth.size());
-        truth.insert(truth.end(), timeline.truth.begin(), timeline.truth.end());
-        times.insert(times.end(), timeline.times_s.begin(), timeline.times_s.end());
-        window.insert(window.end(), timeline.labels.window.begin(), timeline.labels.window.end());
-        live.insert(live.end(), timeline.labels.live.begin(), timeline.labels.live.end());
-        settled.insert(settled.end(), timeline.labels.settled.begin(), timeline.labels.settled.end());
-        settled_at.insert(settled_at.end(), timeline.labels.settled_at_s.begin(), timeline.labels.settled_at_s.end());
+        pooled.add(timeline);
         report.streams.push_back(std::move(timeline));
     }
-    stream_starts.push_back(truth.size());
-    report.settled = score_timeline(truth, settled, times, stream_starts, &settled_at);
-    report.live = score_timeline(truth, live, times, stream_starts);
-    report.window = score_timeline(truth, window, times, stream_starts);
+    pooled.score(report);
+    return report;
+}
+
+std::vector<LabelledRecording> read_recordings(const std::vector<ClipListEntry>& entries, const ReadOptions& read) {
+    std::vector<LabelledRecording> recordings;
+    std::map<std::string, std::size_t> index;
+    for (const ClipListEntry& entry : entries) {
+        if (!entry.has_interval)
+            throw ReadError(entry.path, 0, "list line " + std::to_string(entry.line) +
+                                               ": a continuous recording needs 'start' and 'end' columns for its labelled intervals");
+        auto found = index.find(entry.path);
+        if (found == index.end()) {
+            ClipListEntry whole = entry;
+            whole.has_interval = false;
+            recordings.push_back({entry.subject, read_clip(whole, read), {}});
+            found = index.emplace(entry.path, recordings.size() - 1).first;
+        }
+        recordings[found->second].intervals.push_back({entry.label, entry.start_s, entry.end_s});
+    }
+    return recordings;
+}
+
+OnlineReport evaluate_recordings(const ModelView& model, const std::vector<LabelledRecording>& recordings,
+                                 const AnnotatorConfig& config) {
+    std::vector<std::string> names(model.label_names, model.label_names + model.label_count);
+    OnlineReport report;
+    PooledTimelines pooled;
+    for (const LabelledRecording& recording : recordings) {
+        const Clip& clip = recording.clip;
+        StreamTimeline timeline;
+        const std::size_t slash = clip.source.find_last_of('/');
+        timeline.name = clip.source.substr(slash == std::string::npos ? 0 : slash + 1);
+        timeline.times_s = clip.times;
+        timeline.truth.assign(clip.frame_count(), -1);
+        for (const auto& interval : recording.intervals) {
+            const int label = model_label(names, interval.label);
+            for (std::size_t f = 0; f < clip.frame_count(); ++f)
+                if (clip.times[f] >= interval.start_s && clip.times[f] <= interval.end_s) timeline.truth[f] = label;
+        }
+        timeline.labels = label_stream(model, config, clip.times, clip.positions.data(), clip.joint_count());
+        pooled.add(timeline);
+        report.streams.push_back(std::move(timeline));
+    }
+    pooled.score(report);
     return report;
 }
 

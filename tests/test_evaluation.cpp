@@ -112,6 +112,47 @@ TEST_CASE("online evaluation streams concatenated toy clips deterministically") 
     }
 }
 
+TEST_CASE("continuous recordings: frames outside every interval are no action, and unknown is right there") {
+    ToyWorld world = make_toy_world();
+    const ModelView view = world.model.view();
+    std::vector<ToyFrame> frames = toy_stream(world, {0, 1, 2, 3, 1}, {});
+    // The toy repeats the boundary instant in the next action; a recording has one frame per instant.
+    frames.erase(std::unique(frames.begin(), frames.end(), [](const ToyFrame& a, const ToyFrame& b) { return a.time_us == b.time_us; }),
+                 frames.end());
+    LabelledRecording recording{"s1", toy_clip(frames, "rec.txt"), {}};
+    // Intervals from the toy's truth, except the third action, which stays unlabelled.
+    std::size_t begin = 0, omitted_frames = 0;
+    for (std::size_t f = 1; f <= frames.size(); ++f) {
+        if (f < frames.size() && frames[f].action == frames[begin].action) continue;
+        if (recording.intervals.size() == 2 && omitted_frames == 0)
+            omitted_frames = f - begin;
+        else
+            recording.intervals.push_back({world.model.label_names[static_cast<std::size_t>(frames[begin].action)],
+                                           recording.clip.times[begin], recording.clip.times[f - 1]});
+        begin = f;
+    }
+    REQUIRE(recording.intervals.size() == 4);
+    REQUIRE(omitted_frames > 0);
+    const OnlineReport report = evaluate_recordings(view, {recording});
+    REQUIRE(report.streams.size() == 1);
+    const StreamTimeline& timeline = report.streams[0];
+    CHECK(timeline.name == "rec.txt");
+    CHECK(std::count(timeline.truth.begin(), timeline.truth.end(), -1) == static_cast<long>(omitted_frames));
+    for (std::size_t f = 0; f < frames.size(); ++f)
+        if (timeline.truth[f] != -1) CHECK(timeline.truth[f] == frames[f].action);
+    CHECK(report.settled.no_action_frames == omitted_frames);
+    // Without "no action" the segmenter labels every frame, so the parts are 0 and high.
+    CHECK(report.settled.no_action_accuracy < 0.1);
+    CHECK(report.settled.action_frame_accuracy > 0.8);
+    const double share = static_cast<double>(omitted_frames) / static_cast<double>(frames.size());
+    CHECK(report.settled.frame_accuracy == doctest::Approx(report.settled.action_frame_accuracy * (1 - share) +
+                                                            report.settled.no_action_accuracy * share));
+    // Entries of a list: grouped by file, and a whole clip cannot be a recording.
+    ClipListEntry whole;
+    whole.path = "a.txt";
+    CHECK_THROWS_AS(read_recordings({whole}), ReadError);
+}
+
 TEST_CASE("annotate_clip returns a contiguous label timeline covering the clip") {
     ToyWorld world = make_toy_world();
     const ModelView view = world.model.view();

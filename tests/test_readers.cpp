@@ -1,6 +1,10 @@
 // Readers on small hand-written files: formats, conventions and every kind of bad input.
 #include <doctest/doctest.h>
 
+#include <fstream>
+
+#include <filesystem>
+
 #include <cmath>
 #include <functional>
 #include <string>
@@ -218,6 +222,30 @@ TEST_CASE("UTKinect text and labels") {
     check_error([&] { parse_utkinect_labels("l.txt", "s01\nwalk: 5 2\n"); }, 2, "ends before it starts");
 }
 
+TEST_CASE("a list entry with an interval reads only the frames inside it") {
+    std::string values;
+    for (int j = 0; j < 20; ++j) values += " 0.1 0.2 2.0";
+    const std::string path = (std::filesystem::temp_directory_path() / "actionstring_interval_test.txt").string();
+    {
+        std::ofstream out(path);
+        out << "190" << values << "\n194" << values << "\n198" << values << "\n202" << values << "\n";
+    }
+    ClipListEntry entry;
+    entry.path = path;
+    entry.has_interval = true;
+    entry.start_s = 194.0 / 30.0;
+    entry.end_s = 198.0 / 30.0;
+    const Clip cut = read_clip(entry);
+    REQUIRE(cut.frame_count() == 2);
+    CHECK(cut.times[0] == doctest::Approx(194.0 / 30.0));
+    CHECK(cut.positions.size() == 2 * 20 * 3);
+    CHECK(cut.lost.size() == 2);
+    entry.start_s = 10.0;
+    entry.end_s = 11.0;
+    check_error([&] { read_clip(entry); }, 0, "no frame between");
+    std::filesystem::remove(path);
+}
+
 TEST_CASE("joint CSV") {
     const std::string text =
         "timestamp,SpineBase_x,SpineBase_y,SpineBase_z,HipLeft.x,HipLeft.y,HipLeft.z,HipRight X,HipRight Y,HipRight Z\n"
@@ -248,6 +276,14 @@ TEST_CASE("clip lists resolve paths against their folder") {
     check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\na\tb\n", "d"); }, 2, "expected 3 tab-separated fields");
     check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\na\t\tc\n", "d"); }, 2, "empty label");
     check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\n", "d"); }, 1, "names no clips");
+    const auto intervals = parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\tend\nr.txt\twalk\ts1\t8.4\t13\n", "d");
+    CHECK(intervals[0].has_interval);
+    CHECK(intervals[0].start_s == 8.4);
+    CHECK(intervals[0].end_s == 13.0);
+    CHECK_FALSE(entries[0].has_interval);
+    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\na\tb\tc\t1\n", "d"); }, 1, "both 'start' and 'end'");
+    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\tend\na\tb\tc\t2\t1\n", "d"); }, 2, "not before the start");
+    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\tend\na\tb\tc\tnan\t1\n", "d"); }, 2, "finite");
 }
 
 TEST_CASE("joint roles can be overridden and must exist") {

@@ -7,6 +7,7 @@
 #include "actionstring/annotator.hpp"
 #include "actionstring/capacity.hpp"
 #include "actionstring/model.hpp"
+#include "actionstring_host/readers.hpp"
 #include "actionstring_host/training.hpp"
 
 namespace actionstring {
@@ -70,6 +71,11 @@ namespace host {
 struct OnlineResults {
     std::size_t frames = 0;
     double frame_accuracy = 0;
+    /// Where much of a stream is "no action" (truth −1), frame accuracy rewards
+    /// saying unknown everywhere; these two parts show the balance.
+    std::size_t no_action_frames = 0;
+    double action_frame_accuracy = 0;  ///< Over frames inside a labelled action.
+    double no_action_accuracy = 0;     ///< Share of "no action" frames labelled unknown.
     double segment_precision = 0, segment_recall = 0, segment_f1 = 0;  ///< Temporal IoU ≥ 0.5, one-to-one.
     double mean_delay_s = 0;      ///< From a true segment's start to its first correct label (found segments).
     int missed_segments = 0;      ///< True segments never labelled correctly.
@@ -119,6 +125,28 @@ struct OnlineReport {
 /// the annotator as a device would, and scores every rule's labels.
 OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed,
                              const AnnotatorConfig& config = {});
+
+/// A continuous recording with its labelled intervals (seconds on the clip's
+/// time axis); every frame outside them is "no action".
+struct LabelledRecording {
+    std::string subject;
+    Clip clip;
+    struct Interval {
+        std::string label;
+        double start_s = 0, end_s = 0;
+    };
+    std::vector<Interval> intervals;
+};
+
+/// Groups a clip list's interval entries by file (first appearance order) and
+/// reads each file once, whole. Entries without an interval are refused.
+std::vector<LabelledRecording> read_recordings(const std::vector<ClipListEntry>& entries, const ReadOptions& read = {});
+
+/// Streams every recording whole, frame by frame with its timestamps, through
+/// the annotator and scores every rule against its timeline; frames outside
+/// every interval count as "no action" (the right output there is unknown).
+OnlineReport evaluate_recordings(const ModelView& model, const std::vector<LabelledRecording>& recordings,
+                                 const AnnotatorConfig& config = {});
 
 }  // namespace host
 }  // namespace actionstring

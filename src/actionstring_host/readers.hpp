@@ -93,12 +93,17 @@ struct ClipListEntry {
     std::string subject;
     std::string skeleton;  ///< Resolved; empty when the list has no skeleton column.
     std::size_t line = 0;  ///< Line in the list, for messages.
+    /// An action inside a longer recording: the clip is the frames whose time
+    /// (seconds, on the file's own time axis) lies in [start_s, end_s].
+    bool has_interval = false;
+    double start_s = 0, end_s = 0;
 };
 /// TSV with a header naming at least `path`, `label`, `subject` (and optionally
-/// `skeleton`), in any order; relative paths are resolved against `folder`.
+/// `skeleton`, and `start` and `end` in seconds for labelled intervals of a
+/// continuous recording), in any order; relative paths are resolved against `folder`.
 std::vector<ClipListEntry> parse_clip_list(const std::string& name, std::string_view text, const std::string& folder);
 std::vector<ClipListEntry> read_clip_list(const std::string& path);
-/// Reads one entry's clip.
+/// Reads one entry's clip (only its interval's frames when it has one).
 Clip read_clip(const ClipListEntry& entry, const ReadOptions& options = {});
 
 }  // namespace host
