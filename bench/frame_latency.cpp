@@ -246,6 +246,21 @@ void measure_model(const std::string& name, const ModelView& model, const host::
                 identical += std::memcmp(&batch[r], matcher->completed_distances() + r, sizeof(float)) == 0;
         }
     }
+    // Segmenter: the online rule's update per character on the same string.
+    auto segmenter = std::make_unique<ActionSegmenter<Cap>>();
+    std::vector<std::int64_t> segment_ns;
+    if (segmenter->init(model) == Status::ok) {
+        for (int pass = 0; pass <= passes; ++pass) {
+            segmenter->reset();
+            for (std::size_t i = 0; i < string.size(); ++i) {
+                bool settled = false;
+                const std::int64_t ns = timed([&] { settled = segmenter->push(string[i]); });
+                g_sink = settled ? segmenter->settled_label() : segmenter->live_label();
+                if (pass > 0) segment_ns.push_back(ns);
+            }
+        }
+        report.latency.push_back({name, "stage: segmenter update (per character)", summarize(segment_ns)});
+    }
     report.latency.push_back({name, "stage: matcher update (per character)", summarize(push_ns)});
     report.latency.push_back({name, "stage: classification (per window)", summarize(classify_ns)});
     report.latency.push_back({name, "batch DP of one whole window (all representatives)", summarize(batch_window_ns)});
