@@ -27,7 +27,8 @@ void print_train_usage(std::FILE* out) {
                  "\n"
                  "Trains a model from a clip list (TSV: path label subject [skeleton]) and writes\n"
                  "the checksummed model artifact. Options (defaults in brackets):\n"
-                 "  --components J          GMM key-poses [%d]\n"
+                 "  --components J          GMM key-poses; 0 = no GMM, the tree on projected poses\n"
+                 "                          (the paper's \"PCA only\" characters) [%d]\n"
                  "  --covariance full|diagonal                     [full]\n"
                  "  --covariance-floor V    MAP variance floor per average component, units^2 [%g]\n"
                  "  --pca D                 project poses to D dimensions, 0 = none [%d]\n"
@@ -78,7 +79,7 @@ bool apply(ArgumentReader& args, const std::string& name, const std::string& val
         args.error("--" + name + ": unknown value '" + value + "'");
         return 0;
     };
-    if (name == "components") o.components = static_cast<int>(number(1, 64));
+    if (name == "components") o.components = static_cast<int>(number(0, 64));
     else if (name == "covariance") o.covariance = static_cast<Covariance>(choice({"full", "diagonal"}));
     else if (name == "covariance-floor") o.covariance_floor = number(1e-12, 1e6);
     else if (name == "pca") o.pca_dim = static_cast<int>(number(0, 96));
@@ -240,15 +241,20 @@ int run_train(int argc, char** argv) {
         std::printf("model:            %s\n", out_path.c_str());
         std::printf("frames:           %zu read, %zu rejected; %zu feature samples at %g Hz\n", report.frames_read,
                     report.frames_rejected, report.feature_samples, options.feature_rate_hz);
-        std::printf("features:         D %zu -> d %u, J %u (%s covariance), EM %zu iterations%s%s, log-likelihood %.1f\n",
-                    view.pose_dim(), view.feature_dim, view.component_count, view.covariance == Covariance::full ? "full" : "diagonal",
-                    report.em.objective.size(), report.em.converged ? ", converged" : ", NOT converged",
-                    report.em.reseeded.empty() ? "" : " (components re-seeded)",
-                    report.em.log_likelihood.empty() ? 0.0 : report.em.log_likelihood.back());
-        std::printf("EM restarts:      %zu, kept seed %u (objectives:", report.em_restart_objectives.size(),
-                    options.seed + static_cast<std::uint32_t>(report.em_restart_chosen));
-        for (double objective : report.em_restart_objectives) std::printf(" %.1f", objective);
-        std::printf(")\n");
+        if (view.has_gmm()) {
+            std::printf("features:         D %zu -> d %u, J %u (%s covariance), EM %zu iterations%s%s, log-likelihood %.1f\n",
+                        view.pose_dim(), view.feature_dim, view.component_count, view.covariance == Covariance::full ? "full" : "diagonal",
+                        report.em.objective.size(), report.em.converged ? ", converged" : ", NOT converged",
+                        report.em.reseeded.empty() ? "" : " (components re-seeded)",
+                        report.em.log_likelihood.empty() ? 0.0 : report.em.log_likelihood.back());
+            std::printf("EM restarts:      %zu, kept seed %u (objectives:", report.em_restart_objectives.size(),
+                        options.seed + static_cast<std::uint32_t>(report.em_restart_chosen));
+            for (double objective : report.em_restart_objectives) std::printf(" %.1f", objective);
+            std::printf(")\n");
+        } else {
+            std::printf("features:         D %zu -> d %u, no GMM: the tree is built on the projected poses\n", view.pose_dim(),
+                        view.feature_dim);
+        }
         std::printf("characters:       K %d (epsilon %g)\n", report.characters, options.epsilon);
         std::printf("representatives:  %d of %d strings (sigma %g, %s, %s normalisation)\n", report.representatives,
                     report.strings, options.sigma, variant_name(options.variant), normalization_name(options.normalization));

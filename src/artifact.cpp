@@ -251,7 +251,7 @@ ModelData parse_model(const std::string& name, std::string_view text) {
     const bool sizes_ok =
         (m.projection_mean.empty() ? m.projection_matrix.empty() : m.projection_mean.size() == D && m.projection_matrix.size() == D * d) &&
         m.gmm_means.size() == J * d && m.gmm_factors.size() == J * factor && m.gmm_log_normalizers.size() == J &&
-        m.gmm_log_weights.size() == J && m.node_centroids.size() == nodes * J && m.node_children.size() == 2 * nodes &&
+        m.gmm_log_weights.size() == J && m.node_centroids.size() == nodes * (J > 0 ? J : d) && m.node_children.size() == 2 * nodes &&
         m.character_distances.size() == static_cast<std::size_t>(m.character_count) * m.character_count &&
         !m.representative_offsets.empty() && m.representative_offsets.size() == m.representative_labels.size() + 1 &&
         m.representative_offsets.back() == m.representative_chars.size() && nodes <= 32767;
@@ -351,8 +351,9 @@ std::string generate_header(ModelData& m, const std::string& checksum, const std
         << "    m.projection_matrix = " << or_null(!m.projection_matrix.empty(), "kProjectionMatrix") << ";\n"
         << "    m.component_count = " << v.component_count << ";\n"
         << "    m.covariance = static_cast<::actionstring::Covariance>(" << static_cast<int>(v.covariance) << ");\n"
-        << "    m.gmm_means = kGmmMeans;\n    m.gmm_factors = kGmmFactors;\n"
-        << "    m.gmm_log_normalizers = kGmmLogNormalizers;\n    m.gmm_log_weights = kGmmLogWeights;\n"
+        << "    m.gmm_means = " << or_null(v.has_gmm(), "kGmmMeans") << ";\n    m.gmm_factors = " << or_null(v.has_gmm(), "kGmmFactors") << ";\n"
+        << "    m.gmm_log_normalizers = " << or_null(v.has_gmm(), "kGmmLogNormalizers") << ";\n    m.gmm_log_weights = "
+        << or_null(v.has_gmm(), "kGmmLogWeights") << ";\n"
         << "    m.node_count = " << v.node_count << ";\n"
         << "    m.node_centroids = kNodeCentroids;\n    m.node_children = kNodeChildren;\n    m.node_characters = kNodeCharacters;\n"
         << "    m.character_count = " << v.character_count << ";\n"
@@ -375,7 +376,7 @@ std::string generate_header(ModelData& m, const std::string& checksum, const std
         << "inline constexpr ::actionstring::ModelView kModel = make_model();\n\n"
         << "/// Capacity that fits this model exactly.\n"
         << "using ModelCapacity = ::actionstring::Capacity<" << v.joint_count << ", " << v.pose_joint_count << ", " << v.feature_dim
-        << ", " << v.component_count << ", " << v.representative_count << ", " << v.total_representative_chars() << ", "
+        << ", " << std::max<int>(1, v.component_count) << ", " << v.representative_count << ", " << v.total_representative_chars() << ", "
         << v.max_open_windows() << ", " << (v.normalization == LengthNormalization::path ? "true" : "false") << ">;\n\n"
         << "}  // namespace " << ns << "\n";
     return out.str();

@@ -112,7 +112,7 @@ void set_gmm(ModelData& model, const std::vector<Eigen::VectorXd>& means,
 }
 
 void set_character_distances_from_leaves(ModelData& model) {
-    const std::size_t K = model.character_count, J = model.component_count;
+    const std::size_t K = model.character_count, J = model.view().tree_dim();
     std::vector<const float*> leaf(K, nullptr);
     for (std::size_t n = 0; n < model.node_characters.size(); ++n)
         if (model.node_children[2 * n] < 0) leaf.at(model.node_characters[n]) = &model.node_centroids[n * J];

@@ -32,8 +32,8 @@ void check_options(const TrainingOptions& o) {
     auto require = [](bool ok, const char* what) {
         if (!ok) throw std::invalid_argument(what);
     };
-    require(o.components >= 1 && o.components <= static_cast<int>(HostCapacity::max_components),
-            "components (J) must be between 1 and 64");
+    require(o.components >= 0 && o.components <= static_cast<int>(HostCapacity::max_components),
+            "components (J) must be between 0 (no GMM) and 64");
     require(o.covariance_floor > 0, "the covariance floor must be positive");
     require(o.pca_dim >= 0, "the PCA dimension must be ≥ 0");
     require(o.feature_rate_hz > 0 && o.string_rate_hz > 0, "rates must be positive");
@@ -169,51 +169,71 @@ ModelData train_model(const std::vector<LabelledClip>& clips, const TrainingOpti
     }
     r.stage_seconds.emplace_back("PCA", seconds_since(stage));
 
-    // 3. GMM by EM.
-    if (options.progress) options.progress("fitting the GMM by EM");
-    stage = Clock::now();
-    // Restarts run in parallel; each is independent and the choice is fixed
-    // (highest final objective, earliest on ties), so threads change nothing.
-    std::vector<GmmFit> fits(static_cast<std::size_t>(options.em_restarts));
-    std::vector<std::exception_ptr> failures(fits.size());
-    const std::size_t workers = std::max(1u, std::min(2u, std::thread::hardware_concurrency()));
-    for (std::size_t batch = 0; batch < fits.size(); batch += workers) {
-        std::vector<std::thread> threads;
-        for (std::size_t k = batch; k < std::min(fits.size(), batch + workers); ++k)
-            threads.emplace_back([&, k] {
-                try {
-                    fits[k] = fit_gmm(samples, options.components, options.covariance, options.covariance_floor,
-                                      options.em_max_iterations, options.em_tolerance, options.seed + static_cast<std::uint32_t>(k));
-                } catch (...) {
-                    failures[k] = std::current_exception();
-                }
-            });
-        for (std::thread& t : threads) t.join();
-    }
-    for (const auto& failure : failures)
-        if (failure) std::rethrow_exception(failure);
-    std::size_t chosen = 0;
-    for (std::size_t k = 0; k < fits.size(); ++k) {
-        r.em_restart_objectives.push_back(fits[k].report.objective.back());
-        if (fits[k].report.objective.back() > fits[chosen].report.objective.back()) chosen = k;
-    }
-    r.em_restart_chosen = static_cast<int>(chosen);
-    const GmmFit& fit = fits[chosen];
-    set_gmm(m, fit.means, fit.covariances, fit.weights, options.covariance);
-    r.em = fit.report;
-    r.stage_seconds.emplace_back("GMM (EM)", seconds_since(stage));
-
-    // 4. Posterior features through the runtime, then the ε tree.
-    if (options.progress) options.progress("building the cluster tree");
-    stage = Clock::now();
-    const std::size_t J = fit.means.size();  // fewer than asked when EM dropped collapsed components
-    std::vector<float> features(n * J);
-    {
+    // 3. GMM by EM (none with components = 0: the "PCA only" characters).
+    std::size_t J = 0;  // the tree's dimension: components kept by EM, or d without a GMM
+    std::vector<float> features;
+    if (options.components == 0) {
+        if (options.progress) options.progress("building the cluster tree");
+        stage = Clock::now();
+        if (!m.view().has_projection()) throw std::invalid_argument("components 0 (no GMM) needs a projection: set --pca");
+        // Scale the projection so every training feature lies within L1 distance 1
+        // of the projected mean pose: the tree's features then span an L1 diameter
+        // of at most 2, as posteriors do, and ε, σ, W and the online penalties keep
+        // the scale they have with a GMM.
+        double largest = 0.0;
+        for (std::size_t i = 0; i < n; ++i) largest = std::max(largest, samples.col(static_cast<Eigen::Index>(i)).lpNorm<1>());
+        if (!(largest > 0.0)) throw std::invalid_argument("every training pose projects to the same point");
+        for (float& value : m.projection_matrix) value = static_cast<float>(static_cast<double>(value) / largest);
+        features.resize(n * d);
         const ModelView view = m.view();
-        for (std::size_t i = 0; i < n; ++i) {
-            project_pose(view, poses.data() + i * D, feature.data());
-            if (gmm_posterior<HostCapacity::max_feature_dim>(view, feature.data(), features.data() + i * J) != Status::ok)
-                throw std::runtime_error("a training pose fell outside the GMM's float range");
+        for (std::size_t i = 0; i < n; ++i) project_pose(view, poses.data() + i * D, features.data() + i * d);
+        J = d;
+    } else {
+        if (options.progress) options.progress("fitting the GMM by EM");
+        stage = Clock::now();
+        // Restarts run in parallel; each is independent and the choice is fixed
+        // (highest final objective, earliest on ties), so threads change nothing.
+        std::vector<GmmFit> fits(static_cast<std::size_t>(options.em_restarts));
+        std::vector<std::exception_ptr> failures(fits.size());
+        const std::size_t workers = std::max(1u, std::min(2u, std::thread::hardware_concurrency()));
+        for (std::size_t batch = 0; batch < fits.size(); batch += workers) {
+            std::vector<std::thread> threads;
+            for (std::size_t k = batch; k < std::min(fits.size(), batch + workers); ++k)
+                threads.emplace_back([&, k] {
+                    try {
+                        fits[k] = fit_gmm(samples, options.components, options.covariance, options.covariance_floor,
+                                          options.em_max_iterations, options.em_tolerance, options.seed + static_cast<std::uint32_t>(k));
+                    } catch (...) {
+                        failures[k] = std::current_exception();
+                    }
+                });
+            for (std::thread& t : threads) t.join();
+        }
+        for (const auto& failure : failures)
+            if (failure) std::rethrow_exception(failure);
+        std::size_t chosen = 0;
+        for (std::size_t k = 0; k < fits.size(); ++k) {
+            r.em_restart_objectives.push_back(fits[k].report.objective.back());
+            if (fits[k].report.objective.back() > fits[chosen].report.objective.back()) chosen = k;
+        }
+        r.em_restart_chosen = static_cast<int>(chosen);
+        const GmmFit& fit = fits[chosen];
+        set_gmm(m, fit.means, fit.covariances, fit.weights, options.covariance);
+        r.em = fit.report;
+        r.stage_seconds.emplace_back("GMM (EM)", seconds_since(stage));
+
+        // 4. Posterior features through the runtime, then the ε tree.
+        if (options.progress) options.progress("building the cluster tree");
+        stage = Clock::now();
+        J = fit.means.size();
+        features.resize(n * J);
+        {
+            const ModelView view = m.view();
+            for (std::size_t i = 0; i < n; ++i) {
+                project_pose(view, poses.data() + i * D, feature.data());
+                if (gmm_posterior<HostCapacity::max_feature_dim>(view, feature.data(), features.data() + i * J) != Status::ok)
+                    throw std::runtime_error("a training pose fell outside the GMM's float range");
+            }
         }
     }
     const ClusterTree tree = build_cluster_tree(features, J, options.epsilon, options.max_characters, options.seed);

@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <set>
 #include <string>
 
+#include "actionstring/annotator.hpp"
 #include "actionstring/string_distance.hpp"
 #include "actionstring_host/artifact.hpp"
 #include "actionstring_host/clustering.hpp"
@@ -146,6 +148,42 @@ TEST_CASE("training on the toy world recognises held-out performances") {
     CHECK(report.characters >= 5);
     for (int count : report.representatives_per_label) CHECK(count >= 1);
     CHECK(clip_accuracy(view, held_out) >= 0.9);
+}
+
+TEST_CASE("a model without a GMM (PCA-only characters) trains, validates, round-trips and generates a header") {
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 6, 100);
+    const auto held_out = toy_clips(world, 5, 9000, 30.0);
+    TrainingOptions options = toy_options();
+    options.components = 0;
+    options.pca_dim = 6;
+    options.epsilon = 0.5;
+    options.sigma = 0.5;
+    TrainingReport report;
+    ModelData model = train_model(train, options, &report);
+    const ModelView view = model.view();
+    CHECK(validate_model(view) == Status::ok);
+    CHECK_FALSE(view.has_gmm());
+    CHECK(view.tree_dim() == 6);
+    CHECK(view.gmm_means == nullptr);
+    CHECK(report.em.objective.empty());  // no EM ran
+    CHECK(report.characters >= 5);
+    // The scaled projection keeps every training feature within L1 distance 1 of the mean pose.
+    CHECK(*std::max_element(model.character_distances.begin(), model.character_distances.end()) <= 2.0f);
+    CHECK(clip_accuracy(view, held_out) >= 0.9);
+    // The annotator runs it with a capacity of one (unused) component.
+    auto annotator = std::make_unique<Annotator<HostCapacity>>();
+    REQUIRE(annotator->init(view) == Status::ok);
+    const std::string text = serialize_model(model);
+    ModelData loaded = parse_model("m.model", text);
+    CHECK(serialize_model(loaded) == text);
+    const std::string header = generate_header(model, artifact_checksum(text), "pca_only", "m.model");
+    CHECK(header.find("m.gmm_means = nullptr;") != std::string::npos);
+    CHECK(header.find("kGmmMeans") == std::string::npos);
+    CHECK(header.find(", 6, 1, ") != std::string::npos);  // Capacity<…, d = 6, J = 1, …>
+    // Without a projection there is nothing to scale: refused with a reason.
+    options.pca_dim = 0;
+    CHECK_THROWS_WITH_AS(train_model(train, options), doctest::Contains("needs a projection"), std::invalid_argument);
 }
 
 TEST_CASE("the same inputs and seed give byte-identical artifacts and headers") {

@@ -67,8 +67,8 @@ struct Capacity {
     static constexpr bool fits(const ModelView& m) noexcept { return fits_features(m) && fits_matching(m); }
 };
 
-/// Bounds for host tools: Kinect v2 and ASF skeletons, J ≤ 64, up to 256
+/// Bounds for host tools: Kinect v2 and ASF skeletons, J ≤ 64, up to 512
 /// representatives of 64 characters on average, windows up to 8 steps long.
-using HostCapacity = Capacity<32, 32, 96, 64, 256, 16384, 8>;
+using HostCapacity = Capacity<32, 32, 96, 64, 512, 32768, 8>;
 
 }  // namespace actionstring

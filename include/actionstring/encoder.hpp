@@ -52,7 +52,7 @@ public:
         const Status status = validate_feature_tables(model);
         if (status != Status::ok) return status;
         if (!Cap::fits_features(model)) return Status::model_exceeds_capacity;
-        if (!gmm_is_overflow_safe(model, max_pose_coordinate)) return Status::invalid_model;
+        if (model.has_gmm() && !gmm_is_overflow_safe(model, max_pose_coordinate)) return Status::invalid_model;
         if (max_gap_us < static_cast<std::int64_t>(model.string_period_us)) return Status::invalid_argument;
         model_ = &model;
         sampler_.configure(model.string_period_us, max_gap_us);
@@ -101,7 +101,8 @@ public:
     /// Time of tick k (character k) of the current stream.
     std::int64_t tick_time_us(std::uint64_t tick) const noexcept { return sampler_.tick_time_us(tick); }
     /// The GMM posterior of the last frame whose character was computed
-    /// (component_count floats, owned by the encoder, valid until the next push_frame()).
+    /// (component_count floats, owned by the encoder, valid until the next
+    /// push_frame(); meaningless for a model without a GMM).
     const float* last_posterior() const noexcept { return posterior_; }
     bool initialized() const noexcept { return model_ != nullptr; }
 
@@ -116,7 +117,9 @@ private:
         // Cannot fail: normalize_pose bounded the pose and init() checked that
         // no bounded pose overflows the GMM. Should it ever, repeat the last
         // character rather than invent one.
-        if (gmm_posterior<Cap::max_feature_dim>(*model_, feature, posterior_) == Status::ok)
+        if (!model_->has_gmm())
+            last_ = descend_tree(*model_, feature);
+        else if (gmm_posterior<Cap::max_feature_dim>(*model_, feature, posterior_) == Status::ok)
             last_ = descend_tree(*model_, posterior_);
         characters_[slot] = last_;
         ready_[slot] = true;

@@ -74,7 +74,9 @@ struct ModelView {
     const float* projection_matrix = nullptr;
 
     // --- GMM of key-poses (DESIGN §1.3) ---
-    std::uint16_t component_count = 0;  ///< J.
+    /// J. 0 = no GMM: the tree descends on the projected pose itself (the
+    /// paper's "PCA only" characters, Fig. 4) and the GMM tables are null.
+    std::uint16_t component_count = 0;
     Covariance covariance = Covariance::full;
     const float* gmm_means = nullptr;            ///< [J x d], row-major.
     /// Factor U of each component's precision, precision = Uᵀ U with U upper
@@ -88,7 +90,7 @@ struct ModelView {
 
     // --- cluster tree whose leaves are the characters (DESIGN §1.4) ---
     std::uint16_t node_count = 0;                ///< Node 0 is the root.
-    const float* node_centroids = nullptr;       ///< [node_count x J].
+    const float* node_centroids = nullptr;       ///< [node_count x tree_dim()].
     /// [node_count x 2] children; both −1 at a leaf. A child's index is always
     /// greater than its parent's, which bounds the descent by node_count.
     const std::int16_t* node_children = nullptr;
@@ -116,6 +118,10 @@ struct ModelView {
     /// D, the length of the normalised pose vector.
     constexpr std::size_t pose_dim() const noexcept { return 3u * pose_joint_count; }
     constexpr bool has_projection() const noexcept { return projection_matrix != nullptr; }
+    constexpr bool has_gmm() const noexcept { return component_count > 0; }
+    /// Length of the vectors the tree is built on and descends with: the GMM
+    /// posterior (J), or without a GMM the projected pose (d).
+    constexpr std::size_t tree_dim() const noexcept { return has_gmm() ? component_count : feature_dim; }
     /// Floats per component in gmm_factors.
     constexpr std::size_t factor_size() const noexcept {
         return covariance == Covariance::full
@@ -189,14 +195,15 @@ inline Status validate_feature_tables(const ModelView& m) noexcept {
     }
     // GMM.
     const std::size_t J = m.component_count;
-    if (J == 0) return bad;
-    if (!all_finite(m.gmm_means, J * m.feature_dim)) return bad;
-    if (!all_finite(m.gmm_factors, J * m.factor_size())) return bad;
-    if (!all_finite(m.gmm_log_normalizers, J)) return bad;
-    if (!all_finite(m.gmm_log_weights, J)) return bad;
+    if (J > 0) {
+        if (!all_finite(m.gmm_means, J * m.feature_dim)) return bad;
+        if (!all_finite(m.gmm_factors, J * m.factor_size())) return bad;
+        if (!all_finite(m.gmm_log_normalizers, J)) return bad;
+        if (!all_finite(m.gmm_log_weights, J)) return bad;
+    }
     // Tree: children point forward and leaves carry a character.
     if (m.node_count == 0 || m.node_children == nullptr || m.node_characters == nullptr) return bad;
-    if (!all_finite(m.node_centroids, static_cast<std::size_t>(m.node_count) * J)) return bad;
+    if (!all_finite(m.node_centroids, static_cast<std::size_t>(m.node_count) * m.tree_dim())) return bad;
     const std::size_t K = m.character_count;
     if (K == 0) return bad;
     for (std::size_t n = 0; n < m.node_count; ++n) {

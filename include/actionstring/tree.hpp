@@ -10,10 +10,10 @@ namespace actionstring {
 /// Squared Euclidean distance between a pose feature and a node centroid,
 /// the metric of the 2-means split that built the node.
 inline float node_distance_sq(const ModelView& model, std::size_t node, const float* feature) noexcept {
-    const std::size_t J = model.component_count;
-    const float* centroid = model.node_centroids + node * J;
+    const std::size_t dim = model.tree_dim();
+    const float* centroid = model.node_centroids + node * dim;
     float sum = 0.0f;
-    for (std::size_t j = 0; j < J; ++j) {
+    for (std::size_t j = 0; j < dim; ++j) {
         const float diff = feature[j] - centroid[j];
         sum += diff * diff;
     }
@@ -24,7 +24,8 @@ inline float node_distance_sq(const ModelView& model, std::size_t node, const fl
 /// whose centroid is nearer (the left child on a tie), and returns the leaf's
 /// character. Children always have larger indices than their parent
 /// (validate_model checks it), so the loop ends within node_count steps.
-/// @param feature component_count floats (a posterior); read only during the call
+/// @param feature tree_dim() floats (a posterior, or the projected pose of a
+///                model without a GMM); read only during the call
 inline Character descend_tree(const ModelView& model, const float* feature) noexcept {
     std::size_t node = 0;
     for (;;) {

@@ -2,14 +2,16 @@
 // writes its artifact: the fixture of the header/artifact parity test, made
 // at build time so the test needs no dataset.
 #include <cstdio>
+#include <string>
 
 #include "actionstring_host/artifact.hpp"
 #include "actionstring_host/toy.hpp"
 #include "actionstring_host/training.hpp"
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::fprintf(stderr, "usage: make_fixture_model OUT.model\n");
+    const bool without_gmm = argc == 3 && std::string(argv[2]) == "--no-gmm";
+    if (argc != 2 && !without_gmm) {
+        std::fprintf(stderr, "usage: make_fixture_model OUT.model [--no-gmm]\n");
         return 2;
     }
     using namespace actionstring::host;
@@ -24,6 +26,11 @@ int main(int argc, char** argv) {
         options.normalization = actionstring::LengthNormalization::path;
         options.sigma = 0.3;
         options.neighbours = 3;
+        if (without_gmm) {  // the paper's "PCA only" characters: the tree on projected poses
+            options.components = 0;
+            options.epsilon = 0.5;
+            options.sigma = 0.05;
+        }
         ModelData model = train_model(toy_clips(world, 6, 100), options);
         save_model(model, argv[1]);
         return 0;

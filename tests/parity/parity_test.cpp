@@ -11,6 +11,7 @@
 #include "actionstring_host/artifact.hpp"
 #include "actionstring_host/toy.hpp"
 #include "fixture_model.hpp"
+#include "fixture_pca_model.hpp"
 
 using namespace actionstring;
 
@@ -39,14 +40,19 @@ void push_both(Annotator<GeneratedCap>& generated, Annotator<HostCapacity>& host
 
 }  // namespace
 
-TEST_CASE("generated header and loaded artifact agree bit for bit") {
-    host::ModelData loaded = host::load_model(ACTIONSTRING_FIXTURE_MODEL);
+namespace {
+
+// Streams a jittery toy performance with dropped frames through the generated
+// header's annotator and the loaded artifact's, requiring identical results.
+template <class GeneratedCap>
+void check_parity(const ModelView& generated_model, const char* checksum, const char* artifact_path) {
+    host::ModelData loaded = host::load_model(artifact_path);
     const ModelView view = loaded.view();
-    CHECK(std::strcmp(fixture::kModelChecksum + 8, host::artifact_checksum(host::read_file(ACTIONSTRING_FIXTURE_MODEL)).c_str()) == 0);
+    CHECK(std::strcmp(checksum + 8, host::artifact_checksum(host::read_file(artifact_path)).c_str()) == 0);
     // Different capacities on purpose: the exact one from the header and the host's.
-    auto generated = std::make_unique<Annotator<fixture::ModelCapacity>>();
+    auto generated = std::make_unique<Annotator<GeneratedCap>>();
     auto host_side = std::make_unique<Annotator<HostCapacity>>();
-    REQUIRE(generated->init(fixture::kModel) == Status::ok);
+    REQUIRE(generated->init(generated_model) == Status::ok);
     REQUIRE(host_side->init(view) == Status::ok);
 
     host::ToyWorld world = host::make_toy_world();
@@ -61,6 +67,17 @@ TEST_CASE("generated header and loaded artifact agree bit for bit") {
         push_both(*generated, *host_side, view, frame.time_us, frame.positions.data(), windows, characters);
     CHECK(windows > 100);
     CHECK(characters > 500);
+}
+
+}  // namespace
+
+TEST_CASE("generated header and loaded artifact agree bit for bit") {
+    check_parity<fixture::ModelCapacity>(fixture::kModel, fixture::kModelChecksum, ACTIONSTRING_FIXTURE_MODEL);
+}
+
+TEST_CASE("the same without a GMM: the tree descends on projected poses") {
+    CHECK(fixture_pca::kModel.component_count == 0);
+    check_parity<fixture_pca::ModelCapacity>(fixture_pca::kModel, fixture_pca::kModelChecksum, ACTIONSTRING_FIXTURE_PCA_MODEL);
 }
 
 #if defined(ACTIONSTRING_WITH_EXAMPLE_MODEL)
