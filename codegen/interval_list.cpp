@@ -2,6 +2,7 @@
 // list with labelled intervals (columns start and end, in seconds), which
 // train reads as cut clips and eval --online streams as whole recordings.
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -28,9 +29,8 @@ int run_interval_list(int argc, char** argv) {
                         "UTKinect's actionLabel.txt. Recordings are joints_<sequence>.txt beside LABELS;\n"
                         "the subject is the sequence name before '_'. --subjects keeps only those\n"
                         "subjects. Intervals marked NaN are left out (and reported): their frames count\n"
-                        "as 'no action' when the recording is streamed. Paths are written as given\n"
-                        "(resolved against the list's folder when relative), so the list can live\n"
-                        "outside the dataset.\n");
+                        "as 'no action' when the recording is streamed. Paths are written absolute, so\n"
+                        "the list can live anywhere.\n");
             return 0;
         }
         if (arg == "--utkinect") labels_path = args.value(arg);
@@ -54,8 +54,8 @@ int run_interval_list(int argc, char** argv) {
         std::ostringstream text;
         text << in.rdbuf();
         const auto sequences = host::parse_utkinect_labels(labels_path, text.str());
-        const std::size_t slash = labels_path.find_last_of('/');
-        const std::string folder = slash == std::string::npos ? std::string() : labels_path.substr(0, slash + 1);
+        // Absolute, so the list reads the same wherever it is written.
+        const std::string folder = std::filesystem::absolute(labels_path).parent_path().string() + "/";
         std::ostringstream list;
         list.precision(10);
         list << "path\tlabel\tsubject\tstart\tend\n";
