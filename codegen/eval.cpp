@@ -45,9 +45,9 @@ void print_eval_usage(std::FILE* out) {
                  "and a Markdown summary linking them.\n");
 }
 
-std::vector<host::LabelledClip> load(const std::string& path, const host::ReadOptions& read) {
+std::vector<host::LabelledClip> load(const std::vector<host::ClipListEntry>& entries, const host::ReadOptions& read) {
     std::vector<host::LabelledClip> clips;
-    for (const host::ClipListEntry& entry : host::read_clip_list(path))
+    for (const host::ClipListEntry& entry : entries)
         clips.push_back({host::read_clip(entry, read), entry.label, entry.subject});
     return clips;
 }
@@ -117,11 +117,10 @@ int run_eval(int argc, char** argv) {
         const ModelView view = model.view();
         const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
         const bool recordings = std::any_of(entries.begin(), entries.end(), [](const host::ClipListEntry& e) { return e.has_interval; });
-        std::vector<host::LabelledClip> clips;
-        for (const host::ClipListEntry& entry : entries) clips.push_back({host::read_clip(entry, read), entry.label, entry.subject});
+        const std::vector<host::LabelledClip> clips = load(entries, read);
         std::vector<host::ClipResults> results{host::evaluate_model(view, clips)};
         if (!train_path.empty()) {
-            const auto train = load(train_path, read);
+            const auto train = load(host::read_clip_list(train_path), read);
             results.push_back(host::evaluate_all_strings(view, train, clips));
             results.push_back(host::evaluate_pca_characters(view, train, clips));
             results.push_back(host::evaluate_pose_dtw(view, train, clips));

@@ -49,11 +49,7 @@ int run_interval_list(int argc, char** argv) {
         from = comma + 1;
     }
     try {
-        std::ifstream in(labels_path, std::ios::binary);
-        if (!in) return args.error("cannot read " + labels_path);
-        std::ostringstream text;
-        text << in.rdbuf();
-        const auto sequences = host::parse_utkinect_labels(labels_path, text.str());
+        const auto sequences = host::parse_utkinect_labels(labels_path, host::read_file(labels_path));
         // Absolute, so the list reads the same wherever it is written.
         const std::string folder = std::filesystem::absolute(labels_path).parent_path().string() + "/";
         std::ostringstream list;

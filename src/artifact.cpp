@@ -251,7 +251,7 @@ ModelData parse_model(const std::string& name, std::string_view text) {
     const bool sizes_ok =
         (m.projection_mean.empty() ? m.projection_matrix.empty() : m.projection_mean.size() == D && m.projection_matrix.size() == D * d) &&
         m.gmm_means.size() == J * d && m.gmm_factors.size() == J * factor && m.gmm_log_normalizers.size() == J &&
-        m.gmm_log_weights.size() == J && m.node_centroids.size() == nodes * (J > 0 ? J : d) && m.node_children.size() == 2 * nodes &&
+        m.gmm_log_weights.size() == J && m.node_centroids.size() == nodes * m.view().tree_dim() && m.node_children.size() == 2 * nodes &&
         m.character_distances.size() == static_cast<std::size_t>(m.character_count) * m.character_count &&
         !m.representative_offsets.empty() && m.representative_offsets.size() == m.representative_labels.size() + 1 &&
         m.representative_offsets.back() == m.representative_chars.size() && nodes <= 32767;
