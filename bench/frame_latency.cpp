@@ -23,10 +23,21 @@
 #include <vector>
 
 #include "actionstring/actionstring.hpp"
-#include "actionstring_host/artifact.hpp"
-#include "actionstring_host/evaluation.hpp"
-#include "actionstring_host/readers.hpp"
-#include "actionstring_host/training.hpp"
+#include "model/artifact.hpp"
+#include "model/header.hpp"
+#include "io/stream.hpp"
+#include "eval/baselines.hpp"
+#include "eval/clip_eval.hpp"
+#include "eval/json.hpp"
+#include "eval/online.hpp"
+#include "run/stream_labels.hpp"
+#include "io/clip_list.hpp"
+#include "io/formats.hpp"
+#include "run/classify.hpp"
+#include "run/encode.hpp"
+#include "train/gmm_em.hpp"
+#include "train/pca.hpp"
+#include "train/pipeline.hpp"
 #include "actionstring_port.hpp"
 #include "hdm05_model.hpp"
 #include "synthetic_model.hpp"
@@ -293,7 +304,27 @@ void measure_model(const std::string& name, const ModelView& model, const host::
 }
 
 // ---- scaling on synthetic models (cost only) ----------------------------------
-using ScalingCap = Capacity<31, 30, 64, 96, 96, 8192, 4, false>;
+struct ScalingLimits : DefaultLimits {
+    static constexpr std::size_t joints = 31;
+    static constexpr std::size_t pose_joints = 30;
+    static constexpr std::size_t feature_dim = 64;
+    static constexpr std::size_t components = 96;
+    static constexpr std::size_t representatives = 96;
+    static constexpr std::size_t representative_chars = 8192;
+    static constexpr std::size_t windows = 4;
+    static constexpr bool path_lengths = false;
+};
+struct Limits40 : DefaultLimits {
+    static constexpr std::size_t joints = 31;
+    static constexpr std::size_t pose_joints = 30;
+    static constexpr std::size_t feature_dim = 24;
+    static constexpr std::size_t components = 40;
+    static constexpr std::size_t representatives = 64;
+    static constexpr std::size_t representative_chars = 4096;
+    static constexpr std::size_t windows = 4;
+    static constexpr bool path_lengths = false;
+};
+using ScalingCap = Capacity<ScalingLimits>;
 
 struct ScalingPoint {
     std::string varied;
@@ -393,7 +424,7 @@ int main(int argc, char** argv) {
     std::ostringstream memory_md, tables_md;
     measure_model<actionstring_hdm05::ModelCapacity>("committed hdm05 (J=20)", actionstring_hdm05::kModel, stream, passes,
                                                      report, memory_md, tables_md);
-    using Cap40 = Capacity<31, 30, 24, 40, 64, 4096, 4, false>;
+    using Cap40 = Capacity<Limits40>;
     measure_model<Cap40>("hdm05 J=40", model40.view(), stream, passes, report, memory_md, tables_md);
 
     std::vector<ScalingPoint> points;

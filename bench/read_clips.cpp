@@ -10,7 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "actionstring_host/readers.hpp"
+#include "io/clip_list.hpp"
+#include "io/formats.hpp"
 
 using namespace actionstring::host;
 

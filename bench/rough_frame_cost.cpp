@@ -18,7 +18,16 @@ using namespace actionstring;
 
 namespace {
 
-using RepresentativeCap = Capacity<31, 30, 24, 40, 30, 900, 4>;
+struct RepresentativeLimits : DefaultLimits {
+    static constexpr std::size_t joints = 31;
+    static constexpr std::size_t pose_joints = 30;
+    static constexpr std::size_t feature_dim = 24;
+    static constexpr std::size_t components = 40;
+    static constexpr std::size_t representatives = 30;
+    static constexpr std::size_t representative_chars = 900;
+    static constexpr std::size_t windows = 4;
+};
+using RepresentativeCap = Capacity<RepresentativeLimits>;
 
 std::int64_t percentile(const std::vector<std::int64_t>& sorted, double q) {
     if (sorted.empty()) return 0;

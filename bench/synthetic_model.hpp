@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "actionstring_host/model_data.hpp"
+#include "model/model_data.hpp"
 
 namespace bench {
 

@@ -11,8 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "actionstring_host/readers.hpp"
-#include "actionstring_host/training.hpp"
+#include "io/clip_list.hpp"
+#include "io/formats.hpp"
+#include "run/classify.hpp"
+#include "run/encode.hpp"
+#include "train/gmm_em.hpp"
+#include "train/pca.hpp"
+#include "train/pipeline.hpp"
 
 using namespace actionstring::host;
 

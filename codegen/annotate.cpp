@@ -2,11 +2,12 @@
 #include <cstdio>
 #include <string>
 
-#include "actionstring_host/artifact.hpp"
-#include "actionstring_host/evaluation.hpp"
-#include "actionstring_host/readers.hpp"
 #include "commands.hpp"
+#include "common/json.hpp"
+#include "io/formats.hpp"
+#include "model/artifact.hpp"
 #include "options.hpp"
+#include "run/stream_labels.hpp"
 
 namespace actionstring {
 namespace cli {
@@ -42,28 +43,30 @@ int run_annotate(int argc, char** argv) {
     }
     if (!args.ok()) return 2;
     if (model_path.empty() || file.empty()) return args.error("usage: actionstring annotate --model MODEL FILE (see --help)");
-    try {
-        host::ModelData model = host::load_model(model_path);
+    return run_reporting_errors("annotate", [&] {
+        const host::ModelData model = host::load_model(model_path);
         const ModelView view = model.view();
         const host::Clip clip = host::read_clip(file, read, skeleton);
         const auto spans = host::annotate_clip(view, clip, config);
         auto name = [&](int label) { return label < 0 ? std::string("unknown") : model.label_names[static_cast<std::size_t>(label)]; };
         if (json) {
-            std::printf("{\"file\": %s, \"segments\": [", host::json_string(file).c_str());
-            for (std::size_t i = 0; i < spans.size(); ++i)
-                std::printf("%s{\"start\": %.4f, \"end\": %.4f, \"label\": %s, \"confidence\": %.4f}", i ? ", " : "", spans[i].start_s,
-                            spans[i].end_s, host::json_string(name(spans[i].label)).c_str(), spans[i].agreement);
-            std::printf("]}\n");
+            host::JsonWriter out;
+            out.begin_object().field("file", file).key("segments").begin_array();
+            for (const host::LabelSpan& span : spans)
+                out.begin_object()
+                    .field("start", span.start_s)
+                    .field("end", span.end_s)
+                    .field("label", name(span.label))
+                    .field("confidence", span.agreement)
+                    .end_object();
+            std::fputs(out.end_array().end_object().str().c_str(), stdout);
         } else {
             std::printf("start\tend\tlabel\tconfidence\n");
             for (const auto& span : spans)
                 std::printf("%.4f\t%.4f\t%s\t%.4f\n", span.start_s, span.end_s, name(span.label).c_str(), span.agreement);
         }
         return 0;
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "actionstring annotate: %s\n", error.what());
-        return 1;
-    }
+    });
 }
 
 }  // namespace cli

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "actionstring/actionstring.hpp"
-#include "actionstring_host/toy.hpp"
+#include "toy/toy.hpp"
 #include "actionstring_port.hpp"
 #include "commands.hpp"
 
@@ -16,7 +16,16 @@ namespace actionstring {
 namespace cli {
 namespace {
 
-using DemoCapacity = Capacity<8, 8, 24, 16, 16, 256, 8>;
+struct DemoLimits : DefaultLimits {
+    static constexpr std::size_t joints = 8;
+    static constexpr std::size_t pose_joints = 8;
+    static constexpr std::size_t feature_dim = 24;
+    static constexpr std::size_t components = 16;
+    static constexpr std::size_t representatives = 16;
+    static constexpr std::size_t representative_chars = 256;
+    static constexpr std::size_t windows = 8;
+};
+using DemoCapacity = Capacity<DemoLimits>;
 
 void print_demo_usage(std::FILE* out) {
     std::fprintf(out,

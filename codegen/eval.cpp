@@ -1,17 +1,21 @@
 // `actionstring eval`: clip recognition on a list, beside baselines.
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "actionstring_host/artifact.hpp"
-#include "actionstring_host/evaluation.hpp"
-#include "actionstring_host/readers.hpp"
-#include "actionstring_host/report.hpp"
 #include "commands.hpp"
+#include "common/json.hpp"
+#include "common/stats.hpp"
+#include "common/time.hpp"
+#include "eval/baselines.hpp"
+#include "eval/clip_eval.hpp"
+#include "eval/json.hpp"
+#include "eval/online.hpp"
+#include "eval/report.hpp"
+#include "io/clip_list.hpp"
+#include "io/recordings.hpp"
+#include "io/text.hpp"
+#include "model/artifact.hpp"
 #include "options.hpp"
 
 namespace actionstring {
@@ -45,13 +49,6 @@ void print_eval_usage(std::FILE* out) {
                  "and a Markdown summary linking them.\n");
 }
 
-std::vector<host::LabelledClip> load(const std::vector<host::ClipListEntry>& entries, const host::ReadOptions& read) {
-    std::vector<host::LabelledClip> clips;
-    for (const host::ClipListEntry& entry : entries)
-        clips.push_back({host::read_clip(entry, read), entry.label, entry.subject});
-    return clips;
-}
-
 void print_online(const char* rule, const host::OnlineResults& r) {
     std::printf("  %-28s frame accuracy %.3f", rule, r.frame_accuracy);
     if (r.no_action_frames > 0)
@@ -61,21 +58,105 @@ void print_online(const char* rule, const host::OnlineResults& r) {
                 r.flicker_per_min);
 }
 
-std::string online_json(const host::OnlineResults& r) {
-    std::ostringstream out;
-    out.precision(6);
-    out << "{\"frames\": " << r.frames << ", \"frame_accuracy\": " << r.frame_accuracy << ", \"no_action_frames\": " << r.no_action_frames
-        << ", \"action_frame_accuracy\": " << r.action_frame_accuracy << ", \"no_action_accuracy\": " << r.no_action_accuracy
-        << ", \"segment_f1\": " << r.segment_f1
-        << ", \"segment_precision\": " << r.segment_precision << ", \"segment_recall\": " << r.segment_recall
-        << ", \"mean_delay_s\": " << r.mean_delay_s << ", \"missed_segments\": " << r.missed_segments
-        << ", \"flicker_per_min\": " << r.flicker_per_min << ", \"label_changes_per_min\": " << r.label_changes_per_min
-        << ", \"true_changes_per_min\": " << r.true_changes_per_min << "}";
-    return out.str();
-}
-
 void print_results(const host::ClipResults& r) {
     std::printf("  %-44s clip accuracy %.3f, unknown %.3f\n", r.method.c_str(), r.clip_accuracy, r.unknown_rate);
+}
+
+// Everything one evaluation run computes.
+struct Evaluation {
+    std::vector<host::LabelledClip> clips;
+    bool recordings = false;                  // the list names intervals of continuous recordings
+    std::vector<host::ClipResults> results;   // the model's first, then the baselines
+    std::vector<double> frame_ns;             // sorted
+    bool online = false;
+    host::OnlineReport online_report;
+};
+
+Evaluation evaluate(const ModelView& view, const std::string& clips_path, const std::string& train_path,
+                    const host::ReadOptions& read, bool online, std::uint32_t seed, const AnnotatorConfig& config) {
+    Evaluation e;
+    const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
+    e.recordings = host::has_intervals(entries);
+    e.clips = host::load_labelled_clips(entries, read);
+    e.results.push_back(host::evaluate_model(view, e.clips));
+    if (!train_path.empty()) {
+        const auto train = host::load_labelled_clips(train_path, read);
+        e.results.push_back(host::evaluate_all_strings(view, train, e.clips));
+        e.results.push_back(host::evaluate_pca_characters(view, train, e.clips));
+        e.results.push_back(host::evaluate_pose_dtw(view, train, e.clips));
+    }
+    e.frame_ns = host::annotator_frame_times(view, e.clips);
+    e.online = online;
+    if (online)
+        e.online_report = e.recordings
+                              ? host::evaluate_recordings(view, host::read_recordings(entries, read), config)
+                              : host::evaluate_online(view, e.clips, seed, config);
+    return e;
+}
+
+void print_evaluation(const Evaluation& e, const std::string& clips_path, std::uint32_t seed) {
+    const host::ClipResults& main = e.results.front();
+    std::printf("%s: %zu clips\n", clips_path.c_str(), e.clips.size());
+    for (const auto& r : e.results) print_results(r);
+    std::printf("\nper class (action strings):\n  %-32s %9s %7s\n", "label", "precision", "recall");
+    for (std::size_t l = 0; l < main.labels.size(); ++l)
+        std::printf("  %-32s %9.3f %7.3f\n", main.labels[l].c_str(), main.precision[l], main.recall[l]);
+    std::printf("\nconfusion (rows true, columns predicted in label order, last column unknown):\n");
+    for (std::size_t t = 0; t < main.confusion.size(); ++t) {
+        std::printf("  %-32s", main.labels[t].c_str());
+        for (int v : main.confusion[t]) std::printf(" %3d", v);
+        std::printf("\n");
+    }
+    if (e.online) {
+        const host::OnlineResults& stream = e.online_report.settled;
+        if (e.recordings)
+            std::printf("\nonline: %zu continuous recordings streamed whole, %zu frames, %.1f true label changes/min;\n"
+                        "%.3f of the frames are outside every interval (no action), so saying unknown everywhere scores that\n",
+                        e.online_report.streams.size(), stream.frames, stream.true_changes_per_min,
+                        stream.frames == 0 ? 0.0 : static_cast<double>(stream.no_action_frames) / static_cast<double>(stream.frames));
+        else
+            std::printf("\nonline: clips concatenated per subject (seed %u), %zu frames, %.1f true label changes/min\n", seed,
+                        stream.frames, stream.true_changes_per_min);
+        print_online("segmenter, settled labels", e.online_report.settled);
+        print_online("segmenter, live labels", e.online_report.live);
+        print_online("paper: latest window wins", e.online_report.window);
+    }
+    std::printf("\nannotator per frame (host build, HostCapacity, %zu frames): median %.0f ns, p99 %.0f ns, max %.0f ns\n",
+                e.frame_ns.size(), host::sorted_quantile(e.frame_ns, 0.5), host::sorted_quantile(e.frame_ns, 0.99),
+                host::sorted_quantile(e.frame_ns, 1.0));
+}
+
+// The model's results object, extended with the run's other figures.
+std::string evaluation_json(const Evaluation& e, const std::string& model_path, std::uint32_t seed,
+                            const AnnotatorConfig& config) {
+    host::JsonWriter out;
+    out.begin_object();
+    host::write_fields(out, e.results.front(), e.clips);
+    out.field("model", model_path);
+    out.key("frame_time_ns")
+        .begin_object()
+        .field("median", host::sorted_quantile(e.frame_ns, 0.5))
+        .field("p99", host::sorted_quantile(e.frame_ns, 0.99))
+        .field("max", host::sorted_quantile(e.frame_ns, 1.0))
+        .end_object();
+    out.key("baselines").begin_array();
+    for (std::size_t i = 1; i < e.results.size(); ++i) host::write_json(out, e.results[i], e.clips);
+    out.end_array();
+    if (e.online) {
+        out.field("frame_accuracy", e.online_report.settled.frame_accuracy);
+        out.key("online").begin_object();
+        out.field("streams", e.recordings ? "recordings" : "concatenated clips")
+            .field("seed", static_cast<long long>(seed))
+            .field("settle_delay_s", host::us_to_seconds(config.segmenter.settle_delay_us));
+        out.key("settled");
+        host::write_json(out, e.online_report.settled);
+        out.key("live");
+        host::write_json(out, e.online_report.live);
+        out.key("latest_window");
+        host::write_json(out, e.online_report.window);
+        out.end_object();
+    }
+    return out.end_object().str();
 }
 
 }  // namespace
@@ -102,95 +183,27 @@ int run_eval(int argc, char** argv) {
         else if (arg == "--online") online = true;
         else if (arg == "--seed") seed = static_cast<std::uint32_t>(args.number(arg, 0, 4294967295.0));
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
-        else if (!parse_segmenter_option(args, arg, config.segmenter)) {
-            if (arg == "--report") report_dir = args.value(arg);
-            else return args.unknown(arg);
-        }
+        else if (arg == "--report") report_dir = args.value(arg);
+        else if (!parse_segmenter_option(args, arg, config.segmenter)) return args.unknown(arg);
     }
     if (!args.ok()) return 2;
     if (model_path.empty() || clips_path.empty()) {
         print_eval_usage(stderr);
         return 2;
     }
-    try {
-        host::ModelData model = host::load_model(model_path);
+    return run_reporting_errors("eval", [&] {
+        const host::ModelData model = host::load_model(model_path);
         const ModelView view = model.view();
-        const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
-        const bool recordings = std::any_of(entries.begin(), entries.end(), [](const host::ClipListEntry& e) { return e.has_interval; });
-        const std::vector<host::LabelledClip> clips = load(entries, read);
-        std::vector<host::ClipResults> results{host::evaluate_model(view, clips)};
-        if (!train_path.empty()) {
-            const auto train = load(host::read_clip_list(train_path), read);
-            results.push_back(host::evaluate_all_strings(view, train, clips));
-            results.push_back(host::evaluate_pca_characters(view, train, clips));
-            results.push_back(host::evaluate_pose_dtw(view, train, clips));
-        }
-        const std::vector<double> frame_ns = host::annotator_frame_times(view, clips);
-        host::OnlineReport online_report;
-        if (online)
-            online_report = recordings ? host::evaluate_recordings(view, host::read_recordings(entries, read), config)
-                                       : host::evaluate_online(view, clips, seed, config);
-        const host::OnlineResults& stream = online_report.settled;
-        auto at = [&](double q) {
-            return frame_ns.empty() ? 0.0 : frame_ns[std::min(frame_ns.size() - 1, static_cast<std::size_t>(q * static_cast<double>(frame_ns.size())))];
-        };
-
-        const host::ClipResults& main = results.front();
-        std::printf("%s: %zu clips\n", clips_path.c_str(), clips.size());
-        for (const auto& r : results) print_results(r);
-        std::printf("\nper class (action strings):\n  %-32s %9s %7s\n", "label", "precision", "recall");
-        for (std::size_t l = 0; l < main.labels.size(); ++l)
-            std::printf("  %-32s %9.3f %7.3f\n", main.labels[l].c_str(), main.precision[l], main.recall[l]);
-        std::printf("\nconfusion (rows true, columns predicted in label order, last column unknown):\n");
-        for (std::size_t t = 0; t < main.confusion.size(); ++t) {
-            std::printf("  %-32s", main.labels[t].c_str());
-            for (int v : main.confusion[t]) std::printf(" %3d", v);
-            std::printf("\n");
-        }
-        if (online) {
-            if (recordings)
-                std::printf("\nonline: %zu continuous recordings streamed whole, %zu frames, %.1f true label changes/min;\n"
-                            "%.3f of the frames are outside every interval (no action), so saying unknown everywhere scores that\n",
-                            online_report.streams.size(), stream.frames, stream.true_changes_per_min,
-                            stream.frames == 0 ? 0.0 : static_cast<double>(stream.no_action_frames) / static_cast<double>(stream.frames));
-            else
-                std::printf("\nonline: clips concatenated per subject (seed %u), %zu frames, %.1f true label changes/min\n", seed,
-                            stream.frames, stream.true_changes_per_min);
-            print_online("segmenter, settled labels", online_report.settled);
-            print_online("segmenter, live labels", online_report.live);
-            print_online("paper: latest window wins", online_report.window);
-        }
-        std::printf("\nannotator per frame (host build, HostCapacity, %zu frames): median %.0f ns, p99 %.0f ns, max %.0f ns\n",
-                    frame_ns.size(), at(0.5), at(0.99), frame_ns.empty() ? 0.0 : frame_ns.back());
+        const Evaluation e = evaluate(view, clips_path, train_path, read, online, seed, config);
+        print_evaluation(e, clips_path, seed);
         if (!report_dir.empty()) {
-            host::write_report(report_dir, "Evaluation of " + model_path + " on " + clips_path, results, online ? &online_report : nullptr,
-                               std::vector<std::string>(view.label_names, view.label_names + view.label_count));
+            host::write_report(report_dir, "Evaluation of " + model_path + " on " + clips_path, e.results,
+                               online ? &e.online_report : nullptr, model.label_names.strings());
             std::printf("\nreport: %s/report.md\n", report_dir.c_str());
         }
-        if (!json_path.empty()) {
-            std::ofstream out(json_path);
-            std::string json = host::to_json(main, clips);
-            json.pop_back();  // extend the model's object with the rest
-            out << json << ", \"model\": " << host::json_string(model_path) << ", \"frame_time_ns\": {\"median\": " << at(0.5) << ", \"p99\": " << at(0.99)
-                << ", \"max\": " << (frame_ns.empty() ? 0.0 : frame_ns.back()) << "}, \"baselines\": [";
-            for (std::size_t i = 1; i < results.size(); ++i) out << (i > 1 ? ", " : "") << host::to_json(results[i], clips);
-            out << "]";
-            if (online)
-                out << ", \"frame_accuracy\": " << stream.frame_accuracy << ", \"online\": {\"streams\": " << (recordings ? "\"recordings\"" : "\"concatenated clips\"") << ", \"seed\": " << seed
-                    << ", \"settle_delay_s\": " << static_cast<double>(config.segmenter.settle_delay_us) * 1e-6
-                    << ", \"settled\": " << online_json(online_report.settled) << ", \"live\": " << online_json(online_report.live)
-                    << ", \"latest_window\": " << online_json(online_report.window) << "}";
-            out << "}\n";
-            if (!out) {
-                std::fprintf(stderr, "actionstring eval: cannot write %s\n", json_path.c_str());
-                return 1;
-            }
-        }
+        if (!json_path.empty()) host::write_file(json_path, evaluation_json(e, model_path, seed, config));
         return 0;
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "actionstring eval: %s\n", error.what());
-        return 1;
-    }
+    });
 }
 
 }  // namespace cli

@@ -4,8 +4,9 @@
 #include <limits>
 #include <string>
 
-#include "actionstring_host/readers.hpp"
 #include "commands.hpp"
+#include "io/formats.hpp"
+#include "io/text.hpp"
 #include "options.hpp"
 
 namespace actionstring {
@@ -55,7 +56,7 @@ int run_info(int argc, char** argv) {
         print_info_usage(stderr);
         return 2;
     }
-    try {
+    return run_reporting_errors("info", [&] {
         if (file.size() > 4 && file.compare(file.size() - 4, 4, ".asf") == 0) {
             const host::AsfSkeleton asf = host::parse_asf(file, host::read_file(file));
             std::printf("file:      %s\nformat:    ASF skeleton\nbones:     %zu (+ root)\nunits:     %.6g m per length unit, angles in %s\n",
@@ -100,10 +101,7 @@ int run_info(int argc, char** argv) {
                 std::printf("  %3zu %-28s parent %s\n", j, clip.joint_names[j].c_str(),
                             clip.parents.empty() ? "-" : name_of(clip.parents[j]).c_str());
         return 0;
-    } catch (const host::ReadError& error) {
-        std::fprintf(stderr, "actionstring info: %s\n", error.what());
-        return 1;
-    }
+    });
 }
 
 }  // namespace cli

@@ -3,13 +3,13 @@
 // train reads as cut clips and eval --online streams as whole recordings.
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
 #include <string>
 
-#include "actionstring_host/readers.hpp"
 #include "commands.hpp"
+#include "io/formats.hpp"
+#include "io/text.hpp"
 #include "options.hpp"
 
 namespace actionstring {
@@ -48,7 +48,7 @@ int run_interval_list(int argc, char** argv) {
         if (comma > from) subjects.insert(subjects_text.substr(from, comma - from));
         from = comma + 1;
     }
-    try {
+    return run_reporting_errors("interval-list", [&] {
         const auto sequences = host::parse_utkinect_labels(labels_path, host::read_file(labels_path));
         // Absolute, so the list reads the same wherever it is written.
         const std::string folder = std::filesystem::absolute(labels_path).parent_path().string() + "/";
@@ -75,15 +75,10 @@ int run_interval_list(int argc, char** argv) {
         for (const std::string& subject : subjects)
             if (seen.count(subject) == 0) return args.error("no sequence of subject '" + subject + "' in " + labels_path);
         if (written == 0) return args.error("no labelled interval to write");
-        std::ofstream out(out_path);
-        out << list.str();
-        if (!out) return args.error("cannot write " + out_path);
+        host::write_file(out_path, list.str());
         std::printf("%s: %zu intervals\n", out_path.c_str(), written);
         return 0;
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "actionstring interval-list: %s\n", error.what());
-        return 1;
-    }
+    });
 }
 
 }  // namespace cli

@@ -6,13 +6,42 @@
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "actionstring/segmenter.hpp"
-#include "actionstring_host/clip.hpp"
+#include "io/clip.hpp"
 
 namespace actionstring {
 namespace cli {
+
+/// The whole of `text` as a number in [low, high], or nothing.
+inline std::optional<double> parse_real(const std::string& text, double low, double high) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || end == text.c_str() || *end != '\0' || !(v >= low && v <= high)) return std::nullopt;
+    return v;
+}
+
+/// "[low, high]" as the messages print a range.
+inline std::string range_text(double low, double high) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "[%g, %g]", low, high);
+    return buffer;
+}
+
+/// Runs a command's body; an exception becomes "actionstring CMD: what" on
+/// stderr and exit status 1.
+template <class Body>
+int run_reporting_errors(const char* command, Body body) {
+    try {
+        return body();
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "actionstring %s: %s\n", command, error.what());
+        return 1;
+    }
+}
 
 /// Walks argv of one subcommand and reports mistakes as "actionstring CMD: …".
 class ArgumentReader {
@@ -29,14 +58,13 @@ public:
     }
     double number(const std::string& option, double low, double high) {
         const std::string text = value(option);
-        if (!ok_) return 0;
-        char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
-        if (end == text.c_str() || *end != '\0' || !(v >= low && v <= high)) {
-            error("option " + option + " expects a number in [" + trimmed(low) + ", " + trimmed(high) + "], got '" + text + "'");
-            return 0;
-        }
-        return v;
+        return ok_ ? number_of(option, text, low, high) : 0.0;
+    }
+    /// `text`, the value of `option` (from the command line or a config file), as a number in [low, high].
+    double number_of(const std::string& option, const std::string& text, double low, double high) {
+        const std::optional<double> v = parse_real(text, low, high);
+        if (!v) error("option " + option + " expects a number in " + range_text(low, high) + ", got '" + text + "'");
+        return v.value_or(0.0);
     }
     int error(const std::string& message) {
         std::fprintf(stderr, "actionstring %s: %s\n", command_, message.c_str());
@@ -47,11 +75,6 @@ public:
     bool ok() const { return ok_; }
 
 private:
-    static std::string trimmed(double v) {
-        char buffer[32];
-        std::snprintf(buffer, sizeof buffer, "%g", v);
-        return buffer;
-    }
     const char* command_;
     int argc_;
     char** argv_;

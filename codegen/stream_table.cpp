@@ -2,13 +2,13 @@
 // tables, for the firmware replay and its host twin (port/firmware).
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <string>
 #include <vector>
 
-#include "actionstring_host/artifact.hpp"
-#include "actionstring_host/readers.hpp"
 #include "commands.hpp"
+#include "io/clip_list.hpp"
+#include "io/stream.hpp"
+#include "io/text.hpp"
 #include "options.hpp"
 
 namespace actionstring {
@@ -46,7 +46,7 @@ int run_stream_table(int argc, char** argv) {
     }
     if (!args.ok()) return 2;
     if (list_path.empty() || out_path.empty()) return args.error("usage: actionstring stream-table --clips LIST --out HEADER (see --help)");
-    try {
+    return run_reporting_errors("stream-table", [&] {
         const auto entries = host::read_clip_list(list_path);
         const auto begin = static_cast<std::size_t>(first);
         const auto step = static_cast<std::size_t>(stride);
@@ -65,19 +65,10 @@ int run_stream_table(int argc, char** argv) {
                       list_path.substr(list_path.find_last_of('/') + 1).c_str(), begin, picked.size(), step, max_seconds);
         const std::string text =
             as_text ? host::generate_stream_text(segments) : host::generate_stream_header(segments, ns, described);
-        std::ofstream out(out_path, std::ios::binary);
-        out << text;
-        out.close();
-        if (!out) {
-            std::fprintf(stderr, "actionstring stream-table: cannot write %s\n", out_path.c_str());
-            return 1;
-        }
+        host::write_file(out_path, text);
         std::fprintf(stderr, "actionstring stream-table: %zu clips, %zu bytes -> %s\n", picked.size(), text.size(), out_path.c_str());
         return 0;
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "actionstring stream-table: %s\n", error.what());
-        return 1;
-    }
+    });
 }
 
 }  // namespace cli

@@ -1,19 +1,18 @@
-// `actionstring train` and `actionstring codegen`.
-#include <algorithm>
-#include <cctype>
+// `actionstring train`: a model from a clip list (settings, config files, sweeps).
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <map>
-#include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "actionstring_host/artifact.hpp"
-#include "actionstring_host/readers.hpp"
-#include "actionstring_host/training.hpp"
 #include "commands.hpp"
+#include "common/json.hpp"
+#include "io/clip_list.hpp"
+#include "io/text.hpp"
+#include "model/artifact.hpp"
 #include "options.hpp"
+#include "run/classify.hpp"
+#include "train/pipeline.hpp"
 
 namespace actionstring {
 namespace cli {
@@ -23,7 +22,7 @@ void print_train_usage(std::FILE* out) {
     const host::TrainingOptions d;
     std::fprintf(out,
                  "usage: actionstring train --clips LIST --out MODEL [options] [--config FILE]\n"
-                 "                          [--validate LIST] [--sweep]\n"
+                 "                          [--validate LIST] [--sweep] [--json FILE]\n"
                  "\n"
                  "Trains a model from a clip list (TSV: path label subject [skeleton]) and writes\n"
                  "the checksummed model artifact. Options (defaults in brackets):\n"
@@ -52,6 +51,7 @@ void print_train_usage(std::FILE* out) {
                  "  --roles R,L,R           root, left hip, right hip joint names\n"
                  "  --config FILE           'option value' lines, same names without dashes\n"
                  "  --validate LIST         report clip accuracy on LIST after training\n"
+                 "  --json FILE             write the training report (sizes, stage times) as JSON\n"
                  "  --sweep                 with --validate: vary one setting at a time around the\n"
                  "                          given ones and print a table (choose on validation data)\n",
                  d.components, d.covariance_floor, d.pca_dim, d.feature_rate_hz, d.em_max_iterations, d.em_tolerance, d.em_restarts,
@@ -61,15 +61,7 @@ void print_train_usage(std::FILE* out) {
 
 bool apply(ArgumentReader& args, const std::string& name, const std::string& value, host::TrainingOptions& o,
            host::ReadOptions& read) {
-    auto number = [&](double low, double high) {
-        char* end = nullptr;
-        const double v = std::strtod(value.c_str(), &end);
-        if (end == value.c_str() || *end != '\0' || !(v >= low && v <= high)) {
-            args.error("--" + name + " expects a number in [" + std::to_string(low) + ", " + std::to_string(high) + "], got '" + value + "'");
-            return 0.0;
-        }
-        return v;
-    };
+    auto number = [&](double low, double high) { return args.number_of("--" + name, value, low, high); };
     auto choice = [&](std::initializer_list<const char*> names) {
         int i = 0;
         for (const char* n : names) {
@@ -106,26 +98,54 @@ bool apply(ArgumentReader& args, const std::string& name, const std::string& val
     return true;
 }
 
-std::vector<host::LabelledClip> load_list(const std::string& path, const host::ReadOptions& read) {
-    std::vector<host::LabelledClip> clips;
-    for (const host::ClipListEntry& entry : host::read_clip_list(path))
-        clips.push_back({host::read_clip(entry, read), entry.label, entry.subject});
-    return clips;
-}
-
-std::size_t table_bytes(const host::ModelData& m) {
-    return 4 * (m.projection_mean.size() + m.projection_matrix.size() + m.gmm_means.size() + m.gmm_factors.size() +
-                m.gmm_log_normalizers.size() + m.gmm_log_weights.size() + m.node_centroids.size() + m.character_distances.size() +
-                m.representative_offsets.size()) +
-           2 * (m.pose_joints.size() + m.node_children.size() + m.node_characters.size() + m.representative_chars.size() +
-                m.representative_labels.size());
-}
-
 const char* variant_name(MatchVariant v) {
     return v == MatchVariant::paper ? "paper" : v == MatchVariant::whole ? "whole" : "subsequence";
 }
 const char* normalization_name(LengthNormalization n) {
     return n == LengthNormalization::none ? "none" : n == LengthNormalization::path ? "path" : "query";
+}
+
+// A config file: 'setting value' lines with the option names without dashes; # comments.
+bool read_config(ArgumentReader& args, const std::string& path, host::TrainingOptions& options, host::ReadOptions& read) {
+    const std::string text = host::read_file(path);
+    host::LineScanner scanner(path, text);
+    std::string_view line;
+    while (scanner.next_content(line, '#')) {
+        const std::vector<std::string_view> words = host::split_words(line);
+        const std::string name(words[0]), value(words.size() > 1 ? words[1] : std::string_view());
+        if (!apply(args, name, value, options, read)) {
+            args.error(path + ":" + std::to_string(scanner.line_number()) + ": unknown setting '" + name + "'");
+            return false;
+        }
+        if (!args.ok()) return false;
+    }
+    return true;
+}
+
+// The training run as JSON: the model's sizes, what each stage saw and took.
+std::string training_json(const std::string& model_path, const ModelView& view, const host::TrainingReport& report) {
+    host::JsonWriter out;
+    out.begin_object()
+        .field("model", model_path)
+        .field("frames_read", report.frames_read)
+        .field("frames_rejected", report.frames_rejected)
+        .field("feature_samples", report.feature_samples)
+        .field("components", static_cast<int>(view.component_count))
+        .field("em_iterations", report.em.objective.size())
+        .field("em_converged", report.em.converged)
+        .field("characters", report.characters)
+        .field("strings", report.strings)
+        .field("representatives", report.representatives)
+        .field("representative_chars", static_cast<unsigned long>(view.total_representative_chars()))
+        .field("table_bytes", host::table_bytes(view));
+    out.key("stage_seconds").begin_object();
+    double total = 0;
+    for (const auto& stage : report.stage_seconds) {
+        out.field(stage.first, stage.second);
+        total += stage.second;
+    }
+    out.field("total", total).end_object();
+    return out.end_object().str();
 }
 
 int run_sweep(const std::vector<host::LabelledClip>& train, const std::vector<host::LabelledClip>& validation,
@@ -179,7 +199,7 @@ int run_sweep(const std::vector<host::LabelledClip>& train, const std::vector<ho
 int run_train(int argc, char** argv) {
     host::TrainingOptions options;
     host::ReadOptions read;
-    std::string clips_path, out_path, validate_path;
+    std::string clips_path, out_path, validate_path, json_path;
     bool sweep = false;
     ArgumentReader args("train", argc, argv);
     while (args.more()) {
@@ -191,23 +211,11 @@ int run_train(int argc, char** argv) {
         if (arg == "--clips") clips_path = args.value(arg);
         else if (arg == "--out") out_path = args.value(arg);
         else if (arg == "--validate") validate_path = args.value(arg);
+        else if (arg == "--json") json_path = args.value(arg);
         else if (arg == "--sweep") sweep = true;
         else if (arg == "--keep-singletons") options.keep_singletons = true;
         else if (arg == "--config") {
-            const std::string path = args.value(arg);
-            std::ifstream in(path);
-            if (!in) return args.error("cannot open config file '" + path + "'");
-            std::string line;
-            int number = 0;
-            while (std::getline(in, line)) {
-                ++number;
-                std::istringstream words(line);
-                std::string name, value;
-                if (!(words >> name) || name[0] == '#') continue;
-                words >> value;
-                if (!apply(args, name, value, options, read))
-                    return args.error(path + ":" + std::to_string(number) + ": unknown setting '" + name + "'");
-            }
+            if (!read_config(args, args.value(arg), options, read)) return 2;
         } else if (arg.rfind("--", 0) == 0 && arg != "--") {
             const std::string name = arg.substr(2);
             const std::string value = args.value(arg);
@@ -223,11 +231,11 @@ int run_train(int argc, char** argv) {
         return 2;
     }
     if (sweep && validate_path.empty()) return args.error("--sweep needs --validate LIST");
-    try {
+    return run_reporting_errors("train", [&] {
         std::fprintf(stderr, "train: reading %s\n", clips_path.c_str());
-        const auto train = load_list(clips_path, read);
+        const auto train = host::load_labelled_clips(clips_path, read);
         std::vector<host::LabelledClip> validation;
-        if (!validate_path.empty()) validation = load_list(validate_path, read);
+        if (!validate_path.empty()) validation = host::load_labelled_clips(validate_path, read);
         if (sweep) return run_sweep(train, validation, options);
         auto stage_start = std::chrono::steady_clock::now();
         options.progress = [&](const char* stage) {
@@ -261,7 +269,7 @@ int run_train(int argc, char** argv) {
         for (std::size_t l = 0; l < model.label_names.size(); ++l)
             std::printf("  %-32s %d%s\n", model.label_names[l].c_str(), report.representatives_per_label[l],
                         report.representatives_per_label[l] == 0 ? "   <- no representative: this class cannot be recognised" : "");
-        std::printf("tables:           %zu bytes\n", table_bytes(model));
+        std::printf("tables:           %zu bytes\n", host::table_bytes(view));
         double total = 0;
         for (const auto& stage : report.stage_seconds) {
             std::printf("  %-30s %7.2f s\n", stage.first.c_str(), stage.second);
@@ -271,52 +279,9 @@ int run_train(int argc, char** argv) {
         if (!validation.empty())
             std::printf("validation:       clip accuracy %.3f on %zu clips (%s)\n", host::clip_accuracy(view, validation),
                         validation.size(), validate_path.c_str());
+        if (!json_path.empty()) host::write_file(json_path, training_json(out_path, view, report));
         return 0;
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "actionstring train: %s\n", error.what());
-        return 1;
-    }
-}
-
-int run_codegen(int argc, char** argv) {
-    std::string model_path, out_path, ns = "actionstring_model";
-    ArgumentReader args("codegen", argc, argv);
-    while (args.more()) {
-        const std::string arg = args.next();
-        if (arg == "--help" || arg == "-h") {
-            std::printf("usage: actionstring codegen MODEL --out HEADER [--namespace NS]\n\n"
-                        "Writes a C++17 header of constexpr tables for MODEL: NS::kModel (a ModelView),\n"
-                        "NS::ModelCapacity (a Capacity that fits it exactly) and NS::kModelChecksum, under a\n"
-                        "DO-NOT-EDIT banner carrying the artifact's checksum. [namespace: actionstring_model]\n");
-            return 0;
-        }
-        if (arg == "--out") out_path = args.value(arg);
-        else if (arg == "--namespace") ns = args.value(arg);
-        else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
-        else if (model_path.empty()) model_path = arg;
-        else return args.error("more than one MODEL given");
-    }
-    if (!args.ok()) return 2;
-    if (model_path.empty() || out_path.empty()) return args.error("usage: actionstring codegen MODEL --out HEADER [--namespace NS]");
-    if (ns.empty() || !(std::isalpha(static_cast<unsigned char>(ns[0])) || ns[0] == '_') ||
-        !std::all_of(ns.begin(), ns.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ':'; }))
-        return args.error("--namespace must be a C++ identifier (or a::b)");
-    try {
-        const std::string text = host::read_file(model_path);
-        host::ModelData model = host::parse_model(model_path, text);
-        const std::size_t slash = model_path.find_last_of('/');
-        const std::string header =
-            host::generate_header(model, host::artifact_checksum(text), ns, slash == std::string::npos ? model_path : model_path.substr(slash + 1));
-        std::ofstream out(out_path, std::ios::binary);
-        if (!out || !(out << header)) {
-            std::fprintf(stderr, "actionstring codegen: cannot write %s\n", out_path.c_str());
-            return 1;
-        }
-        return 0;
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "actionstring codegen: %s\n", error.what());
-        return 1;
-    }
+    });
 }
 
 }  // namespace cli

@@ -1542,7 +1542,18 @@ constexpr ::actionstring::ModelView make_model() {
 /// The model. Its tables have static storage: any state object may point at it for ever.
 inline constexpr ::actionstring::ModelView kModel = make_model();
 
+/// Limits that fit this model exactly.
+struct ModelLimits : ::actionstring::DefaultLimits {
+    static constexpr std::size_t joints = 31;
+    static constexpr std::size_t pose_joints = 30;
+    static constexpr std::size_t feature_dim = 24;
+    static constexpr std::size_t components = 20;
+    static constexpr std::size_t representatives = 22;
+    static constexpr std::size_t representative_chars = 701;
+    static constexpr std::size_t windows = 4;
+    static constexpr bool path_lengths = false;
+};
 /// Capacity that fits this model exactly.
-using ModelCapacity = ::actionstring::Capacity<31, 30, 24, 20, 22, 701, 4, false>;
+using ModelCapacity = ::actionstring::Capacity<ModelLimits>;
 
 }  // namespace actionstring_hdm05

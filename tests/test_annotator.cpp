@@ -9,13 +9,22 @@
 
 #include "actionstring/annotator.hpp"
 #include "actionstring/string_distance.hpp"
-#include "actionstring_host/toy.hpp"
+#include "toy/toy.hpp"
 
 using namespace actionstring;
 
 namespace {
 
-using Cap = Capacity<8, 8, 24, 16, 16, 256, 8>;
+struct TestLimits : DefaultLimits {
+    static constexpr std::size_t joints = 8;
+    static constexpr std::size_t pose_joints = 8;
+    static constexpr std::size_t feature_dim = 24;
+    static constexpr std::size_t components = 16;
+    static constexpr std::size_t representatives = 16;
+    static constexpr std::size_t representative_chars = 256;
+    static constexpr std::size_t windows = 8;
+};
+using Cap = Capacity<TestLimits>;
 
 struct Fixture {
     host::ToyWorld world;

@@ -4,8 +4,13 @@
 #include <algorithm>
 #include <string>
 
-#include "actionstring_host/evaluation.hpp"
-#include "actionstring_host/toy.hpp"
+#include "eval/baselines.hpp"
+#include "eval/clip_eval.hpp"
+#include "eval/json.hpp"
+#include "eval/online.hpp"
+#include "run/stream_labels.hpp"
+#include "toy/toy.hpp"
+#include "train/pipeline.hpp"
 
 using namespace actionstring;
 using namespace actionstring::host;
@@ -23,7 +28,9 @@ TEST_CASE("accuracy, unknown rate, confusion, precision and recall") {
     CHECK(r.confusion == std::vector<std::vector<int>>{{1, 1, 0}, {0, 1, 1}});
     CHECK(r.precision == std::vector<double>{1.0, 0.5});
     CHECK(r.recall == std::vector<double>{0.5, 0.5});
-    const std::string json = to_json(r, clips);
+    JsonWriter writer;
+    write_json(writer, r, clips);
+    const std::string json = writer.str();
     CHECK(json.find("\"clip_accuracy\": 0.5") != std::string::npos);
     CHECK(json.find("\"confusion\": [[1, 1, 0], [0, 1, 1]]") != std::string::npos);
     CHECK(json.find("\"b\": {\"precision\": 0.5, \"recall\": 0.5, \"support\": 2}") != std::string::npos);

@@ -11,7 +11,7 @@
 #include "actionstring/gmm.hpp"
 #include "actionstring/normalize.hpp"
 #include "actionstring/projection.hpp"
-#include "actionstring_host/model_data.hpp"
+#include "model/model_data.hpp"
 
 using namespace actionstring;
 

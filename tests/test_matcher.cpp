@@ -14,8 +14,23 @@ using namespace actionstring;
 
 namespace {
 
-using MatcherCap = Capacity<1, 1, 1, 1, 8, 512, 64>;
-using NoPathCap = Capacity<1, 1, 1, 1, 8, 512, 64, false>;
+struct MatcherLimits : DefaultLimits {
+    static constexpr std::size_t joints = 1;
+    static constexpr std::size_t pose_joints = 1;
+    static constexpr std::size_t feature_dim = 1;
+    static constexpr std::size_t components = 1;
+    static constexpr std::size_t representatives = 8;
+    static constexpr std::size_t representative_chars = 512;
+    static constexpr std::size_t windows = 64;
+};
+struct NoPathLimits : MatcherLimits {
+    static constexpr bool path_lengths = false;
+};
+struct FewWindowLimits : MatcherLimits {
+    static constexpr std::size_t windows = 32;
+};
+using MatcherCap = Capacity<MatcherLimits>;
+using NoPathCap = Capacity<NoPathLimits>;
 
 // Owns the matching tables of a random model.
 struct RandomMatching {
@@ -149,7 +164,7 @@ TEST_CASE("matcher refuses models it cannot hold") {
     CHECK(no_paths.init(m.view) == Status::model_exceeds_capacity);  // path lengths not tracked
     m.view.window_chars = 64;
     m.view.step_chars = 1;  // 64 windows open at once
-    WindowMatcher<Capacity<1, 1, 1, 1, 8, 512, 32>> few_windows;
+    WindowMatcher<Capacity<FewWindowLimits>> few_windows;
     CHECK(few_windows.init(m.view) == Status::model_exceeds_capacity);
     CHECK_FALSE(few_windows.push(0));  // unusable after a failed init, and says so by doing nothing
     m.view.step_chars = 0;

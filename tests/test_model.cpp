@@ -5,12 +5,40 @@
 #include <limits>
 
 #include "actionstring/annotator.hpp"
-#include "actionstring_host/toy.hpp"
+#include "toy/toy.hpp"
 
 using namespace actionstring;
 
 namespace {
-using Cap = Capacity<8, 8, 24, 16, 16, 256, 8>;
+struct TestLimits : DefaultLimits {
+    static constexpr std::size_t joints = 8;
+    static constexpr std::size_t pose_joints = 8;
+    static constexpr std::size_t feature_dim = 24;
+    static constexpr std::size_t components = 16;
+    static constexpr std::size_t representatives = 16;
+    static constexpr std::size_t representative_chars = 256;
+    static constexpr std::size_t windows = 8;
+};
+using Cap = Capacity<TestLimits>;
+// One bound too small each.
+struct FewJoints : TestLimits {
+    static constexpr std::size_t joints = 4;
+};
+struct FewComponents : TestLimits {
+    static constexpr std::size_t components = 4;
+};
+struct FewRepresentatives : TestLimits {
+    static constexpr std::size_t representatives = 2;
+};
+struct FewRepresentativeChars : TestLimits {
+    static constexpr std::size_t representative_chars = 50;
+};
+struct FewWindows : TestLimits {
+    static constexpr std::size_t windows = 2;
+};
+struct EnoughWindows : TestLimits {
+    static constexpr std::size_t windows = 4;
+};
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 }  // namespace
 
@@ -69,12 +97,12 @@ TEST_CASE("each kind of corruption is refused") {
 TEST_CASE("a model larger than the capacity is refused") {
     host::ToyWorld world = host::make_toy_world();
     const ModelView view = world.model.view();
-    CHECK(Annotator<Capacity<4, 8, 24, 16, 16, 256, 8>>{}.init(view) == Status::model_exceeds_capacity);  // joints
-    CHECK(Annotator<Capacity<8, 8, 24, 4, 16, 256, 8>>{}.init(view) == Status::model_exceeds_capacity);   // J
-    CHECK(Annotator<Capacity<8, 8, 24, 16, 2, 256, 8>>{}.init(view) == Status::model_exceeds_capacity);   // R
-    CHECK(Annotator<Capacity<8, 8, 24, 16, 16, 50, 8>>{}.init(view) == Status::model_exceeds_capacity);   // chars
-    CHECK(Annotator<Capacity<8, 8, 24, 16, 16, 256, 2>>{}.init(view) == Status::model_exceeds_capacity);  // windows
-    CHECK(Annotator<Capacity<8, 8, 24, 16, 16, 256, 4>>{}.init(view) == Status::ok);
+    CHECK(Annotator<Capacity<FewJoints>>{}.init(view) == Status::model_exceeds_capacity);
+    CHECK(Annotator<Capacity<FewComponents>>{}.init(view) == Status::model_exceeds_capacity);
+    CHECK(Annotator<Capacity<FewRepresentatives>>{}.init(view) == Status::model_exceeds_capacity);
+    CHECK(Annotator<Capacity<FewRepresentativeChars>>{}.init(view) == Status::model_exceeds_capacity);
+    CHECK(Annotator<Capacity<FewWindows>>{}.init(view) == Status::model_exceeds_capacity);
+    CHECK(Annotator<Capacity<EnoughWindows>>{}.init(view) == Status::ok);
 }
 
 TEST_CASE("the annotator refuses a maximum gap shorter than the string period") {

@@ -30,7 +30,7 @@ void note_eigen_violation() { ++g_eigen_violations; }
 #include <vector>
 
 #include "actionstring/actionstring.hpp"
-#include "actionstring_host/toy.hpp"
+#include "toy/toy.hpp"
 
 extern "C" {
 void* __libc_malloc(std::size_t);
@@ -101,8 +101,18 @@ TEST_CASE("the tripwires fire") {
     CHECK(snapshot().eigen > before.eigen);
 }
 
+struct NoAllocLimits : actionstring::DefaultLimits {
+    static constexpr std::size_t joints = 8;
+    static constexpr std::size_t pose_joints = 8;
+    static constexpr std::size_t feature_dim = 24;
+    static constexpr std::size_t components = 16;
+    static constexpr std::size_t representatives = 16;
+    static constexpr std::size_t representative_chars = 256;
+    static constexpr std::size_t windows = 8;
+};
+
 TEST_CASE("streaming thousands of frames through the annotator allocates nothing") {
-    using Cap = actionstring::Capacity<8, 8, 24, 16, 16, 256, 8>;
+    using Cap = actionstring::Capacity<NoAllocLimits>;
     for (const auto covariance : {actionstring::Covariance::full, actionstring::Covariance::diagonal}) {
         actionstring::host::ToyOptions options;
         options.covariance = covariance;

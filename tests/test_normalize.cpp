@@ -9,7 +9,7 @@
 
 #include "actionstring/gmm.hpp"
 #include "actionstring/normalize.hpp"
-#include "actionstring_host/toy.hpp"
+#include "toy/toy.hpp"
 
 using namespace actionstring;
 

@@ -11,7 +11,9 @@
 
 #include <Eigen/Geometry>
 
-#include "actionstring_host/readers.hpp"
+#include "io/clip_list.hpp"
+#include "io/formats.hpp"
+#include "io/text.hpp"
 
 using namespace actionstring::host;
 

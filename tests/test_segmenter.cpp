@@ -15,7 +15,29 @@ using namespace actionstring;
 
 namespace {
 
-using SegmenterCap = Capacity<1, 1, 1, 1, 8, 512, 1, false, 40>;
+struct SegmenterLimits : DefaultLimits {
+    static constexpr std::size_t joints = 1;
+    static constexpr std::size_t pose_joints = 1;
+    static constexpr std::size_t feature_dim = 1;
+    static constexpr std::size_t components = 1;
+    static constexpr std::size_t representatives = 8;
+    static constexpr std::size_t representative_chars = 512;
+    static constexpr std::size_t windows = 1;
+    static constexpr bool path_lengths = false;
+    static constexpr std::size_t settle_chars = 40;
+};
+struct TinyLimits : DefaultLimits {
+    static constexpr std::size_t joints = 1;
+    static constexpr std::size_t pose_joints = 1;
+    static constexpr std::size_t feature_dim = 1;
+    static constexpr std::size_t components = 1;
+    static constexpr std::size_t representatives = 1;
+    static constexpr std::size_t representative_chars = 4;
+    static constexpr std::size_t windows = 1;
+    static constexpr bool path_lengths = false;
+    static constexpr std::size_t settle_chars = 8;
+};
+using SegmenterCap = Capacity<SegmenterLimits>;
 
 // Matching tables of a small model whose W holds multiples of 1/4, so every
 // sum is exact and the reference and the incremental state agree bit for bit.
@@ -272,7 +294,7 @@ TEST_CASE("segmenter refuses bad settings and models it cannot hold") {
     ModelView no_period = t.view;
     no_period.string_period_us = 0;
     CHECK(segmenter->init(no_period) == Status::invalid_model);
-    using Tiny = Capacity<1, 1, 1, 1, 1, 4, 1, false, 8>;
+    using Tiny = Capacity<TinyLimits>;
     auto tiny = std::make_unique<ActionSegmenter<Tiny>>();
     CHECK(tiny->init(t.view) != Status::ok);
     // A character the model does not have is ignored.

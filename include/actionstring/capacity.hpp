@@ -1,8 +1,9 @@
 // actionstring — compile-time capacities of the state objects.
 //
-// Every state object sizes its storage from a Capacity at compile time. A
-// generated model header emits a Capacity that fits its model exactly; host
-// tools use a generous one and load any model that fits.
+// Every state object sizes its storage from a Capacity at compile time, built
+// from a limits type whose members name each bound. A generated model header
+// emits one that fits its model exactly; host tools use a generous one and
+// load any model that fits.
 #pragma once
 
 #include <cstddef>
@@ -11,43 +12,60 @@
 
 namespace actionstring {
 
-/// Upper bounds on model sizes, fixed at compile time.
-/// @tparam Joints              joints per input frame
-/// @tparam PoseJoints          joints in the pose vector (D = 3 × PoseJoints)
-/// @tparam FeatureDim          d after projection (≤ 3 × PoseJoints)
-/// @tparam Components          J, GMM components
-/// @tparam Representatives     R, representative strings
-/// @tparam RepresentativeChars total characters over all representatives
-/// @tparam Windows             sliding windows open at once (≥ ceil(window / step));
-///                             0 leaves the paper's window rule out of the Annotator
-/// @tparam PathLengths         whether the state can track warping-path lengths
-///                             (needed only for LengthNormalization::path)
-/// @tparam SettleChars         longest settle delay of the segmenter, in characters
-template <std::size_t Joints, std::size_t PoseJoints, std::size_t FeatureDim,
-          std::size_t Components, std::size_t Representatives,
-          std::size_t RepresentativeChars, std::size_t Windows, bool PathLengths = true,
-          std::size_t SettleChars = 48>
+/// Defaults for the optional members of a limits type. Derive a limits type
+/// from it and name every size the state objects need, each a
+/// `static constexpr` member:
+///
+///     struct MyLimits : actionstring::DefaultLimits {
+///         static constexpr std::size_t joints = 31;        // joints per input frame
+///         static constexpr std::size_t pose_joints = 30;   // joints in the pose vector (D = 3 × this)
+///         static constexpr std::size_t feature_dim = 24;   // d after projection (≤ 3 × pose_joints)
+///         static constexpr std::size_t components = 20;    // J, GMM components (1 for a model without a GMM)
+///         static constexpr std::size_t representatives = 22;        // R, representative strings
+///         static constexpr std::size_t representative_chars = 701;  // characters over all representatives
+///     };
+///     using MyCapacity = actionstring::Capacity<MyLimits>;
+///
+/// A generated model header emits such a type (ModelLimits) that fits its model exactly.
+struct DefaultLimits {
+    /// Sliding windows open at once (≥ ceil(window / step)); 0 leaves the
+    /// paper's window rule out of the Annotator, and its state with it.
+    static constexpr std::size_t windows = 0;
+    /// Whether the state can track warping-path lengths (needed only for
+    /// LengthNormalization::path).
+    static constexpr bool path_lengths = true;
+    /// Longest settle delay of the segmenter, in characters.
+    static constexpr std::size_t settle_chars = 48;
+};
+
+/// Upper bounds on model sizes, fixed at compile time, read from the named
+/// members of `Limits` (see DefaultLimits). Every state object sizes its
+/// storage from one.
+template <class Limits>
 struct Capacity {
-    static_assert(Joints > 0 && PoseJoints > 0 && FeatureDim > 0 && Components > 0 &&
-                      Representatives > 0 && RepresentativeChars > 0,
+    static_assert(Limits::joints > 0 && Limits::pose_joints > 0 && Limits::feature_dim > 0 &&
+                      Limits::components > 0 && Limits::representatives > 0 && Limits::representative_chars > 0,
                   "every capacity must be positive");
-    static constexpr std::size_t max_joints = Joints;
-    static constexpr std::size_t max_pose_dim = 3 * PoseJoints;
-    static constexpr std::size_t max_feature_dim = FeatureDim;
-    static constexpr std::size_t max_components = Components;
-    static constexpr std::size_t max_representatives = Representatives;
-    static constexpr std::size_t max_representative_chars = RepresentativeChars;
-    static constexpr std::size_t max_windows = Windows;
-    static constexpr bool path_lengths = PathLengths;
-    static constexpr std::size_t max_settle_chars = SettleChars;
+    using limits = Limits;
+    static constexpr std::size_t max_joints = Limits::joints;
+    static constexpr std::size_t max_pose_dim = 3 * Limits::pose_joints;
+    static constexpr std::size_t max_feature_dim = Limits::feature_dim;
+    static constexpr std::size_t max_components = Limits::components;
+    static constexpr std::size_t max_representatives = Limits::representatives;
+    static constexpr std::size_t max_representative_chars = Limits::representative_chars;
+    static constexpr std::size_t max_windows = Limits::windows;
+    static constexpr bool path_lengths = Limits::path_lengths;
+    static constexpr std::size_t max_settle_chars = Limits::settle_chars;
     /// Whether the Annotator runs the paper's sliding-window rule.
-    static constexpr bool has_windows = Windows > 0;
+    static constexpr bool has_windows = max_windows > 0;
     /// The same bounds without the window rule: the segmenter alone labels the
     /// stream, and the window matcher's state (the largest part) is not paid for.
-    using without_windows = Capacity<Joints, PoseJoints, FeatureDim, Components, Representatives,
-                                     RepresentativeChars, 0, PathLengths, SettleChars>;
+    struct LimitsWithoutWindows : Limits {
+        static constexpr std::size_t windows = 0;
+    };
+    using without_windows = Capacity<LimitsWithoutWindows>;
     /// DP cells one window keeps: one row or column of length(rep) + 1 per representative.
-    static constexpr std::size_t cells_per_window = RepresentativeChars + Representatives;
+    static constexpr std::size_t cells_per_window = max_representative_chars + max_representatives;
 
     /// True when the feature tables fit (what a StringEncoder needs).
     static constexpr bool fits_features(const ModelView& m) noexcept {
@@ -69,6 +87,15 @@ struct Capacity {
 
 /// Bounds for host tools: Kinect v2 and ASF skeletons, J ≤ 64, up to 512
 /// representatives of 64 characters on average, windows up to 8 steps long.
-using HostCapacity = Capacity<32, 32, 96, 64, 512, 32768, 8>;
+struct HostLimits : DefaultLimits {
+    static constexpr std::size_t joints = 32;
+    static constexpr std::size_t pose_joints = 32;
+    static constexpr std::size_t feature_dim = 96;
+    static constexpr std::size_t components = 64;
+    static constexpr std::size_t representatives = 512;
+    static constexpr std::size_t representative_chars = 32768;
+    static constexpr std::size_t windows = 8;
+};
+using HostCapacity = Capacity<HostLimits>;
 
 }  // namespace actionstring

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "actionstring/detail/math.hpp"
+#include "actionstring/model_schema.hpp"
 #include "actionstring/status.hpp"
 
 namespace actionstring {
@@ -54,66 +55,21 @@ enum class ScaleMode : std::uint8_t {
 /// Non-owning view of a trained model. All pointers refer to storage that must
 /// outlive every state object initialised from this view (a generated header's
 /// `constexpr` arrays live forever; a host artifact must outlive its users).
+///
+/// Its fields are those of ACTIONSTRING_MODEL_FIELDS (model_schema.hpp), in
+/// that order: scalars by value, each table as a pointer (null when absent)
+/// with its element count where the schema names one.
 struct ModelView {
-    // --- skeleton and pose normalisation (DESIGN §1.1) ---
-    std::uint16_t joint_count = 0;       ///< Joints per input frame (xyz each).
-    std::uint16_t root_joint = 0;        ///< Joint the pose is made relative to.
-    std::uint16_t left_hip_joint = 0;    ///< Left hip, for the facing direction.
-    std::uint16_t right_hip_joint = 0;   ///< Right hip, for the facing direction.
-    std::uint8_t up_axis = 1;            ///< 0 = x, 1 = y, 2 = z.
-    ScaleMode scale_mode = ScaleMode::none;
-    float reference_scale = 1.0f;        ///< Target hip width when scale_mode == hip_width.
-    std::uint16_t pose_joint_count = 0;  ///< Joints that make up the pose vector.
-    const std::uint16_t* pose_joints = nullptr;  ///< [pose_joint_count] joint indices.
-
-    // --- optional projection z = P (x - m) (DESIGN §1.2) ---
-    std::uint16_t feature_dim = 0;              ///< d; equals 3 * pose_joint_count without PCA.
-    const float* projection_mean = nullptr;     ///< [3 * pose_joint_count] or null for no PCA.
-    /// P stored column by column: [3 * pose_joint_count x feature_dim], row c
-    /// holding column c of P (the weights of pose coordinate c in every feature).
-    const float* projection_matrix = nullptr;
-
-    // --- GMM of key-poses (DESIGN §1.3) ---
-    /// J. 0 = no GMM: the tree descends on the projected pose itself (the
-    /// paper's "PCA only" characters, Fig. 4) and the GMM tables are null.
-    std::uint16_t component_count = 0;
-    Covariance covariance = Covariance::full;
-    const float* gmm_means = nullptr;            ///< [J x d], row-major.
-    /// Factor U of each component's precision, precision = Uᵀ U with U upper
-    /// triangular (U is the transpose of the precision's Cholesky factor).
-    /// Full: [J x d(d+1)/2], each U packed column by column (LAPACK 'U'
-    /// packed: column c holds U[0..c][c]). Diagonal: [J x d], the square
-    /// roots of the precisions.
-    const float* gmm_factors = nullptr;
-    const float* gmm_log_normalizers = nullptr;  ///< [J] −d/2·log 2π + Σ log U_ii.
-    const float* gmm_log_weights = nullptr;      ///< [J] log of the mixture weights.
-
-    // --- cluster tree whose leaves are the characters (DESIGN §1.4) ---
-    std::uint16_t node_count = 0;                ///< Node 0 is the root.
-    const float* node_centroids = nullptr;       ///< [node_count x tree_dim()].
-    /// [node_count x 2] children; both −1 at a leaf. A child's index is always
-    /// greater than its parent's, which bounds the descent by node_count.
-    const std::int16_t* node_children = nullptr;
-    const Character* node_characters = nullptr;  ///< [node_count]; meaningful at leaves.
-    std::uint16_t character_count = 0;           ///< K.
-    const float* character_distances = nullptr;  ///< W, [K x K], row-major.
-
-    // --- strings and representatives (DESIGN §1.5, §1.7) ---
-    std::uint32_t string_period_us = 0;          ///< One character every this many µs.
-    std::uint16_t representative_count = 0;      ///< R.
-    const std::uint32_t* representative_offsets = nullptr;  ///< [R + 1] into representative_chars.
-    const Character* representative_chars = nullptr;        ///< Concatenated strings.
-    const LabelId* representative_labels = nullptr;         ///< [R].
-    std::uint16_t label_count = 0;
-    const char* const* label_names = nullptr;    ///< [label_count] NUL-terminated names.
-
-    // --- matching and labelling (DESIGN §1.6, §1.8) ---
-    MatchVariant variant = MatchVariant::whole;
-    LengthNormalization normalization = LengthNormalization::none;
-    std::uint16_t window_chars = 0;   ///< Sliding window length in characters.
-    std::uint16_t step_chars = 0;     ///< A window opens every step_chars characters.
-    std::uint16_t neighbours = 1;     ///< k of the kNN vote.
-    float unknown_distance = detail::infinity();  ///< Best distance above this → unknown.
+#define ACTIONSTRING_VIEW_SCALAR(T, FIELD, INITIAL, LOW, HIGH) T FIELD = INITIAL;
+#define ACTIONSTRING_VIEW_COUNT(T, FIELD, TABLE) T FIELD = 0;
+#define ACTIONSTRING_VIEW_TABLE(T, FIELD, SIZE, LOW, HIGH) const T* FIELD = nullptr;
+#define ACTIONSTRING_VIEW_NAMES(FIELD, COUNT) const char* const* FIELD = nullptr;
+    ACTIONSTRING_MODEL_FIELDS(ACTIONSTRING_VIEW_SCALAR, ACTIONSTRING_VIEW_COUNT, ACTIONSTRING_VIEW_TABLE,
+                              ACTIONSTRING_VIEW_NAMES)
+#undef ACTIONSTRING_VIEW_SCALAR
+#undef ACTIONSTRING_VIEW_COUNT
+#undef ACTIONSTRING_VIEW_TABLE
+#undef ACTIONSTRING_VIEW_NAMES
 
     /// D, the length of the normalised pose vector.
     constexpr std::size_t pose_dim() const noexcept { return 3u * pose_joint_count; }

@@ -60,7 +60,16 @@ constexpr ModelView make_model() {
 }
 
 constexpr ModelView kModel = make_model();
-using Cap = Capacity<4, 1, 3, 2, 2, 16, 2>;
+struct ConsumerLimits : DefaultLimits {
+    static constexpr std::size_t joints = 4;
+    static constexpr std::size_t pose_joints = 1;
+    static constexpr std::size_t feature_dim = 3;
+    static constexpr std::size_t components = 2;
+    static constexpr std::size_t representatives = 2;
+    static constexpr std::size_t representative_chars = 16;
+    static constexpr std::size_t windows = 2;
+};
+using Cap = Capacity<ConsumerLimits>;
 Annotator<Cap> annotator;
 
 }  // namespace

@@ -8,7 +8,8 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "actionstring_host/readers.hpp"
+#include "io/clip_list.hpp"
+#include "io/formats.hpp"
 
 using namespace actionstring::host;
 

@@ -4,9 +4,15 @@
 #include <cstdio>
 #include <string>
 
-#include "actionstring_host/artifact.hpp"
-#include "actionstring_host/toy.hpp"
-#include "actionstring_host/training.hpp"
+#include "model/artifact.hpp"
+#include "model/header.hpp"
+#include "io/stream.hpp"
+#include "toy/toy.hpp"
+#include "run/classify.hpp"
+#include "run/encode.hpp"
+#include "train/gmm_em.hpp"
+#include "train/pca.hpp"
+#include "train/pipeline.hpp"
 
 int main(int argc, char** argv) {
     const bool without_gmm = argc == 3 && std::string(argv[2]) == "--no-gmm";

@@ -8,8 +8,11 @@
 #include <memory>
 
 #include "actionstring/annotator.hpp"
-#include "actionstring_host/artifact.hpp"
-#include "actionstring_host/toy.hpp"
+#include "model/artifact.hpp"
+#include "model/header.hpp"
+#include "io/stream.hpp"
+#include "io/text.hpp"
+#include "toy/toy.hpp"
 #include "fixture_model.hpp"
 #include "fixture_pca_model.hpp"
 
@@ -83,7 +86,8 @@ TEST_CASE("the same without a GMM: the tree descends on projected poses") {
 #if defined(ACTIONSTRING_WITH_EXAMPLE_MODEL)
 #include <cstdlib>
 
-#include "actionstring_host/readers.hpp"
+#include "io/clip_list.hpp"
+#include "io/formats.hpp"
 #include "hdm05_model.hpp"
 
 // Real clips through the committed example header and through the artifact the

@@ -1,0 +1,78 @@
+// actionstring — every field of a trained model, declared once.
+//
+// ACTIONSTRING_MODEL_FIELDS lists the fields in the order the model artifact
+// stores them. The runtime's ModelView (model.hpp), the host's owning model
+// data, the artifact reader and writer and the header generator are all
+// expanded from this one list, so adding a table is one line here plus the
+// code that uses it. The design document (docs/design.md §3) describes each table.
+//
+// The caller passes one macro per kind of field:
+//
+//   SCALAR(type, name, initial, low, high)
+//       One value. For integer and enum types [low, high] is the range an
+//       artifact may hold; floats ignore it (any finite value, or ±inf).
+//   COUNT(type, name, table)
+//       The view's element count of `table`. Owning model data has no such
+//       member: the count is the table's size, so the two cannot disagree.
+//   TABLE(type, name, size, low, high)
+//       An array. The view holds a pointer (null when empty), owning data a
+//       vector. `size` is its element count as an expression of the view `m`
+//       (0 for an absent optional table); it may use the fields listed before
+//       it. [low, high] bounds integer elements as for SCALAR.
+//   NAMES(name, count)
+//       NUL-terminated label names: `const char* const*` in the view, one
+//       line each in the artifact.
+//
+// Enum types, Character and LabelId are those of namespace actionstring; an
+// expansion outside that namespace must qualify them itself (see model.hpp).
+#pragma once
+
+// clang-format off
+#define ACTIONSTRING_MODEL_FIELDS(SCALAR, COUNT, TABLE, NAMES)                                            \
+    /* --- skeleton and pose normalisation (design §1.1) --- */                                           \
+    SCALAR(std::uint16_t, joint_count, 0, 1, 65535)        /* joints per input frame (xyz each) */        \
+    SCALAR(std::uint16_t, root_joint, 0, 0, 65535)         /* the pose is made relative to it */          \
+    SCALAR(std::uint16_t, left_hip_joint, 0, 0, 65535)     /* with the right hip: the facing direction */ \
+    SCALAR(std::uint16_t, right_hip_joint, 0, 0, 65535)                                                   \
+    SCALAR(std::uint8_t, up_axis, 1, 0, 2)                 /* 0 = x, 1 = y, 2 = z */                      \
+    SCALAR(ScaleMode, scale_mode, ScaleMode::none, 0, 1)                                                  \
+    SCALAR(float, reference_scale, 1.0f, 0, 0)             /* target hip width when scaling by it */      \
+    COUNT(std::uint16_t, pose_joint_count, pose_joints)                                                   \
+    TABLE(std::uint16_t, pose_joints, m.pose_joint_count, 0, 65535) /* joints of the pose vector */       \
+    /* --- optional projection z = P (x - m) (design §1.2) --- */                                         \
+    SCALAR(std::uint16_t, feature_dim, 0, 0, 65535)        /* d; 3 * pose_joint_count without PCA */      \
+    TABLE(float, projection_mean, (m.has_projection() ? m.pose_dim() : 0u), 0, 0)                         \
+    /* P column by column: row c holds the weights of pose coordinate c in every feature */               \
+    TABLE(float, projection_matrix, (m.has_projection() ? m.pose_dim() * m.feature_dim : 0u), 0, 0)       \
+    /* --- GMM of key-poses (design §1.3); J = 0: no GMM, the tree descends on z --- */                   \
+    SCALAR(std::uint16_t, component_count, 0, 0, 65535)    /* J */                                        \
+    SCALAR(Covariance, covariance, Covariance::full, 0, 1)                                                \
+    TABLE(float, gmm_means, std::size_t{m.component_count} * m.feature_dim, 0, 0)                         \
+    /* precision = U^T U, U upper triangular: full packs U column by column, diagonal keeps sqrt(prec) */ \
+    TABLE(float, gmm_factors, m.component_count * m.factor_size(), 0, 0)                                  \
+    TABLE(float, gmm_log_normalizers, m.component_count, 0, 0) /* -d/2 log 2pi + sum log U_ii */          \
+    TABLE(float, gmm_log_weights, m.component_count, 0, 0)                                                \
+    /* --- cluster tree whose leaves are the characters (design §1.4) --- */                              \
+    COUNT(std::uint16_t, node_count, node_characters)      /* node 0 is the root */                       \
+    TABLE(float, node_centroids, m.node_count * m.tree_dim(), 0, 0)                                       \
+    /* children, both -1 at a leaf; a child's index is greater than its parent's */                       \
+    TABLE(std::int16_t, node_children, 2u * m.node_count, -1, 32767)                                      \
+    TABLE(Character, node_characters, m.node_count, 0, 65535) /* meaningful at leaves */                  \
+    SCALAR(std::uint16_t, character_count, 0, 0, 65535)    /* K */                                        \
+    TABLE(float, character_distances, std::size_t{m.character_count} * m.character_count, 0, 0) /* W */ \
+    /* --- strings and representatives (design §1.5, §1.7) --- */                                         \
+    SCALAR(std::uint32_t, string_period_us, 0, 1, 4294967295) /* one character every this many us */     \
+    COUNT(std::uint16_t, representative_count, representative_labels) /* R */                            \
+    TABLE(std::uint32_t, representative_offsets, m.representative_count + 1u, 0, 4294967295)              \
+    TABLE(Character, representative_chars, m.total_representative_chars(), 0, 65535)                     \
+    TABLE(LabelId, representative_labels, m.representative_count, 0, 65535)                              \
+    COUNT(std::uint16_t, label_count, label_names)                                                        \
+    NAMES(label_names, m.label_count)                                                                     \
+    /* --- matching and labelling (design §1.6, §1.8) --- */                                              \
+    SCALAR(MatchVariant, variant, MatchVariant::whole, 0, 2)                                              \
+    SCALAR(LengthNormalization, normalization, LengthNormalization::none, 0, 2)                           \
+    SCALAR(std::uint16_t, window_chars, 0, 1, 65535)       /* sliding window length in characters */      \
+    SCALAR(std::uint16_t, step_chars, 0, 1, 65535)         /* a window opens every step_chars */          \
+    SCALAR(std::uint16_t, neighbours, 1, 1, 65535)         /* k of the kNN vote */                        \
+    SCALAR(float, unknown_distance, detail::infinity(), 0, 0) /* best distance above it: unknown */
+// clang-format on

@@ -1,0 +1,85 @@
+// Clip recognition with the model's own method, and its summary.
+#include "eval/clip_eval.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+
+#include "actionstring/annotator.hpp"
+#include "actionstring/capacity.hpp"
+#include "common/time.hpp"
+#include "run/classify.hpp"
+#include "run/encode.hpp"
+#include "run/stream_labels.hpp"
+
+namespace actionstring {
+namespace host {
+
+ClipResults start_results(const std::string& method, const ModelView& model, const std::vector<LabelledClip>& clips) {
+    ClipResults r;
+    r.method = method;
+    r.labels.assign(model.label_names, model.label_names + model.label_count);
+    for (const LabelledClip& c : clips)
+        if (std::find(r.labels.begin(), r.labels.end(), c.label) == r.labels.end()) r.labels.push_back(c.label);
+    return r;
+}
+
+int label_index(const std::vector<std::string>& labels, const std::string& label) {
+    return static_cast<int>(std::find(labels.begin(), labels.end(), label) - labels.begin());
+}
+
+void summarise(ClipResults& r, const std::vector<LabelledClip>& clips) {
+    const std::size_t L = r.labels.size();
+    r.confusion.assign(L, std::vector<int>(L + 1, 0));
+    int right = 0, unknown = 0;
+    for (std::size_t c = 0; c < clips.size(); ++c) {
+        const int truth = label_index(r.labels, clips[c].label);
+        const int predicted = r.predictions[c];
+        ++r.confusion[static_cast<std::size_t>(truth)][predicted < 0 ? L : static_cast<std::size_t>(predicted)];
+        right += predicted == truth;
+        unknown += predicted < 0;
+    }
+    const double n = clips.empty() ? 1.0 : static_cast<double>(clips.size());
+    r.clip_accuracy = right / n;
+    r.unknown_rate = unknown / n;
+    r.precision.assign(L, 0.0);
+    r.recall.assign(L, 0.0);
+    for (std::size_t l = 0; l < L; ++l) {
+        int predicted_as = 0, support = 0;
+        for (std::size_t t = 0; t < L; ++t) predicted_as += r.confusion[t][l];
+        for (std::size_t p = 0; p <= L; ++p) support += r.confusion[l][p];
+        if (predicted_as > 0) r.precision[l] = static_cast<double>(r.confusion[l][l]) / predicted_as;
+        if (support > 0) r.recall[l] = static_cast<double>(r.confusion[l][l]) / support;
+    }
+}
+
+ClipResults evaluate_model(const ModelView& model, const std::vector<LabelledClip>& clips) {
+    ClipResults r = start_results("action strings (representatives, kNN)", model, clips);
+    for (const LabelledClip& c : clips) {
+        const Classification k = classify_string(model, clip_string(model, c.clip));
+        r.predictions.push_back(frame_label(k.label));
+    }
+    summarise(r, clips);
+    return r;
+}
+
+std::vector<double> annotator_frame_times(const ModelView& model, const std::vector<LabelledClip>& clips) {
+    auto annotator = std::make_unique<Annotator<HostCapacity>>();
+    std::vector<double> times;
+    if (annotator->init(model) != Status::ok) return times;
+    std::int64_t offset = 0;
+    for (const LabelledClip& c : clips) {
+        for (std::size_t f = 0; f < c.clip.frame_count(); ++f) {
+            const std::int64_t t = offset + seconds_to_us(c.clip.times[f]);
+            const auto begin = std::chrono::steady_clock::now();
+            annotator->push_frame(t, c.clip.frame(f));
+            times.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - begin).count());
+        }
+        offset += seconds_to_us(c.clip.duration()) + 1;
+    }
+    std::sort(times.begin(), times.end());
+    return times;
+}
+
+}  // namespace host
+}  // namespace actionstring

@@ -1,0 +1,43 @@
+// actionstring host library — clip recognition: the model's own method on a
+// list of labelled clips, scored as a confusion matrix.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "actionstring/model.hpp"
+#include "io/clip_list.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// Clip-recognition results of one method on one list.
+struct ClipResults {
+    std::string method;
+    std::vector<std::string> labels;               ///< Row and column names of the confusion matrix.
+    std::vector<std::vector<int>> confusion;       ///< [true][predicted]; the last column counts "unknown".
+    std::vector<int> predictions;                  ///< Per clip: index into labels, or −1 for unknown.
+    double clip_accuracy = 0;
+    double unknown_rate = 0;
+    std::vector<double> precision, recall;         ///< Per label (NaN-free: 0 when undefined).
+};
+
+/// Results of `method` ready for predictions: the model's labels, then every
+/// label of `clips` the model does not know (never predicted, always wrong).
+ClipResults start_results(const std::string& method, const ModelView& model, const std::vector<LabelledClip>& clips);
+
+/// Index of `label` in `labels` (labels.size() when absent).
+int label_index(const std::vector<std::string>& labels, const std::string& label);
+
+/// Fills accuracy, unknown rate, precision and recall from predictions.
+void summarise(ClipResults& results, const std::vector<LabelledClip>& clips);
+
+/// The model's own method: each clip's string (runtime encoder) against the
+/// representatives (runtime batch distance, kNN).
+ClipResults evaluate_model(const ModelView& model, const std::vector<LabelledClip>& clips);
+
+/// Per-frame cost of the annotator over the clips' frames, in nanoseconds (sorted).
+std::vector<double> annotator_frame_times(const ModelView& model, const std::vector<LabelledClip>& clips);
+
+}  // namespace host
+}  // namespace actionstring

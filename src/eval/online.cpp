@@ -1,0 +1,199 @@
+// Online labelling of unsegmented streams, judged frame by frame.
+#include "eval/online.hpp"
+
+#include <algorithm>
+#include <map>
+#include <random>
+
+#include "common/time.hpp"
+#include "io/stream.hpp"
+
+namespace actionstring {
+namespace host {
+namespace {
+
+struct Segment {
+    int label;
+    std::size_t begin, end;  // frames [begin, end)
+};
+
+std::vector<Segment> runs(const std::vector<int>& labels) {
+    std::vector<Segment> out;
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        if (out.empty() || out.back().label != labels[i]) out.push_back({labels[i], i, i + 1});
+        else out.back().end = i + 1;
+    }
+    return out;
+}
+
+}  // namespace
+
+OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<int>& predicted, const std::vector<double>& times,
+                             const std::vector<std::size_t>& stream_starts, const std::vector<double>* emitted) {
+    OnlineResults r;
+    r.frames = truth.size();
+    if (r.frames == 0) return r;
+    std::size_t right = 0;
+    std::size_t no_action = 0, no_action_right = 0;
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+        right += truth[i] == predicted[i];
+        no_action += truth[i] == unknown_frame;
+        no_action_right += truth[i] == unknown_frame && predicted[i] == unknown_frame;
+    }
+    r.frame_accuracy = static_cast<double>(right) / static_cast<double>(r.frames);
+    r.no_action_frames = no_action;
+    if (no_action < r.frames)
+        r.action_frame_accuracy = static_cast<double>(right - no_action_right) / static_cast<double>(r.frames - no_action);
+    if (no_action > 0) r.no_action_accuracy = static_cast<double>(no_action_right) / static_cast<double>(no_action);
+
+    // Segments and label changes, per stream so boundaries between subjects do not count.
+    int true_segments = 0, predicted_segments = 0, matched = 0, found = 0;
+    double delay_sum = 0, minutes = 0;
+    int predicted_changes = 0, true_changes = 0;
+    for (std::size_t s = 0; s + 1 < stream_starts.size(); ++s) {
+        const std::size_t begin = stream_starts[s], end = stream_starts[s + 1];
+        if (end <= begin) continue;
+        const std::vector<int> t(truth.begin() + static_cast<long>(begin), truth.begin() + static_cast<long>(end));
+        const std::vector<int> p(predicted.begin() + static_cast<long>(begin), predicted.begin() + static_cast<long>(end));
+        const auto true_runs = runs(t), predicted_runs = runs(p);
+        minutes += (times[end - 1] - times[begin]) / 60.0;
+        true_changes += static_cast<int>(true_runs.size()) - 1;
+        predicted_changes += static_cast<int>(predicted_runs.size()) - 1;
+        std::vector<bool> used(predicted_runs.size(), false);
+        for (const Segment& segment : predicted_runs) predicted_segments += segment.label >= 0;
+        for (const Segment& segment : true_runs) {
+            if (segment.label == unknown_frame) continue;  // "no action": judged frame by frame only
+            ++true_segments;
+            for (std::size_t q = 0; q < predicted_runs.size(); ++q) {
+                const Segment& guess = predicted_runs[q];
+                if (used[q] || guess.label != segment.label) continue;
+                const std::size_t overlap_begin = std::max(segment.begin, guess.begin), overlap_end = std::min(segment.end, guess.end);
+                if (overlap_end <= overlap_begin) continue;
+                const double overlap = static_cast<double>(overlap_end - overlap_begin);
+                const double joined = static_cast<double>(std::max(segment.end, guess.end) - std::min(segment.begin, guess.begin));
+                if (overlap / joined >= 0.5) {
+                    used[q] = true;
+                    ++matched;
+                    break;
+                }
+            }
+            std::size_t first = segment.end;
+            for (std::size_t i = segment.begin; i < segment.end; ++i)
+                if (p[i] == segment.label) {
+                    first = i;
+                    break;
+                }
+            if (first < segment.end) {
+                const double shown = emitted ? (*emitted)[begin + first] : times[begin + first];
+                delay_sum += shown - times[begin + segment.begin];
+                ++found;
+            } else {
+                ++r.missed_segments;
+            }
+        }
+    }
+    r.segment_precision = predicted_segments > 0 ? static_cast<double>(matched) / predicted_segments : 0.0;
+    r.segment_recall = true_segments > 0 ? static_cast<double>(matched) / true_segments : 0.0;
+    r.segment_f1 = r.segment_precision + r.segment_recall > 0
+                       ? 2 * r.segment_precision * r.segment_recall / (r.segment_precision + r.segment_recall)
+                       : 0.0;
+    r.mean_delay_s = found > 0 ? delay_sum / found : 0.0;
+    if (minutes > 0) {
+        r.label_changes_per_min = predicted_changes / minutes;
+        r.true_changes_per_min = true_changes / minutes;
+        r.flicker_per_min = std::max(0.0, r.label_changes_per_min - r.true_changes_per_min);
+    }
+    return r;
+}
+
+namespace {
+
+// Appends one stream's timeline to the pooled per-frame vectors.
+struct PooledTimelines {
+    std::vector<int> truth, window, live, settled;
+    std::vector<double> times, settled_at;
+    std::vector<std::size_t> stream_starts;
+
+    void add(const StreamTimeline& timeline) {
+        stream_starts.push_back(truth.size());
+        truth.insert(truth.end(), timeline.truth.begin(), timeline.truth.end());
+        times.insert(times.end(), timeline.times_s.begin(), timeline.times_s.end());
+        window.insert(window.end(), timeline.labels.window.begin(), timeline.labels.window.end());
+        live.insert(live.end(), timeline.labels.live.begin(), timeline.labels.live.end());
+        settled.insert(settled.end(), timeline.labels.settled.begin(), timeline.labels.settled.end());
+        settled_at.insert(settled_at.end(), timeline.labels.settled_at_s.begin(), timeline.labels.settled_at_s.end());
+    }
+    void score(OnlineReport& report) {
+        stream_starts.push_back(truth.size());
+        report.settled = score_timeline(truth, settled, times, stream_starts, &settled_at);
+        report.live = score_timeline(truth, live, times, stream_starts);
+        report.window = score_timeline(truth, window, times, stream_starts);
+    }
+};
+
+int model_label(const std::vector<std::string>& names, const std::string& label) {
+    const auto found = std::find(names.begin(), names.end(), label);
+    return found == names.end() ? foreign_label : static_cast<int>(found - names.begin());
+}
+
+}  // namespace
+
+OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed,
+                             const AnnotatorConfig& config) {
+    const std::vector<std::string> names(model.label_names, model.label_names + model.label_count);
+    std::map<std::string, std::vector<std::size_t>> by_subject;
+    for (std::size_t c = 0; c < clips.size(); ++c) by_subject[clips[c].subject].push_back(c);
+    std::mt19937 rng(seed);
+
+    OnlineReport report;
+    PooledTimelines pooled;
+    for (auto& subject : by_subject) {
+        std::vector<std::size_t>& order = subject.second;
+        std::shuffle(order.begin(), order.end(), rng);
+        std::vector<StreamSegment> segments;
+        for (const std::size_t c : order) segments.push_back({&clips[c].clip, clips[c].label, 0.0});
+        const ConcatenatedStream stream = concatenate_stream(segments);
+        StreamTimeline timeline;
+        timeline.name = "subject " + subject.first;
+        for (std::size_t f = 0; f < stream.frame_count(); ++f) timeline.times_s.push_back(us_to_seconds(stream.times_us[f]));
+        timeline.truth.assign(stream.frame_count(), unknown_frame);
+        for (std::size_t s = 0; s < stream.segment_labels.size(); ++s) {
+            const int label = model_label(names, stream.segment_labels[s]);
+            const std::size_t end = s + 1 < stream.segment_first_frame.size() ? stream.segment_first_frame[s + 1] : stream.frame_count();
+            for (std::size_t f = stream.segment_first_frame[s]; f < end; ++f) timeline.truth[f] = label;
+        }
+        timeline.labels = label_stream(model, config, timeline.times_s, stream.positions.data(), stream.joints);
+        pooled.add(timeline);
+        report.streams.push_back(std::move(timeline));
+    }
+    pooled.score(report);
+    return report;
+}
+
+OnlineReport evaluate_recordings(const ModelView& model, const std::vector<LabelledRecording>& recordings,
+                                 const AnnotatorConfig& config) {
+    const std::vector<std::string> names(model.label_names, model.label_names + model.label_count);
+    OnlineReport report;
+    PooledTimelines pooled;
+    for (const LabelledRecording& recording : recordings) {
+        const Clip& clip = recording.clip;
+        StreamTimeline timeline;
+        const std::size_t slash = clip.source.find_last_of('/');
+        timeline.name = clip.source.substr(slash == std::string::npos ? 0 : slash + 1);
+        timeline.times_s = clip.times;
+        timeline.truth.assign(clip.frame_count(), unknown_frame);
+        for (const auto& interval : recording.intervals) {
+            const int label = model_label(names, interval.label);
+            for (std::size_t f = 0; f < clip.frame_count(); ++f)
+                if (clip.times[f] >= interval.start_s && clip.times[f] <= interval.end_s) timeline.truth[f] = label;
+        }
+        timeline.labels = label_stream(model, config, clip.times, clip.positions.data(), clip.joint_count());
+        pooled.add(timeline);
+        report.streams.push_back(std::move(timeline));
+    }
+    pooled.score(report);
+    return report;
+}
+
+}  // namespace host
+}  // namespace actionstring

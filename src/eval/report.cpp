@@ -1,0 +1,171 @@
+// Pictures of an evaluation: SVG confusion matrix and timelines, Markdown summary.
+#include "eval/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <sys/stat.h>
+
+namespace actionstring {
+namespace host {
+namespace {
+
+std::string escape(const std::string& text) {
+    std::string out;
+    for (const char c : text) {
+        if (c == '&') out += "&amp;";
+        else if (c == '<') out += "&lt;";
+        else if (c == '>') out += "&gt;";
+        else if (c == '"') out += "&quot;";
+        else out += c;
+    }
+    return out;
+}
+
+// Distinct hues for labels; unknown / "no action" is light grey.
+std::string colour(int label) {
+    if (label < 0) return label == -1 ? "#d9d9d9" : "#000000";
+    static const char* palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+                                    "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939", "#8c6d31", "#843c39",
+                                    "#7b4173", "#3182bd", "#e6550d", "#31a354", "#756bb1", "#636363"};
+    return palette[static_cast<std::size_t>(label) % (sizeof palette / sizeof palette[0])];
+}
+
+void write_file(const std::string& path, const std::string& text) {
+    std::ofstream out(path);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace
+
+std::string confusion_svg(const ClipResults& r) {
+    const std::size_t L = r.labels.size();
+    const int cell = 30, left = 230, top = 250;
+    const int width = left + cell * static_cast<int>(L + 1) + 20, height = top + cell * static_cast<int>(L) + 60;
+    std::ostringstream svg;
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+        << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+    svg << "<text x=\"10\" y=\"20\" font-size=\"15\">" << escape(r.method) << ": clip accuracy " << std::fixed;
+    svg.precision(3);
+    svg << r.clip_accuracy << "</text>\n<text x=\"10\" y=\"40\">rows: true label; columns: predicted (last: unknown); "
+        << "shade: share of the row</text>\n";
+    for (std::size_t p = 0; p <= L; ++p) {
+        const int x = left + cell * static_cast<int>(p) + cell / 2;
+        svg << "<text transform=\"translate(" << x + 4 << "," << top - 6 << ") rotate(-60)\">"
+            << escape(p < L ? r.labels[p] : std::string("unknown")) << "</text>\n";
+    }
+    for (std::size_t t = 0; t < L; ++t) {
+        int support = 0;
+        for (int v : r.confusion[t]) support += v;
+        const int y = top + cell * static_cast<int>(t);
+        svg << "<text x=\"" << left - 6 << "\" y=\"" << y + cell / 2 + 4 << "\" text-anchor=\"end\">" << escape(r.labels[t]) << "</text>\n";
+        for (std::size_t p = 0; p <= L; ++p) {
+            const int v = r.confusion[t][p];
+            const double share = support > 0 ? static_cast<double>(v) / support : 0.0;
+            const int shade = static_cast<int>(std::lround(255 - 200 * share));
+            const bool diagonal = p == t;
+            char fill[16];
+            std::snprintf(fill, sizeof fill, diagonal ? "#%02x%02xff" : "#ff%02x%02x", shade, shade);
+            svg << "<rect x=\"" << left + cell * static_cast<int>(p) << "\" y=\"" << y << "\" width=\"" << cell << "\" height=\"" << cell
+                << "\" fill=\"" << (v == 0 ? "#ffffff" : fill) << "\" stroke=\"#bbbbbb\"/>\n";
+            if (v != 0)
+                svg << "<text x=\"" << left + cell * static_cast<int>(p) + cell / 2 << "\" y=\"" << y + cell / 2 + 4
+                    << "\" text-anchor=\"middle\">" << v << "</text>\n";
+        }
+    }
+    svg << "</svg>\n";
+    return svg.str();
+}
+
+std::string timeline_svg(const StreamTimeline& stream, const std::vector<std::string>& labels) {
+    const std::size_t n = stream.times_s.size();
+    const double begin = n ? stream.times_s.front() : 0.0, end = n ? stream.times_s.back() : 1.0;
+    const double seconds = std::max(end - begin, 1e-3);
+    const int left = 150, row = 26, gap = 10, plot = std::max(600, static_cast<int>(seconds * 12));
+    struct Row {
+        const char* name;
+        const std::vector<int>* labels;
+    };
+    const Row rows[] = {{"true", &stream.truth},
+                        {"settled (final)", &stream.labels.settled},
+                        {"live (no delay)", &stream.labels.live},
+                        {"paper: latest window", &stream.labels.window}};
+    const int legend_rows = static_cast<int>((labels.size() + 2 + 3) / 4);
+    const int height = 50 + 4 * (row + gap) + 30 + legend_rows * 18 + 10;
+    std::ostringstream svg;
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << left + plot + 20 << "\" height=\"" << height
+        << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+    svg << "<text x=\"10\" y=\"20\" font-size=\"15\">" << escape(stream.name) << ": true vs predicted labels over time</text>\n";
+    auto x_of = [&](double t) { return left + (t - begin) / seconds * plot; };
+    for (int k = 0; k < 4; ++k) {
+        const int y = 40 + k * (row + gap);
+        svg << "<text x=\"" << left - 6 << "\" y=\"" << y + row / 2 + 4 << "\" text-anchor=\"end\">" << rows[k].name << "</text>\n";
+        const std::vector<int>& v = *rows[k].labels;
+        for (std::size_t i = 0; i < v.size();) {
+            std::size_t j = i;
+            while (j < v.size() && v[j] == v[i]) ++j;
+            const double x0 = x_of(stream.times_s[i]);
+            const double x1 = j < n ? x_of(stream.times_s[j]) : x_of(end);
+            char geometry[96];
+            std::snprintf(geometry, sizeof geometry, "x=\"%.1f\" y=\"%d\" width=\"%.1f\" height=\"%d\"", x0, y, std::max(x1 - x0, 0.5), row);
+            svg << "<rect " << geometry << " fill=\"" << colour(v[i]) << "\"><title>"
+                << escape(v[i] >= 0 && static_cast<std::size_t>(v[i]) < labels.size() ? labels[static_cast<std::size_t>(v[i])]
+                                                                                          : std::string(v[i] == -1 ? "unknown / no action" : "label not in the model"))
+                << "</title></rect>\n";
+            i = j;
+        }
+    }
+    const int axis = 40 + 4 * (row + gap);
+    for (double t = 0; t <= seconds + 1e-9; t += seconds > 120 ? 30 : 10) {
+        char tick[160];
+        std::snprintf(tick, sizeof tick, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%d\" y2=\"%d\" stroke=\"#444\"/><text x=\"%.1f\" y=\"%d\" text-anchor=\"middle\">%.0f s</text>\n",
+                      x_of(begin + t), x_of(begin + t), axis - 4, axis + 2, x_of(begin + t), axis + 16, t);
+        svg << tick;
+    }
+    for (std::size_t l = 0; l <= labels.size(); ++l) {
+        const int x = 10 + static_cast<int>(l % 4) * 220, y = axis + 30 + static_cast<int>(l / 4) * 18;
+        const int id = l < labels.size() ? static_cast<int>(l) : -1;
+        svg << "<rect x=\"" << x << "\" y=\"" << y - 10 << "\" width=\"12\" height=\"12\" fill=\"" << colour(id) << "\"/><text x=\"" << x + 16
+            << "\" y=\"" << y << "\">" << escape(id >= 0 ? labels[l] : std::string("unknown / no action")) << "</text>\n";
+    }
+    svg << "</svg>\n";
+    return svg.str();
+}
+
+void write_report(const std::string& dir, const std::string& title, const std::vector<ClipResults>& clip_results,
+                  const OnlineReport* online, const std::vector<std::string>& labels) {
+    ::mkdir(dir.c_str(), 0777);
+    struct stat info {};
+    if (::stat(dir.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) throw std::runtime_error("cannot create the folder " + dir);
+    std::ostringstream md;
+    md.precision(3);
+    md << std::fixed << "# " << title << "\n\n## Clip recognition\n\n| method | clip accuracy | unknown |\n|---|---:|---:|\n";
+    for (const ClipResults& r : clip_results) md << "| " << r.method << " | " << r.clip_accuracy << " | " << r.unknown_rate << " |\n";
+    if (!clip_results.empty()) {
+        write_file(dir + "/confusion.svg", confusion_svg(clip_results.front()));
+        md << "\n![confusion matrix](confusion.svg)\n";
+    }
+    if (online != nullptr) {
+        md << "\n## Online labelling of concatenated streams\n\n"
+           << "| rule | frame accuracy | segment F1 | mean delay (s) | missed segments | flicker (/min) |\n|---|---:|---:|---:|---:|---:|\n";
+        const std::pair<const char*, const OnlineResults*> rules[] = {
+            {"segmenter, settled labels", &online->settled}, {"segmenter, live labels", &online->live}, {"paper: latest window wins", &online->window}};
+        for (const auto& rule : rules)
+            md << "| " << rule.first << " | " << rule.second->frame_accuracy << " | " << rule.second->segment_f1 << " | "
+               << rule.second->mean_delay_s << " | " << rule.second->missed_segments << " | " << rule.second->flicker_per_min << " |\n";
+        md << "\n";
+        for (std::size_t s = 0; s < online->streams.size(); ++s) {
+            const std::string file = "timeline_" + std::to_string(s + 1) + ".svg";
+            write_file(dir + "/" + file, timeline_svg(online->streams[s], labels));
+            md << "![" << online->streams[s].name << "](" << file << ")\n\n";
+        }
+    }
+    write_file(dir + "/report.md", md.str());
+}
+
+}  // namespace host
+}  // namespace actionstring

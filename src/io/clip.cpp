@@ -1,0 +1,68 @@
+// Clip helpers: joint roles and lost frames.
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+#include "io/clip.hpp"
+#include "io/text.hpp"
+
+namespace actionstring {
+namespace host {
+
+int Clip::joint_index(std::string_view name) const noexcept {
+    for (std::size_t j = 0; j < joint_names.size(); ++j)
+        if (joint_names[j] == name) return static_cast<int>(j);
+    return -1;
+}
+
+namespace {
+
+// Built-in role names, tried in order: HDM05/CMU ASF, Kinect v1, Kinect v2, CC_Base rig.
+struct RoleCandidates {
+    const char* root;
+    const char* left_hip;
+    const char* right_hip;
+};
+constexpr RoleCandidates kBuiltInRoles[] = {
+    {"root", "lhipjoint", "rhipjoint"},
+    {"HipCenter", "HipLeft", "HipRight"},
+    {"SpineBase", "HipLeft", "HipRight"},
+    {"CC_Base_Hip", "CC_Base_L_Thigh", "CC_Base_R_Thigh"},
+};
+
+}  // namespace
+
+void assign_roles(Clip& clip, const RoleNames& names) {
+    if (!names.empty()) {
+        auto find = [&](const std::string& joint, const char* role) {
+            const int index = clip.joint_index(joint);
+            if (index < 0) throw ReadError(clip.source, 0, std::string("the ") + role + " joint " + quoted(joint) + " is not in the file");
+            return index;
+        };
+        clip.roles.root = names.root.empty() ? -1 : find(names.root, "root");
+        clip.roles.left_hip = names.left_hip.empty() ? -1 : find(names.left_hip, "left hip");
+        clip.roles.right_hip = names.right_hip.empty() ? -1 : find(names.right_hip, "right hip");
+        return;
+    }
+    for (const RoleCandidates& candidates : kBuiltInRoles) {
+        const JointRoles roles{clip.joint_index(candidates.root), clip.joint_index(candidates.left_hip),
+                               clip.joint_index(candidates.right_hip)};
+        if (roles.complete()) {
+            clip.roles = roles;
+            return;
+        }
+    }
+    clip.roles = JointRoles{};
+}
+
+void flag_lost_frames(Clip& clip) {
+    const std::size_t values = clip.joint_count() * 3;
+    clip.lost.assign(clip.frame_count(), 0);
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        const float* p = clip.frame(f);
+        clip.lost[f] = std::all_of(p, p + values, [](float v) { return v == 0.0f; }) ? 1 : 0;
+    }
+}
+
+}  // namespace host
+}  // namespace actionstring

@@ -1,0 +1,85 @@
+// actionstring host library — the in-memory clip every reader produces.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace actionstring {
+namespace host {
+
+/// A file that could not be read: names the file, the line (0 when the
+/// problem is not tied to one) and what was expected.
+class ReadError : public std::runtime_error {
+public:
+    ReadError(std::string file, std::size_t line, const std::string& what);
+    const std::string& file() const noexcept { return file_; }
+    std::size_t line() const noexcept { return line_; }
+
+private:
+    std::string file_;
+    std::size_t line_;
+};
+
+/// Joints the runtime's pose normalisation needs (indices into Clip::joint_names, −1 unknown).
+struct JointRoles {
+    int root = -1;
+    int left_hip = -1;
+    int right_hip = -1;
+    bool complete() const noexcept { return root >= 0 && left_hip >= 0 && right_hip >= 0; }
+};
+
+/// Joint names for the roles, overriding a format's built-in mapping. Empty: use the built-in one.
+struct RoleNames {
+    std::string root, left_hip, right_hip;
+    bool empty() const noexcept { return root.empty() && left_hip.empty() && right_hip.empty(); }
+};
+
+/// One recording: joints, per-frame times and joint positions in metres.
+struct Clip {
+    std::string source;                    ///< Where it came from, for messages.
+    std::vector<std::string> joint_names;
+    std::vector<int> parents;              ///< Parent joint per joint (−1 at a root); empty when the format has none.
+    std::vector<double> times;             ///< Seconds, non-decreasing (equal times may repeat).
+    std::vector<float> positions;          ///< frames × joints × xyz, metres.
+    std::vector<std::uint8_t> lost;        ///< Per frame, 1 when tracking was lost (every joint at the origin).
+    int up_axis = 1;                       ///< 0 = x, 1 = y, 2 = z.
+    JointRoles roles;
+
+    std::size_t joint_count() const noexcept { return joint_names.size(); }
+    std::size_t frame_count() const noexcept { return times.size(); }
+    const float* frame(std::size_t f) const noexcept { return positions.data() + f * joint_count() * 3; }
+    float* frame(std::size_t f) noexcept { return positions.data() + f * joint_count() * 3; }
+    /// Index of a joint by exact name, or −1.
+    int joint_index(std::string_view name) const noexcept;
+    /// Seconds from the first to the last frame.
+    double duration() const noexcept { return times.empty() ? 0.0 : times.back() - times.front(); }
+};
+
+/// What a reader may be told about a file that the file itself does not say.
+struct ReadOptions {
+    /// Frames per second for formats without timing (AMC: 120, MSR Action3D: 15,
+    /// UTKinect ids: 30). 0 keeps the format's default.
+    double frame_rate_hz = 0.0;
+    /// Metres per file unit. 0 keeps the format's own rule (ASF from :units,
+    /// BVH guessed from the skeleton's height, Kinect text in metres).
+    double length_scale = 0.0;
+    /// Vertical axis, or −1 for the format's rule (BVH: detected).
+    int up_axis = -1;
+    /// Overrides the built-in joint-role mapping.
+    RoleNames roles;
+};
+
+/// Sets clip.roles from `names` when given, else from the built-in mappings
+/// (HDM05/CMU ASF, Kinect v1 and v2, the CC_Base rig). Throws ReadError when a
+/// named joint does not exist.
+void assign_roles(Clip& clip, const RoleNames& names);
+
+/// Marks frames whose joints are all exactly at the origin (lost tracking).
+void flag_lost_frames(Clip& clip);
+
+}  // namespace host
+}  // namespace actionstring

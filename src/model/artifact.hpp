@@ -1,0 +1,43 @@
+// actionstring host library — the model artifact.
+//
+// The artifact is text: a version line, a checksum line, then one line per
+// field of the model schema (`name value`, or `name count values…` for a
+// table), floats as C99 hexadecimal literals so every value round-trips
+// exactly. Loading refuses a wrong version, a checksum that does not match,
+// truncation, and tables the runtime would refuse.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "model/model_data.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// Artifact format version written and read by this build.
+constexpr int artifact_version = 1;
+
+/// 64-bit FNV-1a of the bytes.
+std::uint64_t fnv1a64(std::string_view bytes);
+
+/// The artifact text of a model (deterministic: same model, same bytes).
+std::string serialize_model(const ModelData& model);
+/// Parses artifact text; throws ReadError naming `name` and the line.
+ModelData parse_model(const std::string& name, std::string_view text);
+
+/// The fields alone, in schema order, without the version and checksum lines
+/// and without checking that they make a valid model (tests walk the schema with it).
+std::string serialize_fields(const ModelData& model);
+/// Reads what serialize_fields() writes; checks syntax and ranges only.
+ModelData parse_fields(const std::string& name, std::string_view fields);
+
+void save_model(const ModelData& model, const std::string& path);
+ModelData load_model(const std::string& path);
+
+/// The checksum recorded in an artifact's text, as 16 hex digits.
+std::string artifact_checksum(std::string_view text);
+
+}  // namespace host
+}  // namespace actionstring

@@ -1,0 +1,117 @@
+// actionstring host library — an owning model whose view() drives the runtime.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "actionstring/model.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// Label names with the table of C-string pointers a ModelView hands out,
+/// kept in step with the names on every change.
+class LabelNames {
+public:
+    LabelNames() = default;
+    LabelNames(const LabelNames& other) : names_(other.names_) { refresh(); }
+    LabelNames& operator=(const LabelNames& other) {
+        names_ = other.names_;
+        refresh();
+        return *this;
+    }
+    // A moved vector keeps its buffer, so the pointers stay valid.
+    LabelNames(LabelNames&&) noexcept = default;
+    LabelNames& operator=(LabelNames&&) noexcept = default;
+
+    template <class Iterator>
+    void assign(Iterator first, Iterator last) {
+        names_.assign(first, last);
+        refresh();
+    }
+    void push_back(std::string name) {
+        names_.push_back(std::move(name));
+        refresh();
+    }
+    void clear() {
+        names_.clear();
+        pointers_.clear();
+    }
+    std::size_t size() const noexcept { return names_.size(); }
+    bool empty() const noexcept { return names_.empty(); }
+    const std::string& operator[](std::size_t i) const { return names_[i]; }
+    bool operator==(const LabelNames& other) const { return names_ == other.names_; }
+    bool operator!=(const LabelNames& other) const { return names_ != other.names_; }
+    std::vector<std::string>::const_iterator begin() const noexcept { return names_.begin(); }
+    std::vector<std::string>::const_iterator end() const noexcept { return names_.end(); }
+    const std::vector<std::string>& strings() const noexcept { return names_; }
+    /// [size()] NUL-terminated names, or null when there are none.
+    const char* const* pointers() const noexcept { return pointers_.empty() ? nullptr : pointers_.data(); }
+
+private:
+    void refresh() {
+        pointers_.clear();
+        for (const std::string& name : names_) pointers_.push_back(name.c_str());
+    }
+    std::vector<std::string> names_;
+    std::vector<const char*> pointers_;
+};
+
+/// Every table of a model in host memory: the fields of
+/// ACTIONSTRING_MODEL_FIELDS, scalars by value and each table as a vector
+/// (the schema's counts are the vectors' sizes). view() returns a ModelView
+/// pointing into this object: valid while the object lives and its tables are
+/// not resized. Not copyable (a copy would be easy to take for the original
+/// while views point into it); movable.
+struct ModelData {
+    ModelData() { representative_offsets.push_back(0); }
+    ModelData(const ModelData&) = delete;
+    ModelData& operator=(const ModelData&) = delete;
+    ModelData(ModelData&&) = default;
+    ModelData& operator=(ModelData&&) = default;
+
+#define ACTIONSTRING_DATA_SCALAR(T, FIELD, INITIAL, LOW, HIGH) T FIELD = INITIAL;
+#define ACTIONSTRING_DATA_COUNT(T, FIELD, TABLE)
+#define ACTIONSTRING_DATA_TABLE(T, FIELD, SIZE, LOW, HIGH) std::vector<T> FIELD;
+#define ACTIONSTRING_DATA_NAMES(FIELD, COUNT) LabelNames FIELD;
+    ACTIONSTRING_MODEL_FIELDS(ACTIONSTRING_DATA_SCALAR, ACTIONSTRING_DATA_COUNT, ACTIONSTRING_DATA_TABLE,
+                              ACTIONSTRING_DATA_NAMES)
+#undef ACTIONSTRING_DATA_SCALAR
+#undef ACTIONSTRING_DATA_COUNT
+#undef ACTIONSTRING_DATA_TABLE
+#undef ACTIONSTRING_DATA_NAMES
+
+    /// Appends one representative string with its label.
+    void add_representative(const std::vector<Character>& chars, LabelId label);
+
+    /// Non-owning view of every table.
+    ModelView view() const;
+};
+
+/// Where the tables' sizes disagree with the counts and sizes the schema
+/// derives from the other fields: the first such table's name, or null when
+/// every size agrees. A view of a model that passes may be validated.
+const char* mismatched_table(const ModelData& model);
+
+/// Bytes of the model's tables as a generated header stores them (label names excluded).
+std::size_t table_bytes(const ModelView& model);
+
+/// Fills the GMM tables from means, covariances and weights given in double.
+/// Factors come from the Cholesky factor of each precision; log-normalisers
+/// and log-weights are precomputed, so the runtime never inverts anything.
+/// Diagonal covariance reads only each covariance's diagonal.
+/// Throws std::invalid_argument on size mismatch, a non-positive weight, or a
+/// covariance that is not symmetric positive definite.
+void set_gmm(ModelData& model, const std::vector<Eigen::VectorXd>& means,
+             const std::vector<Eigen::MatrixXd>& covariances, const std::vector<double>& weights,
+             Covariance kind);
+
+/// W[a][b] = L1 distance between the leaf centroids of characters a and b.
+void set_character_distances_from_leaves(ModelData& model);
+
+}  // namespace host
+}  // namespace actionstring

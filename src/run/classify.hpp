@@ -1,0 +1,31 @@
+// actionstring host library — labelling whole strings with the runtime's
+// batch string distance and kNN.
+#pragma once
+
+#include <vector>
+
+#include "actionstring/classify.hpp"
+#include "actionstring/detail/dp.hpp"
+#include "actionstring/model.hpp"
+#include "actionstring/string_distance.hpp"
+#include "io/clip_list.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// Label of a whole clip's string: the runtime's batch distance to every
+/// representative (the string is the query), then the runtime's kNN.
+Classification classify_string(const ModelView& model, const std::vector<Character>& string);
+
+/// Fraction of clips whose predicted label name equals their label.
+double clip_accuracy(const ModelView& model, const std::vector<LabelledClip>& clips);
+
+/// Index of the reference string nearest to `query` by the runtime's string
+/// distance (the first on ties), or −1 when none can be compared (an empty
+/// string on either side). `workspace` is scratch reused between calls.
+long nearest_string(const std::vector<Character>& query, const std::vector<std::vector<Character>>& references,
+                    const CharacterWeights& weights, const MatchOptions& options,
+                    std::vector<detail::Cell>& workspace);
+
+}  // namespace host
+}  // namespace actionstring

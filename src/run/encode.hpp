@@ -1,0 +1,25 @@
+// actionstring host library — the runtime's per-frame stages run over a whole
+// host clip: its action string, and its normalised poses at a fixed rate.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "actionstring/model.hpp"
+#include "io/clip.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// The action string of a clip under a trained model (the runtime's encoder,
+/// frame by frame with the clip's timestamps). Throws std::invalid_argument
+/// when the encoder refuses the model.
+std::vector<Character> clip_string(const ModelView& model, const Clip& clip);
+
+/// Appends to `poses` the clip's normalised poses (model.pose_dim() floats
+/// each) nearest to every tick of a clock at `rate_hz`, picked by the runtime's
+/// own sampler. Returns the number of frames normalisation rejected.
+std::size_t sample_poses(const ModelView& model, const Clip& clip, double rate_hz, std::vector<float>& poses);
+
+}  // namespace host
+}  // namespace actionstring

@@ -1,0 +1,99 @@
+// Frames streamed through one annotator as a device would.
+#include "run/stream_labels.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
+
+#include "actionstring/capacity.hpp"
+#include "common/time.hpp"
+
+namespace actionstring {
+namespace host {
+namespace {
+
+// A character whose final label has not come yet.
+constexpr int not_settled = -3;
+
+}  // namespace
+
+StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config, const std::vector<double>& times_s,
+                          const float* positions, std::size_t joints) {
+    auto annotator = std::make_unique<Annotator<HostCapacity>>();
+    if (annotator->init(model, config) != Status::ok)
+        throw std::invalid_argument("the model or the segmenter settings do not fit the host annotator");
+    const std::size_t frames = times_s.size();
+    StreamLabels out;
+    out.window.assign(frames, unknown_frame);
+    out.live.assign(frames, unknown_frame);
+    out.settled.assign(frames, unknown_frame);
+    out.settled_at_s.assign(frames, 0.0);
+    // Characters of every stream epoch (a restart begins a new one), with their final label and when it came.
+    std::vector<int> char_label;
+    std::vector<double> char_emitted;
+    std::vector<long long> frame_char(frames, -1);
+    std::size_t epoch = 0;  // index in char_label of the current epoch's character 0
+    for (std::size_t f = 0; f < frames; ++f) {
+        const double now = times_s[f];
+        const FrameResult r = annotator->push_frame(seconds_to_us(now), positions + f * joints * 3);
+        if (r.status == Status::stream_restarted) {
+            // The old epoch's unsettled tail is gone with the reset; it stays unknown, emitted now.
+            for (std::size_t c = epoch; c < char_label.size(); ++c)
+                if (char_label[c] == not_settled) char_label[c] = unknown_frame, char_emitted[c] = now;
+            epoch = char_label.size();
+        }
+        while (char_label.size() < epoch + annotator->characters()) {
+            char_label.push_back(not_settled);
+            char_emitted.push_back(now);
+        }
+        if (r.characters_settled > 0) {
+            const std::uint64_t last = annotator->settled_character();
+            for (std::uint64_t k = 0; k < r.characters_settled; ++k) {
+                const std::uint64_t c = last - (r.characters_settled - 1 - k);
+                char_label[epoch + c] = frame_label(annotator->settled_label(c));
+                char_emitted[epoch + c] = now;
+            }
+        }
+        out.window[f] = frame_label(annotator->label());
+        out.live[f] = frame_label(annotator->live_label());
+        if (annotator->characters() > 0) frame_char[f] = static_cast<long long>(epoch + annotator->characters() - 1);
+    }
+    // At the end of the stream, the unsettled tail gets what the best explanation says of it then.
+    for (std::uint64_t c = annotator->has_settled() ? annotator->settled_character() + 1 : 0; c < annotator->characters(); ++c) {
+        char_label[epoch + c] = frame_label(annotator->provisional_label(c));
+        char_emitted[epoch + c] = times_s.back();
+    }
+    for (std::size_t f = 0; f < frames; ++f) {
+        if (frame_char[f] < 0) {
+            out.settled_at_s[f] = times_s[f];
+            continue;
+        }
+        const auto c = static_cast<std::size_t>(frame_char[f]);
+        out.settled[f] = char_label[c] == not_settled ? unknown_frame : char_label[c];
+        out.settled_at_s[f] = std::max(char_emitted[c], times_s[f]);
+    }
+    return out;
+}
+
+std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip, const AnnotatorConfig& config) {
+    const StreamLabels labels = label_stream(model, config, clip.times, clip.positions.data(), clip.joint_count());
+    std::vector<LabelSpan> spans;
+    std::size_t agreeing = 0;
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        const int label = labels.settled[f];
+        if (spans.empty() || spans.back().label != label) {
+            if (!spans.empty()) spans.back().end_s = clip.times[f];
+            spans.push_back({clip.times[f], clip.times[f], label, 0.0, 0});
+            agreeing = 0;
+        }
+        LabelSpan& span = spans.back();
+        agreeing += labels.live[f] == label;
+        ++span.frames;
+        span.agreement = static_cast<double>(agreeing) / static_cast<double>(span.frames);
+        span.end_s = clip.times[f];
+    }
+    return spans;
+}
+
+}  // namespace host
+}  // namespace actionstring

@@ -1,0 +1,57 @@
+// actionstring host library — streaming frames through one annotator exactly
+// as a device would, and the label timelines that come out.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "actionstring/annotator.hpp"
+#include "actionstring/model.hpp"
+#include "io/clip.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// A per-frame label in host timelines: a model label index (≥ 0) or one of these.
+enum FrameLabel : int {
+    /// Predicted: unknown. Truth: no action (the right prediction there is unknown).
+    unknown_frame = -1,
+    /// Truth only: a label the model does not know, so no prediction can match it.
+    foreign_label = -2,
+};
+
+/// A model label as a FrameLabel index (unknown_label → unknown_frame).
+constexpr int frame_label(LabelId label) noexcept {
+    return label == unknown_label ? unknown_frame : static_cast<int>(label);
+}
+
+/// Per frame, what each online rule of the annotator said.
+struct StreamLabels {
+    std::vector<int> window;           ///< The paper's rule: the latest window's label, output at the frame.
+    std::vector<int> live;             ///< The segmenter's live label, output at the frame.
+    std::vector<int> settled;          ///< The segmenter's final label of the frame's character.
+    std::vector<double> settled_at_s;  ///< When that final label was output.
+};
+
+/// Streams frames (times in seconds, joints × 3 floats each) through one
+/// annotator exactly as a device would, and collects every rule's labels. The
+/// unsettled tail at the end is reported from the best explanation then.
+StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config, const std::vector<double>& times_s,
+                          const float* positions, std::size_t joints);
+
+/// One stretch of time with a constant label from the annotator.
+struct LabelSpan {
+    double start_s = 0, end_s = 0;  ///< Times of the first frame and of the frame after the span (or the last frame).
+    int label = unknown_frame;
+    /// Share of the span's frames whose live label (decided without the settle
+    /// delay) already said the final label: 1 = clear from the first frame.
+    double agreement = 0;
+    std::size_t frames = 0;
+};
+
+/// Streams a clip frame by frame through the annotator and returns the
+/// timeline of settled labels: consecutive frames with the same label form one span.
+std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip, const AnnotatorConfig& config = {});
+
+}  // namespace host
+}  // namespace actionstring

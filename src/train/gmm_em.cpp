@@ -1,0 +1,194 @@
+// GMM fitting by EM, in double precision.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <stdexcept>
+
+#include <Eigen/Cholesky>
+
+#include "train/gmm_em.hpp"
+
+namespace actionstring {
+namespace host {
+namespace {
+
+constexpr double kLog2Pi = 1.8378770664093454836;
+
+// k-means++ seeding followed by a few Lloyd steps: initial means and hard assignments.
+std::vector<int> kmeans_plus_plus(const Eigen::MatrixXd& x, int k, std::mt19937_64& rng, Eigen::MatrixXd& centres) {
+    const Eigen::Index n = x.cols();
+    centres.resize(x.rows(), k);
+    std::uniform_int_distribution<Eigen::Index> first(0, n - 1);
+    centres.col(0) = x.col(first(rng));
+    Eigen::VectorXd nearest = (x.colwise() - centres.col(0)).colwise().squaredNorm().transpose();
+    for (int c = 1; c < k; ++c) {
+        const double total = nearest.sum();
+        Eigen::Index pick = 0;
+        if (total > 0) {
+            double target = std::uniform_real_distribution<double>(0.0, total)(rng);
+            for (pick = 0; pick < n - 1; ++pick) {
+                target -= nearest[pick];
+                if (target <= 0) break;
+            }
+        } else {
+            pick = first(rng);  // all samples coincide with a centre already
+        }
+        centres.col(c) = x.col(pick);
+        nearest = nearest.cwiseMin((x.colwise() - centres.col(c)).colwise().squaredNorm().transpose());
+    }
+    std::vector<int> assignment(static_cast<std::size_t>(n), 0);
+    for (int step = 0; step < 10; ++step) {
+        for (Eigen::Index i = 0; i < n; ++i) {
+            Eigen::Index best = 0;
+            (centres.colwise() - x.col(i)).colwise().squaredNorm().minCoeff(&best);
+            assignment[static_cast<std::size_t>(i)] = static_cast<int>(best);
+        }
+        Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(x.rows(), k);
+        Eigen::VectorXd counts = Eigen::VectorXd::Zero(k);
+        for (Eigen::Index i = 0; i < n; ++i) {
+            sums.col(assignment[static_cast<std::size_t>(i)]) += x.col(i);
+            counts[assignment[static_cast<std::size_t>(i)]] += 1;
+        }
+        for (int c = 0; c < k; ++c)
+            if (counts[c] > 0) centres.col(c) = sums.col(c) / counts[c];
+    }
+    return assignment;
+}
+
+}  // namespace
+
+GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, double covariance_floor,
+               int max_iterations, double tolerance, std::uint32_t seed) {
+    const Eigen::Index d = x.rows(), n = x.cols();
+    const int J = components;
+    if (J < 1) throw std::invalid_argument("the GMM needs at least one component");
+    if (n < J) throw std::invalid_argument("the GMM has " + std::to_string(J) + " components but only " + std::to_string(n) +
+                                           " training samples: use fewer components or more data");
+    if (!x.allFinite()) throw std::invalid_argument("GMM training samples contain non-finite values");
+    if (!(covariance_floor > 0)) throw std::invalid_argument("the covariance floor must be positive");
+    const bool diagonal = covariance == Covariance::diagonal;
+    const double lambda = covariance_floor * static_cast<double>(n) / J;
+
+    std::mt19937_64 rng(seed);
+    Eigen::MatrixXd centres;
+    const std::vector<int> assignment = kmeans_plus_plus(x, J, rng, centres);
+
+    GmmFit fit;
+    fit.means.assign(static_cast<std::size_t>(J), Eigen::VectorXd::Zero(d));
+    fit.covariances.assign(static_cast<std::size_t>(J), Eigen::MatrixXd::Identity(d, d));
+    fit.weights.assign(static_cast<std::size_t>(J), 1.0 / J);
+    // Start from the hard k-means clusters: one M-step with 0/1 responsibilities.
+    Eigen::MatrixXd resp = Eigen::MatrixXd::Zero(J, n);
+    for (Eigen::Index i = 0; i < n; ++i) resp(assignment[static_cast<std::size_t>(i)], i) = 1.0;
+
+    Eigen::VectorXd worst_fit(n);  // per-sample log-likelihood, to re-seed empty components
+    worst_fit.setZero();
+    std::vector<int> reseed_count(static_cast<std::size_t>(J), 0);
+    double previous = -std::numeric_limits<double>::infinity();
+    for (int iteration = 0; iteration <= max_iterations; ++iteration) {
+        // M-step (MAP covariance).
+        bool reseeded = false;
+        int current = static_cast<int>(fit.means.size());
+        std::vector<bool> empty(static_cast<std::size_t>(current), false);
+        for (int j = 0; j < current; ++j) {
+            const double nj = resp.row(j).sum();
+            if (nj < 1e-6 * static_cast<double>(n) || nj < 1e-3) {
+                empty[static_cast<std::size_t>(j)] = true;
+                continue;
+            }
+            const Eigen::VectorXd mean = x * resp.row(j).transpose() / nj;
+            const Eigen::MatrixXd centred = x.colwise() - mean;
+            Eigen::MatrixXd cov;
+            if (diagonal) {
+                const Eigen::VectorXd var = (centred.array().square().matrix() * resp.row(j).transpose()).array() + lambda;
+                cov = Eigen::MatrixXd((var / nj).asDiagonal());
+            } else {
+                cov = (centred * resp.row(j).asDiagonal() * centred.transpose() + lambda * Eigen::MatrixXd::Identity(d, d)) / nj;
+                cov = 0.5 * (cov + cov.transpose());
+            }
+            fit.means[static_cast<std::size_t>(j)] = mean;
+            fit.covariances[static_cast<std::size_t>(j)] = cov;
+            fit.weights[static_cast<std::size_t>(j)] = nj / static_cast<double>(n);
+        }
+        // Recovery for components that lost (almost) every sample: re-seed at the
+        // sample the mixture explains worst, with the others' mean covariance and
+        // an average weight; one that collapses a third time is dropped (J shrinks).
+        for (int j = current - 1; j >= 0; --j) {
+            if (!empty[static_cast<std::size_t>(j)]) continue;
+            reseeded = true;
+            if (++reseed_count[static_cast<std::size_t>(j)] > 2 || current == 1) {
+                fit.means.erase(fit.means.begin() + j);
+                fit.covariances.erase(fit.covariances.begin() + j);
+                fit.weights.erase(fit.weights.begin() + j);
+                reseed_count.erase(reseed_count.begin() + j);
+                fit.report.dropped += 1;
+                --current;
+                continue;
+            }
+            Eigen::Index worst = 0;
+            worst_fit.minCoeff(&worst);
+            worst_fit[worst] = std::numeric_limits<double>::infinity();
+            Eigen::MatrixXd typical = Eigen::MatrixXd::Zero(d, d);
+            int others = 0;
+            for (int k = 0; k < current; ++k)
+                if (!empty[static_cast<std::size_t>(k)]) {
+                    typical += fit.covariances[static_cast<std::size_t>(k)];
+                    ++others;
+                }
+            fit.means[static_cast<std::size_t>(j)] = x.col(worst);
+            fit.covariances[static_cast<std::size_t>(j)] = others > 0 ? Eigen::MatrixXd(typical / others)
+                                                                      : Eigen::MatrixXd(lambda * Eigen::MatrixXd::Identity(d, d));
+            fit.weights[static_cast<std::size_t>(j)] = 1.0 / current;
+        }
+        if (reseeded) {
+            const double total = std::accumulate(fit.weights.begin(), fit.weights.end(), 0.0);
+            for (double& w : fit.weights) w /= total;
+            fit.report.reseeded.push_back(iteration);
+        }
+        const int J_now = current;
+        // E-step in the log domain.
+        Eigen::MatrixXd log_joint(J_now, n);
+        double penalty = 0;
+        for (int j = 0; j < J_now; ++j) {
+            const Eigen::MatrixXd& cov = fit.covariances[static_cast<std::size_t>(j)];
+            const Eigen::MatrixXd centred = x.colwise() - fit.means[static_cast<std::size_t>(j)];
+            Eigen::RowVectorXd q;
+            double log_det = 0;
+            if (diagonal) {
+                const Eigen::VectorXd inv = cov.diagonal().cwiseInverse();
+                q = (centred.array().square().colwise() * inv.array()).colwise().sum().matrix();
+                log_det = cov.diagonal().array().log().sum();
+                penalty += inv.sum();
+            } else {
+                Eigen::LLT<Eigen::MatrixXd> llt(cov);
+                if (llt.info() != Eigen::Success) throw std::runtime_error("EM: a covariance lost positive definiteness");
+                const Eigen::MatrixXd solved = llt.matrixL().solve(centred);
+                q = solved.colwise().squaredNorm();
+                log_det = 2.0 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
+                penalty += llt.solve(Eigen::MatrixXd::Identity(d, d)).trace();
+            }
+            log_joint.row(j) = (std::log(fit.weights[static_cast<std::size_t>(j)]) - 0.5 * (static_cast<double>(d) * kLog2Pi + log_det)) -
+                               0.5 * q.array();
+        }
+        const Eigen::RowVectorXd peak = log_joint.colwise().maxCoeff();
+        const Eigen::RowVectorXd lse = peak.array() + (log_joint.rowwise() - peak).array().exp().colwise().sum().log();
+        resp = (log_joint.rowwise() - lse).array().exp().matrix();
+        worst_fit = lse.transpose();
+        const double log_likelihood = lse.sum();
+        const double objective = log_likelihood - 0.5 * lambda * penalty;
+        if (!std::isfinite(objective)) throw std::runtime_error("EM: the log-likelihood is not finite");
+        fit.report.log_likelihood.push_back(log_likelihood);
+        fit.report.objective.push_back(objective);
+        if (iteration > 0 && !reseeded && std::fabs(objective - previous) <= tolerance * std::fabs(objective)) {
+            fit.report.converged = true;
+            break;
+        }
+        previous = objective;
+    }
+    return fit;
+}
+
+}  // namespace host
+}  // namespace actionstring

@@ -1,0 +1,350 @@
+// The training pipeline (design §1), one function per stage: every per-frame
+// computation goes through the runtime's own code on the float tables, so the
+// strings and representatives are what the device will see.
+#include "train/pipeline.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include "actionstring/capacity.hpp"
+#include "actionstring/gmm.hpp"
+#include "actionstring/projection.hpp"
+#include "actionstring/string_distance.hpp"
+#include "common/parallel.hpp"
+#include "common/stats.hpp"
+#include "run/encode.hpp"
+#include "train/clustering.hpp"
+#include "train/pca.hpp"
+
+namespace actionstring {
+namespace host {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// Times one stage and tells the caller's progress hook when it starts.
+class StageTimer {
+public:
+    StageTimer(const TrainingOptions& options, TrainingReport& report) : options_(options), report_(report) {}
+    void start(const char* progress) {
+        if (options_.progress) options_.progress(progress);
+        start_ = Clock::now();
+    }
+    void finish(const char* stage) { report_.stage_seconds.emplace_back(stage, seconds_since(start_)); }
+
+private:
+    const TrainingOptions& options_;
+    TrainingReport& report_;
+    Clock::time_point start_ = Clock::now();
+};
+
+void check_options(const TrainingOptions& o) {
+    auto require = [](bool ok, const char* what) {
+        if (!ok) throw std::invalid_argument(what);
+    };
+    require(o.components >= 0 && o.components <= static_cast<int>(HostCapacity::max_components),
+            "components (J) must be between 0 (no GMM) and 64");
+    require(o.covariance_floor > 0, "the covariance floor must be positive");
+    require(o.pca_dim >= 0, "the PCA dimension must be ≥ 0");
+    require(o.feature_rate_hz > 0 && o.string_rate_hz > 0, "rates must be positive");
+    require(o.epsilon > 0, "ε must be positive");
+    require(o.sigma >= 0, "σ must be ≥ 0");
+    require(o.neighbours >= 1, "k must be ≥ 1");
+    require(o.window_seconds > 0 && o.step_seconds > 0, "window and step must be positive");
+    require(o.em_max_iterations >= 1, "EM needs at least one iteration");
+    require(o.em_restarts >= 1 && o.em_restarts <= 64, "EM restarts must be between 1 and 64");
+    require(o.max_characters >= 1 && o.max_characters <= 4096, "the character limit must be between 1 and 4096");
+}
+
+// Median 3-D hip width over a clip's frames.
+double median_hip_width(const Clip& clip) {
+    std::vector<double> widths;
+    const auto l = static_cast<std::size_t>(clip.roles.left_hip) * 3, r = static_cast<std::size_t>(clip.roles.right_hip) * 3;
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        const float* p = clip.frame(f);
+        widths.push_back(std::sqrt(std::pow(p[l] - p[r], 2.0) + std::pow(p[l + 1] - p[r + 1], 2.0) +
+                                   std::pow(p[l + 2] - p[r + 2], 2.0)));
+    }
+    return median(widths);
+}
+
+// Stage 0: the skeleton tables, from the first clip (all clips share its joints).
+ModelData start_model(const std::vector<LabelledClip>& clips, const TrainingOptions& options, TrainingReport& r) {
+    if (clips.empty()) throw std::invalid_argument("no training clips");
+    const Clip& first = clips.front().clip;
+    for (const LabelledClip& c : clips) {
+        if (c.clip.joint_names != first.joint_names)
+            throw std::invalid_argument(c.clip.source + ": its joints differ from " + first.source +
+                                        "'s; train on one skeleton");
+        r.frames_read += c.clip.frame_count();
+    }
+    if (!first.roles.complete())
+        throw std::invalid_argument(first.source +
+                                    ": root and hip joints unknown; name them (--roles ROOT,LEFT_HIP,RIGHT_HIP)");
+    ModelData m;
+    m.joint_count = static_cast<std::uint16_t>(first.joint_count());
+    m.root_joint = static_cast<std::uint16_t>(first.roles.root);
+    m.left_hip_joint = static_cast<std::uint16_t>(first.roles.left_hip);
+    m.right_hip_joint = static_cast<std::uint16_t>(first.roles.right_hip);
+    m.up_axis = static_cast<std::uint8_t>(first.up_axis);
+    for (std::size_t j = 0; j < first.joint_count(); ++j)
+        if (static_cast<int>(j) != first.roles.root) m.pose_joints.push_back(static_cast<std::uint16_t>(j));
+    if (m.pose_joints.size() > HostCapacity::max_pose_dim / 3)
+        throw std::invalid_argument("the skeleton has " + std::to_string(m.pose_joints.size()) +
+                                    " joints besides the root; at most " +
+                                    std::to_string(HostCapacity::max_pose_dim / 3) + " are supported");
+    m.scale_mode = options.scale_mode;
+    if (options.scale_mode == ScaleMode::hip_width) {
+        m.reference_scale = static_cast<float>(median_hip_width(first));
+        if (!(m.reference_scale > 0)) throw std::invalid_argument("hip width is zero: cannot scale by it");
+    }
+    return m;
+}
+
+// Stage 1: normalised poses of every clip at the feature rate.
+std::vector<float> sample_training_poses(const ModelData& m, const std::vector<LabelledClip>& clips,
+                                         const TrainingOptions& options, TrainingReport& r) {
+    const ModelView view = m.view();
+    std::vector<float> poses;
+    for (const LabelledClip& c : clips) r.frames_rejected += sample_poses(view, c.clip, options.feature_rate_hz, poses);
+    r.feature_samples = poses.size() / view.pose_dim();
+    r.frames_used = r.frames_read - r.frames_rejected;
+    if (r.feature_samples == 0)
+        throw std::invalid_argument("no usable frames: every frame was rejected by pose normalisation");
+    return poses;
+}
+
+// Stage 2: the optional PCA, then every pose projected with the runtime's
+// projection; returns the projected poses as the columns of a d × n matrix.
+Eigen::MatrixXd fit_projection(ModelData& m, const std::vector<float>& poses, const TrainingOptions& options) {
+    const std::size_t D = m.view().pose_dim(), n = poses.size() / D;
+    std::size_t d = D;
+    if (options.pca_dim > 0) {
+        Eigen::MatrixXd x(static_cast<Eigen::Index>(D), static_cast<Eigen::Index>(n));
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t k = 0; k < D; ++k)
+                x(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)) = poses[i * D + k];
+        Eigen::VectorXd mean;
+        Eigen::MatrixXd axes;
+        fit_pca(x, options.pca_dim, mean, axes);
+        d = static_cast<std::size_t>(options.pca_dim);
+        for (std::size_t k = 0; k < D; ++k)
+            m.projection_mean.push_back(static_cast<float>(mean[static_cast<Eigen::Index>(k)]));
+        for (std::size_t c = 0; c < D; ++c)
+            for (std::size_t row = 0; row < d; ++row)
+                m.projection_matrix.push_back(
+                    static_cast<float>(axes(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(c))));
+    }
+    if (d > HostCapacity::max_feature_dim)
+        throw std::invalid_argument("the pose has " + std::to_string(d) + " dimensions; at most " +
+                                    std::to_string(HostCapacity::max_feature_dim) + " are supported (use --pca)");
+    m.feature_dim = static_cast<std::uint16_t>(d);
+    std::vector<float> feature(d);
+    Eigen::MatrixXd samples(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(n));
+    const ModelView view = m.view();
+    for (std::size_t i = 0; i < n; ++i) {
+        project_pose(view, poses.data() + i * D, feature.data());
+        for (std::size_t k = 0; k < d; ++k)
+            samples(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)) = feature[k];
+    }
+    return samples;
+}
+
+// The vectors the cluster tree is built on: `dim` floats per training pose.
+struct TreeFeatures {
+    std::vector<float> values;
+    std::size_t dim = 0;
+};
+
+// Stage 3 without a GMM (the paper's "PCA only" characters): the projected
+// poses themselves, the projection scaled so every training feature lies
+// within L1 distance 1 of the projected mean pose. The tree's features then
+// span an L1 diameter of at most 2, as posteriors do, and ε, σ, W and the
+// online penalties keep the scale they have with a GMM.
+TreeFeatures projected_features(ModelData& m, const std::vector<float>& poses, const Eigen::MatrixXd& samples) {
+    if (!m.view().has_projection()) throw std::invalid_argument("components 0 (no GMM) needs a projection: set --pca");
+    double largest = 0.0;
+    for (Eigen::Index i = 0; i < samples.cols(); ++i) largest = std::max(largest, samples.col(i).lpNorm<1>());
+    if (!(largest > 0.0)) throw std::invalid_argument("every training pose projects to the same point");
+    for (float& value : m.projection_matrix) value = static_cast<float>(static_cast<double>(value) / largest);
+    const ModelView view = m.view();
+    const std::size_t D = view.pose_dim(), d = view.feature_dim, n = poses.size() / D;
+    TreeFeatures features{std::vector<float>(n * d), d};
+    for (std::size_t i = 0; i < n; ++i) project_pose(view, poses.data() + i * D, features.values.data() + i * d);
+    return features;
+}
+
+// Stage 3 with a GMM: EM. Restarts run in parallel; each is independent and
+// the choice is fixed (highest final objective, earliest on ties), so threads
+// change nothing.
+void fit_gmm_tables(ModelData& m, const Eigen::MatrixXd& samples, const TrainingOptions& options, TrainingReport& r) {
+    std::vector<GmmFit> fits(static_cast<std::size_t>(options.em_restarts));
+    parallel_for(fits.size(), std::min<std::size_t>(2, hardware_workers()), [&](std::size_t k) {
+        fits[k] = fit_gmm(samples, options.components, options.covariance, options.covariance_floor,
+                          options.em_max_iterations, options.em_tolerance, options.seed + static_cast<std::uint32_t>(k));
+    });
+    std::size_t chosen = 0;
+    for (std::size_t k = 0; k < fits.size(); ++k) {
+        r.em_restart_objectives.push_back(fits[k].report.objective.back());
+        if (fits[k].report.objective.back() > fits[chosen].report.objective.back()) chosen = k;
+    }
+    r.em_restart_chosen = static_cast<int>(chosen);
+    const GmmFit& fit = fits[chosen];
+    set_gmm(m, fit.means, fit.covariances, fit.weights, options.covariance);
+    r.em = fit.report;
+}
+
+// Every training pose's GMM posterior, through the runtime.
+TreeFeatures posterior_features(const ModelData& m, const std::vector<float>& poses) {
+    const ModelView view = m.view();
+    const std::size_t D = view.pose_dim(), J = view.component_count, n = poses.size() / D;
+    TreeFeatures features{std::vector<float>(n * J), J};
+    std::vector<float> feature(view.feature_dim);
+    for (std::size_t i = 0; i < n; ++i) {
+        project_pose(view, poses.data() + i * D, feature.data());
+        if (gmm_posterior<HostCapacity::max_feature_dim>(view, feature.data(), features.values.data() + i * J) !=
+            Status::ok)
+            throw std::runtime_error("a training pose fell outside the GMM's float range");
+    }
+    return features;
+}
+
+// Stage 4: the ε cluster tree, its leaves the characters, and W between them.
+void build_characters(ModelData& m, const TreeFeatures& features, const TrainingOptions& options, TrainingReport& r) {
+    const ClusterTree tree =
+        build_cluster_tree(features.values, features.dim, options.epsilon, options.max_characters, options.seed);
+    m.node_centroids = tree.centroids;
+    m.node_children = tree.children;
+    m.node_characters = tree.characters;
+    m.character_count = static_cast<std::uint16_t>(tree.character_count);
+    set_character_distances_from_leaves(m);
+    r.characters = tree.character_count;
+}
+
+// Symmetrised string distances between every pair of training strings.
+std::vector<std::vector<double>> pairwise_distances(const ModelView& view,
+                                                    const std::vector<std::vector<Character>>& strings,
+                                                    const MatchOptions& match) {
+    const CharacterWeights weights = character_weights(view);
+    std::vector<std::vector<double>> distance(strings.size(), std::vector<double>(strings.size(), 0.0));
+    std::vector<detail::Cell> workspace;
+    auto measure = [&](const std::vector<Character>& a, const std::vector<Character>& b) {
+        if (a.empty() || b.empty()) return std::numeric_limits<double>::infinity();
+        workspace.resize(string_distance_cells(a.size(), b.size()));
+        float value = 0;
+        if (string_distance(a.data(), a.size(), b.data(), b.size(), weights, match, workspace.data(), &value) !=
+            Status::ok)
+            throw std::invalid_argument("a training string is too long to compare");
+        return static_cast<double>(value);
+    };
+    for (std::size_t a = 0; a < strings.size(); ++a)
+        for (std::size_t b = a + 1; b < strings.size(); ++b)
+            distance[a][b] = distance[b][a] = 0.5 * (measure(strings[a], strings[b]) + measure(strings[b], strings[a]));
+    return distance;
+}
+
+// Stage 6: the label names, and the medoids of the agglomerated training
+// strings as representatives, each with its cluster's majority label.
+void choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips,
+                            const std::vector<std::vector<Character>>& strings, const TrainingOptions& options,
+                            TrainingReport& r) {
+    std::set<std::string> label_set;
+    for (const LabelledClip& c : clips) label_set.insert(c.label);
+    m.label_names.assign(label_set.begin(), label_set.end());
+    std::map<std::string, LabelId> label_index;
+    for (std::size_t l = 0; l < m.label_names.size(); ++l) label_index[m.label_names[l]] = static_cast<LabelId>(l);
+    const auto clusters =
+        agglomerate(pairwise_distances(m.view(), strings, MatchOptions{options.variant, options.normalization}),
+                    options.sigma);
+    r.representatives_per_label.assign(m.label_names.size(), 0);
+    for (const auto& cluster : clusters) {
+        if (cluster.size() < 2 && !options.keep_singletons) continue;
+        std::vector<int> votes(m.label_names.size(), 0);
+        for (std::size_t member : cluster) ++votes[label_index[clips[member].label]];
+        const auto label = static_cast<LabelId>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+        if (strings[cluster.front()].empty()) continue;
+        m.add_representative(strings[cluster.front()], label);
+        ++r.representatives_per_label[label];
+    }
+    r.representatives = static_cast<int>(m.representative_labels.size());
+    if (r.representatives == 0)
+        throw std::invalid_argument("σ = " + std::to_string(options.sigma) +
+                                    " merges no two training strings, so there is no representative: raise --sigma "
+                                    "or use --keep-singletons");
+}
+
+// Stage 7: the matching and labelling settings, in characters.
+void set_matching(ModelData& m, const TrainingOptions& options, int representatives) {
+    m.variant = options.variant;
+    m.normalization = options.normalization;
+    m.window_chars = static_cast<std::uint16_t>(std::max(1L, std::lround(options.window_seconds * options.string_rate_hz)));
+    m.step_chars = static_cast<std::uint16_t>(std::max(1L, std::lround(options.step_seconds * options.string_rate_hz)));
+    m.neighbours = static_cast<std::uint16_t>(std::min<int>(options.neighbours, representatives));
+    m.unknown_distance = options.unknown_distance < 0 ? detail::infinity() : static_cast<float>(options.unknown_distance);
+    if (!HostCapacity::fits(m.view()))
+        throw std::invalid_argument(std::to_string(representatives) + " representatives of " +
+                                    std::to_string(m.view().total_representative_chars()) +
+                                    " characters in all exceed what the host tools can run (" +
+                                    std::to_string(HostCapacity::max_representatives) + " and " +
+                                    std::to_string(HostCapacity::max_representative_chars) +
+                                    "): raise --sigma, or lower --string-rate");
+}
+
+}  // namespace
+
+ModelData train_model(const std::vector<LabelledClip>& clips, const TrainingOptions& options, TrainingReport* report) {
+    check_options(options);
+    TrainingReport local;
+    TrainingReport& r = report != nullptr ? *report : local;
+    r = TrainingReport{};
+    StageTimer stage(options, r);
+
+    ModelData m = start_model(clips, options, r);
+
+    stage.start("sampling and normalising poses");
+    const std::vector<float> poses = sample_training_poses(m, clips, options, r);
+    stage.finish("sample and normalise");
+
+    stage.start("projecting (PCA)");
+    const Eigen::MatrixXd samples = fit_projection(m, poses, options);
+    stage.finish("PCA");
+
+    TreeFeatures features;
+    if (options.components == 0) {
+        stage.start("building the cluster tree");
+        features = projected_features(m, poses, samples);
+    } else {
+        stage.start("fitting the GMM by EM");
+        fit_gmm_tables(m, samples, options, r);
+        stage.finish("GMM (EM)");
+        stage.start("building the cluster tree");
+        features = posterior_features(m, poses);
+    }
+    build_characters(m, features, options, r);
+    stage.finish("cluster tree");
+
+    stage.start("encoding the training strings");
+    m.string_period_us = static_cast<std::uint32_t>(std::lround(1e6 / options.string_rate_hz));
+    std::vector<std::vector<Character>> strings;
+    for (const LabelledClip& c : clips) strings.push_back(clip_string(m.view(), c.clip));
+    r.strings = static_cast<int>(strings.size());
+    stage.finish("training strings");
+
+    stage.start("agglomerating representatives");
+    choose_representatives(m, clips, strings, options, r);
+    stage.finish("representatives");
+
+    set_matching(m, options, r.representatives);
+    return m;
+}
+
+}  // namespace host
+}  // namespace actionstring
