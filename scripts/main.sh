@@ -30,6 +30,7 @@ out="$dir/results"
 mkdir -p "$out"
 rows=()
 # One evaluation: train, generate the header, build the evaluator against it, evaluate.
+# The table is read from the JSON each tool writes; the text reports are for reading.
 #   run NAME TITLE TRAIN EVAL CONFIG(or "") [eval options...]
 run() {
     local name=$1 title=$2 train=$3 eval=$4 config=$5
@@ -37,41 +38,42 @@ run() {
     echo "== $title"
     local config_args=()
     [ -n "$config" ] && config_args=(--config "$config")
-    "$cli" train --clips "$train" "${config_args[@]}" --out "$out/$name.model" > "$out/${name}_train.txt" 2>/dev/null
+    "$cli" train --clips "$train" "${config_args[@]}" --out "$out/$name.model" --json "$out/${name}_train.json" \
+        > "$out/${name}_train.txt" 2>/dev/null
     "$cli" codegen "$out/$name.model" --out "$out/${name}_model.hpp" --namespace "actionstring_$name"
     "$cli" eval --model "$out/$name.model" --clips "$eval" --train "$train" --online \
         --json "$out/${name}_eval.json" --report "$out/${name}_report" "$@" > "$out/${name}_eval.txt"
-    local header_accuracy
-    header_accuracy=$(header_eval "$name" "$eval")
+    header_eval "$name" "$eval" > "$out/${name}_header_eval.json"
     grep -E "^(representatives|tables|  total)" "$out/${name}_train.txt"
     grep -E "^  (action strings|1-NN|DTW)|^  (segmenter|paper)|^annotator|^online|outside every" "$out/${name}_eval.txt"
+    local header_accuracy
+    header_accuracy=$(jq -r '.clip_accuracy' "$out/${name}_header_eval.json")
     echo "  evaluator built against the generated header: clip accuracy $header_accuracy"
-    local clip strings pca dtw settled window median bytes seconds
-    clip=$(awk '/^  action strings/ { print $(NF-2) }' "$out/${name}_eval.txt" | tr -d ,)
-    strings=$(awk '/^  1-NN over all/ { print $(NF-2) }' "$out/${name}_eval.txt" | tr -d ,)
-    pca=$(awk '/^  1-NN, PCA-only/ { print $(NF-2) }' "$out/${name}_eval.txt" | tr -d ,)
-    dtw=$(awk '/^  DTW 1-NN/ { print $(NF-2) }' "$out/${name}_eval.txt" | tr -d ,)
-    settled=$(awk '/^  segmenter, settled/ { print $6 }' "$out/${name}_eval.txt" | tr -d ,)
-    window=$(awk '/^  paper: latest/ { print $7 }' "$out/${name}_eval.txt" | tr -d ,)
-    median=$(awk '/^annotator per frame/ { for (i = 1; i <= NF; ++i) if ($i == "median") print $(i+1) }' "$out/${name}_eval.txt")
-    bytes=$(awk '/^tables:/ { print $2 }' "$out/${name}_train.txt")
-    seconds=$(awk '/^  total/ { print $2 }' "$out/${name}_train.txt")
-    rows+=("| $title | $clip | $header_accuracy | $strings | $pca | $dtw | $settled | $window | $bytes | $median | $seconds |")
+    # One table row: | title | clip | header | all strings | PCA-only | DTW | settled | window | bytes | ns | s |
+    rows+=("$(jq -r -n --arg title "$title" \
+        --slurpfile e "$out/${name}_eval.json" --slurpfile t "$out/${name}_train.json" \
+        --slurpfile h "$out/${name}_header_eval.json" '
+        def acc(method): [$e[0].baselines[] | select(.method == method) | .clip_accuracy][0];
+        [$title, $e[0].clip_accuracy, $h[0].clip_accuracy, acc("1-NN over all training strings"),
+         acc("1-NN, PCA-only characters (no GMM)"), acc("DTW 1-NN on normalised poses"),
+         $e[0].online.settled.frame_accuracy, $e[0].online.latest_window.frame_accuracy,
+         $t[0].table_bytes, $e[0].frame_time_ns.median, $t[0].stage_seconds.total] | @tsv' |
+        awk -F'\t' '{ printf "| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %d | %.0f | %.2f |", \
+                       $1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11 }')")
     echo
 }
 
 # The generated header compiled into a program that classifies the list's clips with
 # the constexpr tables (no artifact loaded): the result must equal the artifact's.
+# Prints the evaluator's JSON.
 header_eval() {
     local name=$1 list=$2 build="$out/${name}_header_eval"
-    if cmake -S "$root/codegen/header_eval" -B "$build" -DCMAKE_BUILD_TYPE=Release \
-            -DACTIONSTRING_MODEL_HEADER="$out/${name}_model.hpp" -DACTIONSTRING_MODEL_NAMESPACE="actionstring_$name" \
-            >"$build.log" 2>&1 &&
-        cmake --build "$build" -j"$(nproc 2>/dev/null || echo 2)" >>"$build.log" 2>&1; then
-        "$build/actionstring_header_eval" "$list" | awk '{ for (i = 1; i <= NF; ++i) if ($i == "clip") print $(i+2) }'
-    else
-        echo "build failed ($build.log)"
-    fi
+    cmake -S "$root/codegen/header_eval" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+        -DACTIONSTRING_MODEL_HEADER="$out/${name}_model.hpp" -DACTIONSTRING_MODEL_NAMESPACE="actionstring_$name" \
+        >"$build.log" 2>&1 || { echo "header evaluator: configure failed ($build.log)" >&2; return 1; }
+    cmake --build "$build" -j"$(nproc 2>/dev/null || echo 2)" >>"$build.log" 2>&1 ||
+        { echo "header evaluator: build failed ($build.log)" >&2; return 1; }
+    "$build/actionstring_header_eval" "$list"
 }
 
 run hdm05 "HDM05 val (actor mm), CV-chosen model" "$data/hdm05/train.tsv" "$data/hdm05/val.tsv" "$root/models/hdm05-accurate.config" \
