@@ -15,16 +15,8 @@ using namespace actionstring;
 
 namespace {
 
-struct TestLimits : DefaultLimits {
-    static constexpr std::size_t joints = 8;
-    static constexpr std::size_t pose_joints = 8;
-    static constexpr std::size_t feature_dim = 24;
-    static constexpr std::size_t components = 16;
-    static constexpr std::size_t representatives = 16;
-    static constexpr std::size_t representative_chars = 256;
-    static constexpr std::size_t windows = 8;
-};
-using Cap = Capacity<TestLimits>;
+using TestLimits = host::ToyLimits;
+using Cap = host::ToyCapacity;
 
 struct Fixture {
     host::ToyWorld world;
@@ -59,7 +51,7 @@ TEST_CASE("each action performed alone is recognised by its last window") {
         }
         CAPTURE(static_cast<int>(variant));
         // Whole and subsequence matching must get every clean toy action; the
-        // paper's boundaries may not (DESIGN §1.6), but must beat chance (1/4).
+        // paper's boundaries may not (design.md §1.6), but must beat chance (1/4).
         if (variant == MatchVariant::paper)
             CHECK(right * 2 >= total);
         else

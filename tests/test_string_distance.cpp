@@ -47,7 +47,7 @@ TEST_CASE("exact values of each variant on the paper's cases, worked by hand") {
 }
 
 TEST_CASE("the paper's boundaries let a short string match a suffix only") {
-    // DESIGN §1.6: row 0 = 0 means the shorter string needs to fit only the end of
+    // design.md §1.6: row 0 = 0 means the shorter string needs to fit only the end of
     // the longer one, so a 2-character reference matches a 5-character clip exactly.
     CHECK(d("12345", "45", MatchVariant::paper) == 0.0f);
     CHECK(d("12345", "45", MatchVariant::whole) == 3.0f);

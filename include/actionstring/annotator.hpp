@@ -1,4 +1,4 @@
-// actionstring — the per-frame annotator: every stage in order (DESIGN §2).
+// actionstring — the per-frame annotator: every stage in order (design.md §2).
 //
 // push_frame(): StringEncoder (normalise → project → GMM posterior → tree
 // descent, at the string rate) → two labelling rules fed the same characters:

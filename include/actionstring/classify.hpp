@@ -1,4 +1,4 @@
-// actionstring — kNN over the representatives (DESIGN §1.8).
+// actionstring — kNN over the representatives (design.md §1.8).
 #pragma once
 
 #include <cstddef>

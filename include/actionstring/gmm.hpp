@@ -1,4 +1,4 @@
-// actionstring — stage 3: GMM posterior pose feature (DESIGN §1.3, paper §3).
+// actionstring — stage 3: GMM posterior pose feature (design.md §1.3, paper §3).
 //
 // log N(z; μ_j, Σ_j) = log_normalizer_j − ½ ‖U_j (z − μ_j)‖², with the
 // precision Σ_j⁻¹ = U_jᵀ U_j precomputed by the trainer, so the runtime never

@@ -1,4 +1,4 @@
-// actionstring — incremental sliding-window string matcher (DESIGN §2).
+// actionstring — incremental sliding-window string matcher (design.md §2).
 //
 // Windows of window_chars characters start every step_chars characters. Each
 // open window keeps, per representative, one DP row (when the window is the

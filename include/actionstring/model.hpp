@@ -24,7 +24,7 @@ constexpr LabelId unknown_label = 0xFFFF;
 /// Shape of each GMM component's covariance.
 enum class Covariance : std::uint8_t { full = 0, diagonal = 1 };
 
-/// Boundary conditions of the string distance (DESIGN §1.6).
+/// Boundary conditions of the string distance (design.md §1.6).
 enum class MatchVariant : std::uint8_t {
     /// Qi et al. eqs. 6–7 as printed: row 0 is 0, column 0 holds W[A1(i)][A2(1)].
     paper = 0,

@@ -1,4 +1,4 @@
-// actionstring — stage 1: pose normalisation (DESIGN §1.1).
+// actionstring — stage 1: pose normalisation (design.md §1.1).
 //
 // Joint positions become a pose vector that does not depend on where the
 // actor stands or which way they face: positions relative to the root joint,

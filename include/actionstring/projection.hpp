@@ -1,4 +1,4 @@
-// actionstring — stage 2: optional linear projection z = P (x − m) (DESIGN §1.2).
+// actionstring — stage 2: optional linear projection z = P (x − m) (design.md §1.2).
 #pragma once
 
 #include <cstddef>

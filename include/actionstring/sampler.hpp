@@ -1,4 +1,4 @@
-// actionstring — stage 5: turns timestamped frames into string ticks (DESIGN §1.5).
+// actionstring — stage 5: turns timestamped frames into string ticks (design.md §1.5).
 //
 // Characters are emitted at a fixed rate in *time*: tick k falls at
 // origin + k × period, where the origin is the first accepted frame. Each tick

@@ -1,4 +1,4 @@
-// actionstring — online segmentation of the character stream (DESIGN §1.8).
+// actionstring — online segmentation of the character stream (design.md §1.8).
 //
 // The paper labels a stream by its most recent sliding window. Windows of a
 // fixed length straddle the boundaries of actions shorter than a window, and

@@ -1,4 +1,4 @@
-// actionstring — batch string distance (DESIGN §1.6, paper §4.2 eqs. 6–7).
+// actionstring — batch string distance (design.md §1.6, paper §4.2 eqs. 6–7).
 //
 // The plain reference: the whole (n+1) × (m+1) matrix, filled row by row. The
 // incremental matcher (matcher.hpp) must reproduce its results bit for bit.

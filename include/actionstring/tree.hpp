@@ -1,4 +1,4 @@
-// actionstring — stage 4: descent of the cluster tree to a character (DESIGN §1.4).
+// actionstring — stage 4: descent of the cluster tree to a character (design.md §1.4).
 #pragma once
 
 #include <cstddef>
