@@ -16,16 +16,7 @@ namespace actionstring {
 namespace cli {
 namespace {
 
-struct DemoLimits : DefaultLimits {
-    static constexpr std::size_t joints = 8;
-    static constexpr std::size_t pose_joints = 8;
-    static constexpr std::size_t feature_dim = 24;
-    static constexpr std::size_t components = 16;
-    static constexpr std::size_t representatives = 16;
-    static constexpr std::size_t representative_chars = 256;
-    static constexpr std::size_t windows = 8;
-};
-using DemoCapacity = Capacity<DemoLimits>;
+using DemoCapacity = host::ToyCapacity;
 
 void print_demo_usage(std::FILE* out) {
     std::fprintf(out,

@@ -14,11 +14,7 @@ using namespace actionstring;
 
 namespace {
 
-struct MatcherLimits : DefaultLimits {
-    static constexpr std::size_t joints = 1;
-    static constexpr std::size_t pose_joints = 1;
-    static constexpr std::size_t feature_dim = 1;
-    static constexpr std::size_t components = 1;
+struct MatcherLimits : test::MatchingOnlyLimits {
     static constexpr std::size_t representatives = 8;
     static constexpr std::size_t representative_chars = 512;
     static constexpr std::size_t windows = 64;

@@ -10,16 +10,8 @@
 using namespace actionstring;
 
 namespace {
-struct TestLimits : DefaultLimits {
-    static constexpr std::size_t joints = 8;
-    static constexpr std::size_t pose_joints = 8;
-    static constexpr std::size_t feature_dim = 24;
-    static constexpr std::size_t components = 16;
-    static constexpr std::size_t representatives = 16;
-    static constexpr std::size_t representative_chars = 256;
-    static constexpr std::size_t windows = 8;
-};
-using Cap = Capacity<TestLimits>;
+using TestLimits = host::ToyLimits;
+using Cap = host::ToyCapacity;
 // One bound too small each.
 struct FewJoints : TestLimits {
     static constexpr std::size_t joints = 4;

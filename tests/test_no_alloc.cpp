@@ -101,18 +101,9 @@ TEST_CASE("the tripwires fire") {
     CHECK(snapshot().eigen > before.eigen);
 }
 
-struct NoAllocLimits : actionstring::DefaultLimits {
-    static constexpr std::size_t joints = 8;
-    static constexpr std::size_t pose_joints = 8;
-    static constexpr std::size_t feature_dim = 24;
-    static constexpr std::size_t components = 16;
-    static constexpr std::size_t representatives = 16;
-    static constexpr std::size_t representative_chars = 256;
-    static constexpr std::size_t windows = 8;
-};
 
 TEST_CASE("streaming thousands of frames through the annotator allocates nothing") {
-    using Cap = actionstring::Capacity<NoAllocLimits>;
+    using Cap = actionstring::host::ToyCapacity;
     for (const auto covariance : {actionstring::Covariance::full, actionstring::Covariance::diagonal}) {
         actionstring::host::ToyOptions options;
         options.covariance = covariance;

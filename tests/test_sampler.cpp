@@ -14,18 +14,6 @@
 
 using namespace actionstring;
 
-namespace {
-struct SamplerLimits : DefaultLimits {
-    static constexpr std::size_t joints = 8;
-    static constexpr std::size_t pose_joints = 8;
-    static constexpr std::size_t feature_dim = 24;
-    static constexpr std::size_t components = 16;
-    static constexpr std::size_t representatives = 1;
-    static constexpr std::size_t representative_chars = 1;
-    static constexpr std::size_t windows = 1;
-};
-}  // namespace
-
 TEST_CASE("one tick per period, on the frame nearest in time") {
     std::mt19937 rng(21);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -98,7 +86,7 @@ TEST_CASE("extreme timestamps do not overflow") {
 TEST_CASE("the same performance gives the same string at any frame rate") {
     host::ToyWorld world = host::make_toy_world();
     const ModelView view = world.model.view();
-    using Cap = Capacity<SamplerLimits>;
+    using Cap = host::ToyCapacity;
     auto encode = [&](double rate, double jitter, double drop) {
         host::ToyStreamOptions options;
         options.frame_rate_hz = rate;

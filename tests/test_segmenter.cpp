@@ -10,31 +10,22 @@
 
 #include "actionstring/capacity.hpp"
 #include "actionstring/segmenter.hpp"
+#include "test_support.hpp"
 
 using namespace actionstring;
 
 namespace {
 
-struct SegmenterLimits : DefaultLimits {
-    static constexpr std::size_t joints = 1;
-    static constexpr std::size_t pose_joints = 1;
-    static constexpr std::size_t feature_dim = 1;
-    static constexpr std::size_t components = 1;
+struct SegmenterLimits : test::MatchingOnlyLimits {
     static constexpr std::size_t representatives = 8;
     static constexpr std::size_t representative_chars = 512;
     static constexpr std::size_t windows = 1;
     static constexpr bool path_lengths = false;
     static constexpr std::size_t settle_chars = 40;
 };
-struct TinyLimits : DefaultLimits {
-    static constexpr std::size_t joints = 1;
-    static constexpr std::size_t pose_joints = 1;
-    static constexpr std::size_t feature_dim = 1;
-    static constexpr std::size_t components = 1;
+struct TinyLimits : SegmenterLimits {
     static constexpr std::size_t representatives = 1;
     static constexpr std::size_t representative_chars = 4;
-    static constexpr std::size_t windows = 1;
-    static constexpr bool path_lengths = false;
     static constexpr std::size_t settle_chars = 8;
 };
 using SegmenterCap = Capacity<SegmenterLimits>;

@@ -5,10 +5,20 @@
 #include <string>
 #include <vector>
 
+#include "actionstring/capacity.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/string_distance.hpp"
 
 namespace test {
+
+/// Limits for tests of the matching stages alone: the feature bounds are 1,
+/// and each test names the matching bounds it needs.
+struct MatchingOnlyLimits : actionstring::DefaultLimits {
+    static constexpr std::size_t joints = 1;
+    static constexpr std::size_t pose_joints = 1;
+    static constexpr std::size_t feature_dim = 1;
+    static constexpr std::size_t components = 1;
+};
 
 /// "12345" → {1, 2, 3, 4, 5}.
 inline std::vector<actionstring::Character> chars(const std::string& digits) {

@@ -12,15 +12,6 @@ namespace actionstring {
 namespace host {
 namespace {
 
-struct ToyLimits : DefaultLimits {
-    static constexpr std::size_t joints = 8;
-    static constexpr std::size_t pose_joints = 8;
-    static constexpr std::size_t feature_dim = 24;
-    static constexpr std::size_t components = 16;
-    static constexpr std::size_t representatives = 1;
-    static constexpr std::size_t representative_chars = 1;
-    static constexpr std::size_t windows = 1;
-};
 
 
 constexpr double kPi = 3.14159265358979323846;
@@ -134,7 +125,7 @@ ToyWorld make_toy_world(const ToyOptions& options) {
     // Representatives: each action's string from a clean performance, through
     // the runtime's own encoder.
     ModelView view = m.view();
-    using Cap = Capacity<ToyLimits>;
+    using Cap = ToyCapacity;
     for (std::size_t a = 0; a < world.actions.size(); ++a) {
         StringEncoder<Cap> encoder;
         if (encoder.init(view, 1000000) != Status::ok)
