@@ -27,7 +27,7 @@ std::string escape(const std::string& text) {
 
 // Distinct hues for labels; unknown / "no action" is light grey.
 std::string colour(int label) {
-    if (label < 0) return label == -1 ? "#d9d9d9" : "#000000";
+    if (label < 0) return label == unknown_frame ? "#d9d9d9" : "#000000";
     static const char* palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
                                     "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939", "#8c6d31", "#843c39",
                                     "#7b4173", "#3182bd", "#e6550d", "#31a354", "#756bb1", "#636363"};
@@ -114,7 +114,7 @@ std::string timeline_svg(const StreamTimeline& stream, const std::vector<std::st
             std::snprintf(geometry, sizeof geometry, "x=\"%.1f\" y=\"%d\" width=\"%.1f\" height=\"%d\"", x0, y, std::max(x1 - x0, 0.5), row);
             svg << "<rect " << geometry << " fill=\"" << colour(v[i]) << "\"><title>"
                 << escape(v[i] >= 0 && static_cast<std::size_t>(v[i]) < labels.size() ? labels[static_cast<std::size_t>(v[i])]
-                                                                                          : std::string(v[i] == -1 ? "unknown / no action" : "label not in the model"))
+                                                                                          : std::string(v[i] == unknown_frame ? "unknown / no action" : "label not in the model"))
                 << "</title></rect>\n";
             i = j;
         }

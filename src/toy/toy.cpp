@@ -187,12 +187,6 @@ std::vector<ToyFrame> toy_stream(const ToyWorld& world, const std::vector<int>& 
     return frames;
 }
 
-}  // namespace host
-}  // namespace actionstring
-
-namespace actionstring {
-namespace host {
-
 Clip toy_clip(const std::vector<ToyFrame>& frames, const std::string& source) {
     Clip clip;
     clip.source = source;
