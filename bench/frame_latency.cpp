@@ -71,7 +71,8 @@ Stats summarize(std::vector<std::int64_t> values) {
     if (values.empty()) return s;
     std::sort(values.begin(), values.end());
     auto at = [&](double q) {
-        return static_cast<double>(values[std::min(values.size() - 1, static_cast<std::size_t>(q * static_cast<double>(values.size())))]);
+        return static_cast<double>(
+            values[std::min(values.size() - 1, static_cast<std::size_t>(q * static_cast<double>(values.size())))]);
     };
     s.n = values.size();
     s.median = at(0.5);
@@ -133,11 +134,12 @@ void table_bytes(const ModelView& m, std::ostringstream& json, std::ostringstrea
     const std::size_t tree = m.node_count * (J * sizeof(float) + 2 * sizeof(std::int16_t) + sizeof(Character)) +
                              static_cast<std::size_t>(m.character_count) * m.character_count * sizeof(float);
     const std::size_t strings = (m.representative_count + 1u) * sizeof(std::uint32_t) +
-                                m.total_representative_chars() * sizeof(Character) + m.representative_count * sizeof(LabelId);
+                                m.total_representative_chars() * sizeof(Character) +
+                                m.representative_count * sizeof(LabelId);
     json << "\"table_bytes\": {\"normalise\": " << normalise << ", \"pca\": " << pca << ", \"gmm\": " << gmm
          << ", \"tree_and_W\": " << tree << ", \"strings\": " << strings << "}";
-    md << "| " << name << " | " << normalise << " | " << pca << " | " << gmm << " | " << tree << " | " << strings << " | "
-       << normalise + pca + gmm + tree + strings << " |\n";
+    md << "| " << name << " | " << normalise << " | " << pca << " | " << gmm << " | " << tree << " | " << strings
+       << " | " << normalise + pca + gmm + tree + strings << " |\n";
 }
 
 /// Everything measured on one model over the real stream.
@@ -188,7 +190,8 @@ void measure_model(const std::string& name, const ModelView& model, const host::
                 b = timed([&] { project_pose(model, pose, feature); });
                 input = feature;
             }
-            const std::int64_t c = timed([&] { status = gmm_posterior<Cap::max_feature_dim>(model, input, posterior); });
+            const std::int64_t c =
+                timed([&] { status = gmm_posterior<Cap::max_feature_dim>(model, input, posterior); });
             if (status != Status::ok) continue;
             Character character = 0;
             const std::int64_t d = timed([&] { character = descend_tree(model, posterior); });
@@ -235,7 +238,8 @@ void measure_model(const std::string& name, const ModelView& model, const host::
             }
             if (!completed) continue;
             Classification label;
-            const std::int64_t c = timed([&] { label = classify_distances<Cap::max_representatives>(model, matcher->completed_distances()); });
+            const std::int64_t c = timed(
+                [&] { label = classify_distances<Cap::max_representatives>(model, matcher->completed_distances()); });
             g_sink = label.label;
             const std::size_t start = static_cast<std::size_t>(matcher->completed_window_start());
             const std::size_t length = i + 1 - start;
@@ -243,8 +247,9 @@ void measure_model(const std::string& name, const ModelView& model, const host::
                 for (std::size_t r = 0; r < R; ++r) {
                     const std::size_t rep_length = model.representative_length(r);
                     workspace.resize(string_distance_cells(length, rep_length));
-                    string_distance(string.data() + start, length, model.representative_chars + model.representative_offsets[r],
-                                    rep_length, character_weights(model), MatchOptions{model.variant, model.normalization},
+                    string_distance(string.data() + start, length,
+                                    model.representative_chars + model.representative_offsets[r], rep_length,
+                                    character_weights(model), MatchOptions{model.variant, model.normalization},
                                     workspace.data(), &batch[r]);
                 }
             });
@@ -275,16 +280,18 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     report.latency.push_back({name, "stage: matcher update (per character)", summarize(push_ns)});
     report.latency.push_back({name, "stage: classification (per window)", summarize(classify_ns)});
     report.latency.push_back({name, "batch DP of one whole window (all representatives)", summarize(batch_window_ns)});
-    const double ratio = incremental_total > 0 ? static_cast<double>(batch_total) / static_cast<double>(incremental_total) : 0;
+    const double ratio =
+        incremental_total > 0 ? static_cast<double>(batch_total) / static_cast<double>(incremental_total) : 0;
     char line[512];
     std::snprintf(line, sizeof line,
                   "%s: matching the %zu windows of the stream's %zu-character string: incremental %.3f ms, batch "
                   "recomputation of each window %.3f ms (%.1f× more); %zu of %zu distances bit-identical",
-                  name.c_str(), windows / static_cast<std::size_t>(passes), string.size(), static_cast<double>(incremental_total) / passes / 1e6,
+                  name.c_str(), windows / static_cast<std::size_t>(passes), string.size(),
+                  static_cast<double>(incremental_total) / passes / 1e6,
                   static_cast<double>(batch_total) / passes / 1e6, ratio, identical, compared);
     report.notes.push_back(line);
-    std::snprintf(line, sizeof line, "%s: heap allocations during %d timed passes of %zu frames: %ld", name.c_str(), passes,
-                  frames, allocations);
+    std::snprintf(line, sizeof line, "%s: heap allocations during %d timed passes of %zu frames: %ld", name.c_str(),
+                  passes, frames, allocations);
     report.notes.push_back(line);
 
     memory_md << "| " << name << " | " << sizeof(Annotator<Cap>) << " | " << sizeof(StringEncoder<Cap>) << " | "
@@ -295,12 +302,13 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     report.json_models << "{\"name\": \"" << name << "\", \"components\": " << model.component_count
                        << ", \"feature_dim\": " << model.feature_dim << ", \"characters\": " << model.character_count
                        << ", \"representatives\": " << R << ", \"window_chars\": " << model.window_chars
-                       << ", \"state_bytes\": {\"annotator\": " << sizeof(Annotator<Cap>) << ", \"encoder\": "
-                       << sizeof(StringEncoder<Cap>) << ", \"matcher\": " << sizeof(WindowMatcher<Cap>) << "}, "
-                       << tables_json.str() << ", \"incremental_vs_batch\": {\"incremental_ns\": " << incremental_total / passes
+                       << ", \"state_bytes\": {\"annotator\": " << sizeof(Annotator<Cap>)
+                       << ", \"encoder\": " << sizeof(StringEncoder<Cap>)
+                       << ", \"matcher\": " << sizeof(WindowMatcher<Cap>) << "}, " << tables_json.str()
+                       << ", \"incremental_vs_batch\": {\"incremental_ns\": " << incremental_total / passes
                        << ", \"batch_ns\": " << batch_total / passes << ", \"ratio\": " << ratio
-                       << ", \"identical\": " << identical << ", \"compared\": " << compared << "}, \"allocations\": " << allocations
-                       << "}";
+                       << ", \"identical\": " << identical << ", \"compared\": " << compared
+                       << "}, \"allocations\": " << allocations << "}";
 }
 
 // ---- scaling on synthetic models (cost only) ----------------------------------
@@ -348,9 +356,8 @@ ScalingPoint measure_scaling(const std::string& varied, const bench::ModelSize& 
         annotator->reset();
         for (std::size_t f = 0; f < frames.size(); ++f) {
             FrameResult result;
-            const std::int64_t ns = timed([&] {
-                result = annotator->push_frame(static_cast<std::int64_t>(f) * 8333, frames[f].data());
-            });
+            const std::int64_t ns =
+                timed([&] { result = annotator->push_frame(static_cast<std::int64_t>(f) * 8333, frames[f].data()); });
             if (pass == 0) continue;
             every.push_back(ns);
             if (result.characters > 0) character.push_back(ns);
@@ -383,8 +390,10 @@ int main(int argc, char** argv) {
         else if (arg == "--no-scaling") scaling = false;
         else if (arg == "--callgrind-pass") callgrind = true;
         else {
-            std::fprintf(stderr, "usage: actionstring_frame_latency [--passes N] [--json FILE] [--markdown FILE] [--no-scaling]\n"
-                                 "       actionstring_frame_latency --callgrind-pass   (see bench/callgrind_frame.sh)\n");
+            std::fprintf(
+                stderr,
+                "usage: actionstring_frame_latency [--passes N] [--json FILE] [--markdown FILE] [--no-scaling]\n"
+                "       actionstring_frame_latency --callgrind-pass   (see bench/callgrind_frame.sh)\n");
             return 2;
         }
     }
@@ -396,10 +405,13 @@ int main(int argc, char** argv) {
         for (const auto& entry : host::read_clip_list(data + "/hdm05/val.tsv")) clips.push_back(host::read_clip(entry));
         if (!callgrind)
             for (const auto& entry : host::read_clip_list(data + "/hdm05/train.tsv"))
-            training.push_back({host::read_clip(entry), entry.label, entry.subject});
+                training.push_back({host::read_clip(entry), entry.label, entry.subject});
     } catch (const std::exception& error) {
-        std::fprintf(stderr, "actionstring_frame_latency: %s\nThe benchmark replays real HDM05 recordings: set ACTIONSTRING_DATA "
-                             "to the datasets folder.\n", error.what());
+        std::fprintf(
+            stderr,
+            "actionstring_frame_latency: %s\nThe benchmark replays real HDM05 recordings: set ACTIONSTRING_DATA "
+            "to the datasets folder.\n",
+            error.what());
         return 1;
     }
     std::vector<host::StreamSegment> segments;
@@ -422,8 +434,8 @@ int main(int argc, char** argv) {
     Report report;
     const std::int64_t overhead = clock_overhead_ns();
     std::ostringstream memory_md, tables_md;
-    measure_model<actionstring_hdm05::ModelCapacity>("committed hdm05 (J=20)", actionstring_hdm05::kModel, stream, passes,
-                                                     report, memory_md, tables_md);
+    measure_model<actionstring_hdm05::ModelCapacity>("committed hdm05 (J=20)", actionstring_hdm05::kModel, stream,
+                                                     passes, report, memory_md, tables_md);
     using Cap40 = Capacity<Limits40>;
     measure_model<Cap40>("hdm05 J=40", model40.view(), stream, passes, report, memory_md, tables_md);
 
@@ -432,12 +444,31 @@ int main(int argc, char** argv) {
         bench::ModelSize base;
         base.covariance = Covariance::full;
         points.push_back(measure_scaling("base", base));
-        for (int J : {20, 80}) { auto s = base; s.components = J; points.push_back(measure_scaling("J", s)); }
-        for (int d : {12, 48}) { auto s = base; s.feature_dim = d; points.push_back(measure_scaling("d", s)); }
-        for (int K : {32, 256}) { auto s = base; s.characters = K; points.push_back(measure_scaling("K", s)); }
-        for (int R : {15, 90}) { auto s = base; s.representatives = R; points.push_back(measure_scaling("representatives", s)); }
+        for (int J : {20, 80}) {
+            auto s = base;
+            s.components = J;
+            points.push_back(measure_scaling("J", s));
+        }
+        for (int d : {12, 48}) {
+            auto s = base;
+            s.feature_dim = d;
+            points.push_back(measure_scaling("d", s));
+        }
+        for (int K : {32, 256}) {
+            auto s = base;
+            s.characters = K;
+            points.push_back(measure_scaling("K", s));
+        }
+        for (int R : {15, 90}) {
+            auto s = base;
+            s.representatives = R;
+            points.push_back(measure_scaling("representatives", s));
+        }
         for (double w : {1.0, 4.0}) {
-            auto s = base; s.window_seconds = w; s.step_seconds = w / 4; s.representative_length = static_cast<int>(w * 15);
+            auto s = base;
+            s.window_seconds = w;
+            s.step_seconds = w / 4;
+            s.representative_length = static_cast<int>(w * 15);
             points.push_back(measure_scaling("window", s));
         }
     }
@@ -445,18 +476,20 @@ int main(int argc, char** argv) {
     const std::string machine = machine_description();
     std::ostringstream md;
     md << "Machine: " << machine << ". Stream: the " << clips.size() << " clips of hdm05/val.tsv joined, "
-       << stream.frame_count() << " frames at 120 Hz; " << passes << " timed passes after one warm-up pass. Clock overhead "
+       << stream.frame_count() << " frames at 120 Hz; " << passes
+       << " timed passes after one warm-up pass. Clock overhead "
        << "(an empty timed call, median): " << overhead << " ns, included in every figure.\n\n"
        << "| model | measured | n | median ns | p99 ns | p99.9 ns | max ns |\n|---|---|---:|---:|---:|---:|---:|\n";
     char cell[256];
     for (const auto& row : report.latency) {
-        std::snprintf(cell, sizeof cell, "| %s | %s | %zu | %.0f | %.0f | %.0f | %.0f |\n", row.model.c_str(), row.what.c_str(),
-                      row.stats.n, row.stats.median, row.stats.p99, row.stats.p999, row.stats.max);
+        std::snprintf(cell, sizeof cell, "| %s | %s | %zu | %.0f | %.0f | %.0f | %.0f |\n", row.model.c_str(),
+                      row.what.c_str(), row.stats.n, row.stats.median, row.stats.p99, row.stats.p999, row.stats.max);
         md << cell;
     }
     md << "\n";
     for (const auto& note : report.notes) md << "- " << note << "\n";
-    std::snprintf(cell, sizeof cell, "- training the J=40 model on hdm05/train.tsv (%zu clips): %.1f s\n", training.size(), train_seconds);
+    std::snprintf(cell, sizeof cell, "- training the J=40 model on hdm05/train.tsv (%zu clips): %.1f s\n",
+                  training.size(), train_seconds);
     md << cell;
     md << "\n| state bytes | annotator | encoder | matcher |\n|---|---:|---:|---:|\n" << memory_md.str();
     md << "\n| table bytes | normalise | PCA | GMM | tree + W | strings | total |\n|---|---:|---:|---:|---:|---:|---:|\n"
@@ -467,9 +500,10 @@ int main(int argc, char** argv) {
               "| varied | J | d | K | representatives | window s | median ns (all frames) | median ns (character frames) | p99.9 ns |\n"
               "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
         for (const auto& p : points) {
-            std::snprintf(cell, sizeof cell, "| %s | %d | %d | %d | %d | %.1f | %.0f | %.0f | %.0f |\n", p.varied.c_str(),
-                          p.size.components, p.size.feature_dim, p.size.characters, p.size.representatives,
-                          p.size.window_seconds, p.every.median, p.character.median, p.every.p999);
+            std::snprintf(cell, sizeof cell, "| %s | %d | %d | %d | %d | %.1f | %.0f | %.0f | %.0f |\n",
+                          p.varied.c_str(), p.size.components, p.size.feature_dim, p.size.characters,
+                          p.size.representatives, p.size.window_seconds, p.every.median, p.character.median,
+                          p.every.p999);
             md << cell;
         }
     }
@@ -481,20 +515,21 @@ int main(int argc, char** argv) {
              << ",\n  \"passes\": " << passes << ",\n  \"clock_overhead_ns\": " << overhead << ",\n  \"latency_ns\": [";
         for (std::size_t i = 0; i < report.latency.size(); ++i) {
             const auto& r = report.latency[i];
-            json << (i ? ",\n    " : "\n    ") << "{\"model\": " << host::json_string(r.model) << ", \"measured\": "
-                 << host::json_string(r.what) << ", \"n\": " << r.stats.n << ", \"median\": " << r.stats.median
-                 << ", \"p99\": " << r.stats.p99 << ", \"p99_9\": " << r.stats.p999 << ", \"max\": " << r.stats.max
-                 << ", \"mean\": " << r.stats.mean << "}";
+            json << (i ? ",\n    " : "\n    ") << "{\"model\": " << host::json_string(r.model)
+                 << ", \"measured\": " << host::json_string(r.what) << ", \"n\": " << r.stats.n
+                 << ", \"median\": " << r.stats.median << ", \"p99\": " << r.stats.p99
+                 << ", \"p99_9\": " << r.stats.p999 << ", \"max\": " << r.stats.max << ", \"mean\": " << r.stats.mean
+                 << "}";
         }
-        json << "\n  ],\n  \"models\": [" << report.json_models.str() << "],\n  \"training_seconds_j40\": " << train_seconds
-             << ",\n  \"scaling\": [";
+        json << "\n  ],\n  \"models\": [" << report.json_models.str()
+             << "],\n  \"training_seconds_j40\": " << train_seconds << ",\n  \"scaling\": [";
         for (std::size_t i = 0; i < points.size(); ++i) {
             const auto& p = points[i];
-            json << (i ? ",\n    " : "\n    ") << "{\"varied\": \"" << p.varied << "\", \"components\": " << p.size.components
-                 << ", \"feature_dim\": " << p.size.feature_dim << ", \"characters\": " << p.size.characters
-                 << ", \"representatives\": " << p.size.representatives << ", \"window_seconds\": " << p.size.window_seconds
-                 << ", \"median_ns\": " << p.every.median << ", \"character_median_ns\": " << p.character.median
-                 << ", \"p99_9_ns\": " << p.every.p999 << "}";
+            json << (i ? ",\n    " : "\n    ") << "{\"varied\": \"" << p.varied
+                 << "\", \"components\": " << p.size.components << ", \"feature_dim\": " << p.size.feature_dim
+                 << ", \"characters\": " << p.size.characters << ", \"representatives\": " << p.size.representatives
+                 << ", \"window_seconds\": " << p.size.window_seconds << ", \"median_ns\": " << p.every.median
+                 << ", \"character_median_ns\": " << p.character.median << ", \"p99_9_ns\": " << p.every.p999 << "}";
         }
         json << "\n  ]\n}\n";
     }

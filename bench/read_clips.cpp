@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
     }
     std::sort(seconds.begin(), seconds.end());
     std::printf("read + FK: %zu clips, %zu frames: median %.3f s (min %.3f, max %.3f) over 5 passes, %.2f us/frame\n",
-                entries.size(), frames, seconds[2], seconds.front(), seconds.back(), seconds[2] * 1e6 / static_cast<double>(frames));
+                entries.size(), frames, seconds[2], seconds.front(), seconds.back(),
+                seconds[2] * 1e6 / static_cast<double>(frames));
     return 0;
 }

@@ -46,8 +46,10 @@ void report(const char* name, std::vector<std::int64_t>& cost) {
 
 int main(int argc, char** argv) {
     const int runs = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
-    std::printf("annotator per frame [ns], 120 Hz stream of a jittering 31-joint skeleton,\n"
-                "%d runs of 60 s after one warm-up run; a 'tick' frame computes a character\n", runs);
+    std::printf(
+        "annotator per frame [ns], 120 Hz stream of a jittering 31-joint skeleton,\n"
+        "%d runs of 60 s after one warm-up run; a 'tick' frame computes a character\n",
+        runs);
     for (const LengthNormalization normalization : {LengthNormalization::path, LengthNormalization::none})
         for (const Covariance covariance : {Covariance::full, Covariance::diagonal}) {
             host::ModelData data;
@@ -79,8 +81,8 @@ int main(int argc, char** argv) {
             }
             std::printf("\n%s covariance, %s normalisation (J %u, d %u, K %u, R %u x %u, window %u step %u):\n",
                         covariance == Covariance::full ? "full" : "diagonal",
-                        normalization == LengthNormalization::path ? "path-length" : "no length",
-                        model.component_count, model.feature_dim, model.character_count, model.representative_count,
+                        normalization == LengthNormalization::path ? "path-length" : "no length", model.component_count,
+                        model.feature_dim, model.character_count, model.representative_count,
                         model.representative_length(0), model.window_chars, model.step_chars);
             report("all frames", all);
             report("tick frames", ticks);

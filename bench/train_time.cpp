@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
     std::printf("training on %s (%zu clips), default settings, median of 3 runs:\n", list.c_str(), clips.size());
     std::printf("  %-30s %7.2f s (once)\n", "reading + FK", read_seconds);
     for (const auto& stage : stages) std::printf("  %-30s %7.2f s\n", stage.first.c_str(), median(stage.second));
-    std::printf("  %-30s %7.2f s (reading included: %.2f s)\n", "training total", median(totals), median(totals) + read_seconds);
+    std::printf("  %-30s %7.2f s (reading included: %.2f s)\n", "training total", median(totals),
+                median(totals) + read_seconds);
     return 0;
 }

@@ -21,14 +21,15 @@ int run_annotate(int argc, char** argv) {
     while (args.more()) {
         const std::string arg = args.next();
         if (arg == "--help" || arg == "-h") {
-            std::printf("usage: actionstring annotate --model MODEL FILE [--skeleton ASF] [--rate HZ] [--roles R,L,R] [--json]\n"
-                        "                             [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
-                        "                             [--skip-penalty X] [--unknown-cost X]\n\n"
-                        "Streams FILE frame by frame through the annotator, as a device would, and prints\n"
-                        "the timeline of settled labels: start and end time in seconds, label (or\n"
-                        "'unknown') and the confidence, the share of the span's frames whose live label\n"
-                        "(decided without the settle delay) already said so; as TSV (default) or JSON.\n"
-                        "The segmenter options are those of 'actionstring eval'.\n");
+            std::printf(
+                "usage: actionstring annotate --model MODEL FILE [--skeleton ASF] [--rate HZ] [--roles R,L,R] [--json]\n"
+                "                             [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
+                "                             [--skip-penalty X] [--unknown-cost X]\n\n"
+                "Streams FILE frame by frame through the annotator, as a device would, and prints\n"
+                "the timeline of settled labels: start and end time in seconds, label (or\n"
+                "'unknown') and the confidence, the share of the span's frames whose live label\n"
+                "(decided without the settle delay) already said so; as TSV (default) or JSON.\n"
+                "The segmenter options are those of 'actionstring eval'.\n");
             return 0;
         }
         if (arg == "--model") model_path = args.value(arg);
@@ -42,13 +43,16 @@ int run_annotate(int argc, char** argv) {
         else return args.error("more than one FILE given");
     }
     if (!args.ok()) return 2;
-    if (model_path.empty() || file.empty()) return args.error("usage: actionstring annotate --model MODEL FILE (see --help)");
+    if (model_path.empty() || file.empty())
+        return args.error("usage: actionstring annotate --model MODEL FILE (see --help)");
     return run_reporting_errors("annotate", [&] {
         const host::ModelData model = host::load_model(model_path);
         const ModelView view = model.view();
         const host::Clip clip = host::read_clip(file, read, skeleton);
         const auto spans = host::annotate_clip(view, clip, config);
-        auto name = [&](int label) { return label < 0 ? std::string("unknown") : model.label_names[static_cast<std::size_t>(label)]; };
+        auto name = [&](int label) {
+            return label < 0 ? std::string("unknown") : model.label_names[static_cast<std::size_t>(label)];
+        };
         if (json) {
             host::JsonWriter out;
             out.begin_object().field("file", file).key("segments").begin_array();
@@ -63,7 +67,8 @@ int run_annotate(int argc, char** argv) {
         } else {
             std::printf("start\tend\tlabel\tconfidence\n");
             for (const auto& span : spans)
-                std::printf("%.4f\t%.4f\t%s\t%.4f\n", span.start_s, span.end_s, name(span.label).c_str(), span.agreement);
+                std::printf("%.4f\t%.4f\t%s\t%.4f\n", span.start_s, span.end_s, name(span.label).c_str(),
+                            span.agreement);
         }
         return 0;
     });

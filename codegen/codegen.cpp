@@ -18,10 +18,11 @@ int run_codegen(int argc, char** argv) {
     while (args.more()) {
         const std::string arg = args.next();
         if (arg == "--help" || arg == "-h") {
-            std::printf("usage: actionstring codegen MODEL --out HEADER [--namespace NS]\n\n"
-                        "Writes a C++17 header of constexpr tables for MODEL: NS::kModel (a ModelView),\n"
-                        "NS::ModelLimits and NS::ModelCapacity (a Capacity that fits it exactly) and NS::kModelChecksum, under a\n"
-                        "DO-NOT-EDIT banner carrying the artifact's checksum. [namespace: actionstring_model]\n");
+            std::printf(
+                "usage: actionstring codegen MODEL --out HEADER [--namespace NS]\n\n"
+                "Writes a C++17 header of constexpr tables for MODEL: NS::kModel (a ModelView),\n"
+                "NS::ModelLimits and NS::ModelCapacity (a Capacity that fits it exactly) and NS::kModelChecksum, under a\n"
+                "DO-NOT-EDIT banner carrying the artifact's checksum. [namespace: actionstring_model]\n");
             return 0;
         }
         if (arg == "--out") out_path = args.value(arg);
@@ -31,14 +32,17 @@ int run_codegen(int argc, char** argv) {
         else return args.error("more than one MODEL given");
     }
     if (!args.ok()) return 2;
-    if (model_path.empty() || out_path.empty()) return args.error("usage: actionstring codegen MODEL --out HEADER [--namespace NS]");
-    if (!host::is_cpp_namespace(ns)) return args.error("--namespace must be a C++ namespace name (identifiers joined by ::)");
+    if (model_path.empty() || out_path.empty())
+        return args.error("usage: actionstring codegen MODEL --out HEADER [--namespace NS]");
+    if (!host::is_cpp_namespace(ns))
+        return args.error("--namespace must be a C++ namespace name (identifiers joined by ::)");
     return run_reporting_errors("codegen", [&] {
         const std::string text = host::read_file(model_path);
         host::ModelData model = host::parse_model(model_path, text);
         const std::size_t slash = model_path.find_last_of('/');
         const std::string header =
-            host::generate_header(model, host::artifact_checksum(text), ns, slash == std::string::npos ? model_path : model_path.substr(slash + 1));
+            host::generate_header(model, host::artifact_checksum(text), ns,
+                                  slash == std::string::npos ? model_path : model_path.substr(slash + 1));
         host::write_file(out_path, header);
         return 0;
     });

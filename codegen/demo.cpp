@@ -84,10 +84,11 @@ int run_demo(int argc, char** argv) {
     stream_options.seed = static_cast<std::uint32_t>(seed) + 1;
     const auto frames = host::toy_stream(world, sequence, stream_options);
 
-    std::printf("model: J=%u components, K=%u characters, %u representatives, window %u chars, step %u,"
-                " string rate %.1f Hz\n",
-                model.component_count, model.character_count, model.representative_count,
-                model.window_chars, model.step_chars, 1e6 / model.string_period_us);
+    std::printf(
+        "model: J=%u components, K=%u characters, %u representatives, window %u chars, step %u,"
+        " string rate %.1f Hz\n",
+        model.component_count, model.character_count, model.representative_count, model.window_chars, model.step_chars,
+        1e6 / model.string_period_us);
     std::printf("state: %zu bytes (Annotator with capacity for this demo)\n", sizeof(annotator));
     std::printf("stream: %zu frames at %.0f Hz, %d actions\n\n", frames.size(), frame_rate, action_count);
     std::printf("%10s  %-12s  %-12s  %s\n", "time [s]", "true", "predicted", "confidence");
@@ -105,8 +106,8 @@ int run_demo(int argc, char** argv) {
         if (label == frame.action) ++correct;
         if (label != last_label || frame.action != last_true) {
             std::printf("%10.2f  %-12s  %-12s  %.2f\n", static_cast<double>(frame.time_us) * 1e-6,
-                        world.actions[static_cast<std::size_t>(frame.action)].name.c_str(),
-                        annotator.label_name(), static_cast<double>(annotator.confidence()));
+                        world.actions[static_cast<std::size_t>(frame.action)].name.c_str(), annotator.label_name(),
+                        static_cast<double>(annotator.confidence()));
             last_label = label;
             last_true = frame.action;
         }

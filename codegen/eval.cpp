@@ -53,9 +53,8 @@ void print_online(const char* rule, const host::OnlineResults& r) {
     std::printf("  %-28s frame accuracy %.3f", rule, r.frame_accuracy);
     if (r.no_action_frames > 0)
         std::printf(" (in actions %.3f, no action %.3f)", r.action_frame_accuracy, r.no_action_accuracy);
-    std::printf(", segment F1 %.3f (P %.3f, R %.3f), mean delay %.2f s, %d missed, flicker %.1f/min\n",
-                r.segment_f1, r.segment_precision, r.segment_recall, r.mean_delay_s, r.missed_segments,
-                r.flicker_per_min);
+    std::printf(", segment F1 %.3f (P %.3f, R %.3f), mean delay %.2f s, %d missed, flicker %.1f/min\n", r.segment_f1,
+                r.segment_precision, r.segment_recall, r.mean_delay_s, r.missed_segments, r.flicker_per_min);
 }
 
 void print_results(const host::ClipResults& r) {
@@ -65,9 +64,9 @@ void print_results(const host::ClipResults& r) {
 // Everything one evaluation run computes.
 struct Evaluation {
     std::vector<host::LabelledClip> clips;
-    bool recordings = false;                  // the list names intervals of continuous recordings
-    std::vector<host::ClipResults> results;   // the model's first, then the baselines
-    std::vector<double> frame_ns;             // sorted
+    bool recordings = false;                 // the list names intervals of continuous recordings
+    std::vector<host::ClipResults> results;  // the model's first, then the baselines
+    std::vector<double> frame_ns;            // sorted
     bool online = false;
     host::OnlineReport online_report;
 };
@@ -88,9 +87,8 @@ Evaluation evaluate(const ModelView& view, const std::string& clips_path, const 
     e.frame_ns = host::annotator_frame_times(view, e.clips);
     e.online = online;
     if (online)
-        e.online_report = e.recordings
-                              ? host::evaluate_recordings(view, host::read_recordings(entries, read), config)
-                              : host::evaluate_online(view, e.clips, seed, config);
+        e.online_report = e.recordings ? host::evaluate_recordings(view, host::read_recordings(entries, read), config)
+                                       : host::evaluate_online(view, e.clips, seed, config);
     return e;
 }
 
@@ -110,20 +108,23 @@ void print_evaluation(const Evaluation& e, const std::string& clips_path, std::u
     if (e.online) {
         const host::OnlineResults& stream = e.online_report.settled;
         if (e.recordings)
-            std::printf("\nonline: %zu continuous recordings streamed whole, %zu frames, %.1f true label changes/min;\n"
-                        "%.3f of the frames are outside every interval (no action), so saying unknown everywhere scores that\n",
-                        e.online_report.streams.size(), stream.frames, stream.true_changes_per_min,
-                        stream.frames == 0 ? 0.0 : static_cast<double>(stream.no_action_frames) / static_cast<double>(stream.frames));
+            std::printf(
+                "\nonline: %zu continuous recordings streamed whole, %zu frames, %.1f true label changes/min;\n"
+                "%.3f of the frames are outside every interval (no action), so saying unknown everywhere scores that\n",
+                e.online_report.streams.size(), stream.frames, stream.true_changes_per_min,
+                stream.frames == 0 ? 0.0
+                                   : static_cast<double>(stream.no_action_frames) / static_cast<double>(stream.frames));
         else
-            std::printf("\nonline: clips concatenated per subject (seed %u), %zu frames, %.1f true label changes/min\n", seed,
-                        stream.frames, stream.true_changes_per_min);
+            std::printf("\nonline: clips concatenated per subject (seed %u), %zu frames, %.1f true label changes/min\n",
+                        seed, stream.frames, stream.true_changes_per_min);
         print_online("segmenter, settled labels", e.online_report.settled);
         print_online("segmenter, live labels", e.online_report.live);
         print_online("paper: latest window wins", e.online_report.window);
     }
-    std::printf("\nannotator per frame (host build, HostCapacity, %zu frames): median %.0f ns, p99 %.0f ns, max %.0f ns\n",
-                e.frame_ns.size(), host::sorted_quantile(e.frame_ns, 0.5), host::sorted_quantile(e.frame_ns, 0.99),
-                host::sorted_quantile(e.frame_ns, 1.0));
+    std::printf(
+        "\nannotator per frame (host build, HostCapacity, %zu frames): median %.0f ns, p99 %.0f ns, max %.0f ns\n",
+        e.frame_ns.size(), host::sorted_quantile(e.frame_ns, 0.5), host::sorted_quantile(e.frame_ns, 0.99),
+        host::sorted_quantile(e.frame_ns, 1.0));
 }
 
 // The model's results object, extended with the run's other figures.

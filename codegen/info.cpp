@@ -59,13 +59,15 @@ int run_info(int argc, char** argv) {
     return run_reporting_errors("info", [&] {
         if (file.size() > 4 && file.compare(file.size() - 4, 4, ".asf") == 0) {
             const host::AsfSkeleton asf = host::parse_asf(file, host::read_file(file));
-            std::printf("file:      %s\nformat:    ASF skeleton\nbones:     %zu (+ root)\nunits:     %.6g m per length unit, angles in %s\n",
-                        file.c_str(), asf.bones.size(), asf.length_scale, asf.degrees ? "degrees" : "radians");
+            std::printf(
+                "file:      %s\nformat:    ASF skeleton\nbones:     %zu (+ root)\nunits:     %.6g m per length unit, angles in %s\n",
+                file.c_str(), asf.bones.size(), asf.length_scale, asf.degrees ? "degrees" : "radians");
             if (list_joints)
                 for (const auto& bone : asf.bones)
-                    std::printf("  %-14s parent %-14s length %.4f m, dofs %zu\n", bone.name.c_str(),
-                                bone.parent < 0 ? "root" : asf.bones[static_cast<std::size_t>(bone.parent)].name.c_str(), bone.length,
-                                bone.dofs.size());
+                    std::printf(
+                        "  %-14s parent %-14s length %.4f m, dofs %zu\n", bone.name.c_str(),
+                        bone.parent < 0 ? "root" : asf.bones[static_cast<std::size_t>(bone.parent)].name.c_str(),
+                        bone.length, bone.dofs.size());
             return 0;
         }
         const host::Clip clip = host::read_clip(file, options, skeleton);
@@ -86,16 +88,19 @@ int run_info(int argc, char** argv) {
             }
         }
         const double duration = clip.duration();
-        auto name_of = [&](int j) { return j < 0 ? std::string("(unknown)") : clip.joint_names[static_cast<std::size_t>(j)]; };
-        std::printf("file:      %s\njoints:    %zu\nframes:    %zu (%zu lost tracking)\nduration:  %.3f s\n", file.c_str(),
-                    clip.joint_count(), frames, lost, duration);
+        auto name_of = [&](int j) {
+            return j < 0 ? std::string("(unknown)") : clip.joint_names[static_cast<std::size_t>(j)];
+        };
+        std::printf("file:      %s\njoints:    %zu\nframes:    %zu (%zu lost tracking)\nduration:  %.3f s\n",
+                    file.c_str(), clip.joint_count(), frames, lost, duration);
         std::printf("rate:      %.3f Hz (mean)\n", duration > 0 ? static_cast<double>(frames - 1) / duration : 0.0);
         if (lost < frames)
             std::printf("bounds:    x [%.3f, %.3f]  y [%.3f, %.3f]  z [%.3f, %.3f] m\n", static_cast<double>(low[0]),
                         static_cast<double>(high[0]), static_cast<double>(low[1]), static_cast<double>(high[1]),
                         static_cast<double>(low[2]), static_cast<double>(high[2]));
         std::printf("up axis:   %c\nroles:     root %s, left hip %s, right hip %s\n", "xyz"[clip.up_axis],
-                    name_of(clip.roles.root).c_str(), name_of(clip.roles.left_hip).c_str(), name_of(clip.roles.right_hip).c_str());
+                    name_of(clip.roles.root).c_str(), name_of(clip.roles.left_hip).c_str(),
+                    name_of(clip.roles.right_hip).c_str());
         if (list_joints)
             for (std::size_t j = 0; j < clip.joint_count(); ++j)
                 std::printf("  %3zu %-28s parent %s\n", j, clip.joint_names[j].c_str(),

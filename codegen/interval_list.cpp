@@ -22,15 +22,16 @@ int run_interval_list(int argc, char** argv) {
     while (args.more()) {
         const std::string arg = args.next();
         if (arg == "--help" || arg == "-h") {
-            std::printf("usage: actionstring interval-list --utkinect LABELS [--subjects S1,S2,...] [--rate HZ]\n"
-                        "                                  --out LIST\n\n"
-                        "Writes a clip list (path label subject start end; times in seconds on the\n"
-                        "recording's time axis, frame id / HZ [30] as the UTKinect reader uses) from\n"
-                        "UTKinect's actionLabel.txt. Recordings are joints_<sequence>.txt beside LABELS;\n"
-                        "the subject is the sequence name before '_'. --subjects keeps only those\n"
-                        "subjects. Intervals marked NaN are left out (and reported): their frames count\n"
-                        "as 'no action' when the recording is streamed. Paths are written absolute, so\n"
-                        "the list can live anywhere.\n");
+            std::printf(
+                "usage: actionstring interval-list --utkinect LABELS [--subjects S1,S2,...] [--rate HZ]\n"
+                "                                  --out LIST\n\n"
+                "Writes a clip list (path label subject start end; times in seconds on the\n"
+                "recording's time axis, frame id / HZ [30] as the UTKinect reader uses) from\n"
+                "UTKinect's actionLabel.txt. Recordings are joints_<sequence>.txt beside LABELS;\n"
+                "the subject is the sequence name before '_'. --subjects keeps only those\n"
+                "subjects. Intervals marked NaN are left out (and reported): their frames count\n"
+                "as 'no action' when the recording is streamed. Paths are written absolute, so\n"
+                "the list can live anywhere.\n");
             return 0;
         }
         if (arg == "--utkinect") labels_path = args.value(arg);
@@ -73,7 +74,8 @@ int run_interval_list(int argc, char** argv) {
             }
         }
         for (const std::string& subject : subjects)
-            if (seen.count(subject) == 0) return args.error("no sequence of subject '" + subject + "' in " + labels_path);
+            if (seen.count(subject) == 0)
+                return args.error("no sequence of subject '" + subject + "' in " + labels_path);
         if (written == 0) return args.error("no labelled interval to write");
         host::write_file(out_path, list.str());
         std::printf("%s: %zu intervals\n", out_path.c_str(), written);

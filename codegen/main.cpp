@@ -36,8 +36,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     const char* command = argv[1];
-    if (std::strcmp(command, "--help") == 0 || std::strcmp(command, "-h") == 0 ||
-        std::strcmp(command, "help") == 0) {
+    if (std::strcmp(command, "--help") == 0 || std::strcmp(command, "-h") == 0 || std::strcmp(command, "help") == 0) {
         print_usage(stdout);
         return 0;
     }

@@ -54,9 +54,9 @@ void print_train_usage(std::FILE* out) {
                  "  --json FILE             write the training report (sizes, stage times) as JSON\n"
                  "  --sweep                 with --validate: vary one setting at a time around the\n"
                  "                          given ones and print a table (choose on validation data)\n",
-                 d.components, d.covariance_floor, d.pca_dim, d.feature_rate_hz, d.em_max_iterations, d.em_tolerance, d.em_restarts,
-                 d.epsilon, d.max_characters, d.string_rate_hz, d.sigma, d.neighbours, d.window_seconds, d.step_seconds,
-                 d.seed);
+                 d.components, d.covariance_floor, d.pca_dim, d.feature_rate_hz, d.em_max_iterations, d.em_tolerance,
+                 d.em_restarts, d.epsilon, d.max_characters, d.string_rate_hz, d.sigma, d.neighbours, d.window_seconds,
+                 d.step_seconds, d.seed);
 }
 
 bool apply(ArgumentReader& args, const std::string& name, const std::string& value, host::TrainingOptions& o,
@@ -84,7 +84,8 @@ bool apply(ArgumentReader& args, const std::string& name, const std::string& val
     else if (name == "max-characters") o.max_characters = static_cast<int>(number(1, 4096));
     else if (name == "string-rate") o.string_rate_hz = number(0.1, 10000);
     else if (name == "variant") o.variant = static_cast<MatchVariant>(choice({"paper", "whole", "subsequence"}));
-    else if (name == "normalization") o.normalization = static_cast<LengthNormalization>(choice({"none", "path", "query"}));
+    else if (name == "normalization")
+        o.normalization = static_cast<LengthNormalization>(choice({"none", "path", "query"}));
     else if (name == "sigma") o.sigma = number(0, 1e9);
     else if (name == "keep-singletons") o.keep_singletons = value == "true" || value == "1" || value.empty();
     else if (name == "neighbours") o.neighbours = static_cast<int>(number(1, 4096));
@@ -106,7 +107,8 @@ const char* normalization_name(LengthNormalization n) {
 }
 
 // A config file: 'setting value' lines with the option names without dashes; # comments.
-bool read_config(ArgumentReader& args, const std::string& path, host::TrainingOptions& options, host::ReadOptions& read) {
+bool read_config(ArgumentReader& args, const std::string& path, host::TrainingOptions& options,
+                 host::ReadOptions& read) {
     const std::string text = host::read_file(path);
     host::LineScanner scanner(path, text);
     std::string_view line;
@@ -161,12 +163,14 @@ int run_sweep(const std::vector<host::LabelledClip>& train, const std::vector<ho
         grid.push_back({setting, o});
     };
     for (int j : {20, 60}) vary("components " + std::to_string(j), [j](auto& o) { o.components = j; });
-    for (int p : {0, 12, 24}) if (p != base.pca_dim) vary("pca " + std::to_string(p), [p](auto& o) { o.pca_dim = p; });
+    for (int p : {0, 12, 24})
+        if (p != base.pca_dim) vary("pca " + std::to_string(p), [p](auto& o) { o.pca_dim = p; });
     vary("covariance diagonal", [](auto& o) { o.covariance = Covariance::diagonal; });
     for (double e : {0.5, 1.9}) vary("epsilon " + std::to_string(e).substr(0, 4), [e](auto& o) { o.epsilon = e; });
     for (double s : {0.5, 2.0}) vary("sigma x" + std::to_string(s).substr(0, 3), [s](auto& o) { o.sigma *= s; });
     vary("keep-singletons", [](auto& o) { o.keep_singletons = true; });
-    for (double r : {8.0, 20.0}) vary("string-rate " + std::to_string(static_cast<int>(r)), [r](auto& o) { o.string_rate_hz = r; });
+    for (double r : {8.0, 20.0})
+        vary("string-rate " + std::to_string(static_cast<int>(r)), [r](auto& o) { o.string_rate_hz = r; });
     for (auto v : {MatchVariant::paper, MatchVariant::whole, MatchVariant::subsequence})
         if (v != base.variant) vary(std::string("variant ") + variant_name(v), [v](auto& o) { o.variant = v; });
     for (auto n : {LengthNormalization::none, LengthNormalization::path, LengthNormalization::query})
@@ -184,8 +188,9 @@ int run_sweep(const std::vector<host::LabelledClip>& train, const std::vector<ho
             host::ModelData m = host::train_model(train, v.options, &report);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const ModelView view = m.view();
-            std::printf("%-26s %5d %5d %5d %9.3f %9.3f %8.1f\n", v.setting.c_str(), v.options.components, report.characters,
-                        report.representatives, host::clip_accuracy(view, train), host::clip_accuracy(view, validation), seconds);
+            std::printf("%-26s %5d %5d %5d %9.3f %9.3f %8.1f\n", v.setting.c_str(), v.options.components,
+                        report.characters, report.representatives, host::clip_accuracy(view, train),
+                        host::clip_accuracy(view, validation), seconds);
         } catch (const std::exception& e) {
             std::printf("%-26s failed: %s\n", v.setting.c_str(), e.what());
         }
@@ -250,25 +255,30 @@ int run_train(int argc, char** argv) {
         std::printf("frames:           %zu read, %zu rejected; %zu feature samples at %g Hz\n", report.frames_read,
                     report.frames_rejected, report.feature_samples, options.feature_rate_hz);
         if (view.has_gmm()) {
-            std::printf("features:         D %zu -> d %u, J %u (%s covariance), EM %zu iterations%s%s, log-likelihood %.1f\n",
-                        view.pose_dim(), view.feature_dim, view.component_count, view.covariance == Covariance::full ? "full" : "diagonal",
-                        report.em.objective.size(), report.em.converged ? ", converged" : ", NOT converged",
-                        report.em.reseeded.empty() ? "" : " (components re-seeded)",
-                        report.em.log_likelihood.empty() ? 0.0 : report.em.log_likelihood.back());
+            std::printf(
+                "features:         D %zu -> d %u, J %u (%s covariance), EM %zu iterations%s%s, log-likelihood %.1f\n",
+                view.pose_dim(), view.feature_dim, view.component_count,
+                view.covariance == Covariance::full ? "full" : "diagonal", report.em.objective.size(),
+                report.em.converged ? ", converged" : ", NOT converged",
+                report.em.reseeded.empty() ? "" : " (components re-seeded)",
+                report.em.log_likelihood.empty() ? 0.0 : report.em.log_likelihood.back());
             std::printf("EM restarts:      %zu, kept seed %u (objectives:", report.em_restart_objectives.size(),
                         options.seed + static_cast<std::uint32_t>(report.em_restart_chosen));
             for (double objective : report.em_restart_objectives) std::printf(" %.1f", objective);
             std::printf(")\n");
         } else {
-            std::printf("features:         D %zu -> d %u, no GMM: the tree is built on the projected poses\n", view.pose_dim(),
-                        view.feature_dim);
+            std::printf("features:         D %zu -> d %u, no GMM: the tree is built on the projected poses\n",
+                        view.pose_dim(), view.feature_dim);
         }
         std::printf("characters:       K %d (epsilon %g)\n", report.characters, options.epsilon);
         std::printf("representatives:  %d of %d strings (sigma %g, %s, %s normalisation)\n", report.representatives,
-                    report.strings, options.sigma, variant_name(options.variant), normalization_name(options.normalization));
+                    report.strings, options.sigma, variant_name(options.variant),
+                    normalization_name(options.normalization));
         for (std::size_t l = 0; l < model.label_names.size(); ++l)
             std::printf("  %-32s %d%s\n", model.label_names[l].c_str(), report.representatives_per_label[l],
-                        report.representatives_per_label[l] == 0 ? "   <- no representative: this class cannot be recognised" : "");
+                        report.representatives_per_label[l] == 0
+                            ? "   <- no representative: this class cannot be recognised"
+                            : "");
         std::printf("tables:           %zu bytes\n", host::table_bytes(view));
         double total = 0;
         for (const auto& stage : report.stage_seconds) {
@@ -277,8 +287,8 @@ int run_train(int argc, char** argv) {
         }
         std::printf("  %-30s %7.2f s\n", "total", total);
         if (!validation.empty())
-            std::printf("validation:       clip accuracy %.3f on %zu clips (%s)\n", host::clip_accuracy(view, validation),
-                        validation.size(), validate_path.c_str());
+            std::printf("validation:       clip accuracy %.3f on %zu clips (%s)\n",
+                        host::clip_accuracy(view, validation), validation.size(), validate_path.c_str());
         if (!json_path.empty()) host::write_file(json_path, training_json(out_path, view, report));
         return 0;
     });

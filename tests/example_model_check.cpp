@@ -10,4 +10,6 @@ static_assert(actionstring_hdm05::kModel.joint_count == 31, "an HDM05 skeleton")
 
 actionstring::Annotator<actionstring_hdm05::ModelCapacity> example_model_annotator;
 
-bool example_model_accepted() { return example_model_annotator.init(actionstring_hdm05::kModel) == actionstring::Status::ok; }
+bool example_model_accepted() {
+    return example_model_annotator.init(actionstring_hdm05::kModel) == actionstring::Status::ok;
+}

@@ -52,10 +52,8 @@ TEST_CASE("each action performed alone is recognised by its last window") {
         CAPTURE(static_cast<int>(variant));
         // Whole and subsequence matching must get every clean toy action; the
         // paper's boundaries may not (design.md §1.6), but must beat chance (1/4).
-        if (variant == MatchVariant::paper)
-            CHECK(right * 2 >= total);
-        else
-            CHECK(right == total);
+        if (variant == MatchVariant::paper) CHECK(right * 2 >= total);
+        else CHECK(right == total);
     }
 }
 
@@ -77,8 +75,10 @@ TEST_CASE("window results carry their time span and the matcher's distances") {
     CHECK(windows == (expected_chars - f.view.window_chars) / f.view.step_chars + 1);
     const WindowResult* w = f.annotator->last_window();
     REQUIRE(w != nullptr);
-    CHECK(w->end_time_us - w->start_time_us == static_cast<std::int64_t>(f.view.window_chars - 1) * f.view.string_period_us);
-    CHECK(w->start_time_us == frames.front().time_us + static_cast<std::int64_t>(w->first_character) * f.view.string_period_us);
+    CHECK(w->end_time_us - w->start_time_us ==
+          static_cast<std::int64_t>(f.view.window_chars - 1) * f.view.string_period_us);
+    CHECK(w->start_time_us ==
+          frames.front().time_us + static_cast<std::int64_t>(w->first_character) * f.view.string_period_us);
     const float* distances = f.annotator->last_window_distances();
     REQUIRE(distances != nullptr);
     float best = std::numeric_limits<float>::infinity();
@@ -142,18 +142,35 @@ TEST_CASE("garbage frames never crash, hang or leak NaN into labels") {
     std::uniform_int_distribution<int> kind(0, 9);
     std::uniform_real_distribution<float> coordinate(-3.0f, 3.0f);
     const auto clean = host::toy_stream(f.world, {0, 1, 2, 3, 0, 1}, {});
-    const float specials[] = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
-                              -std::numeric_limits<float>::infinity(), 1e38f, -1e38f, 1e-40f, 0.0f, -0.0f};
+    const float specials[] = {std::numeric_limits<float>::quiet_NaN(),
+                              std::numeric_limits<float>::infinity(),
+                              -std::numeric_limits<float>::infinity(),
+                              1e38f,
+                              -1e38f,
+                              1e-40f,
+                              0.0f,
+                              -0.0f};
     std::int64_t time = 0;
     for (int i = 0; i < 6000; ++i) {
         std::vector<float> positions = clean[static_cast<std::size_t>(i) % clean.size()].positions;
         switch (kind(rng)) {
-            case 0: for (auto& p : positions) p = coordinate(rng); break;
-            case 1: positions[static_cast<std::size_t>(i) % 15] = specials[static_cast<std::size_t>(i) % 8]; break;
-            case 2: for (auto& p : positions) p = specials[static_cast<std::size_t>(i + kind(rng)) % 8]; break;
-            case 3: time -= 10000; break;
-            case 4: time += 3000000; break;
-            default: break;
+            case 0:
+                for (auto& p : positions) p = coordinate(rng);
+                break;
+            case 1:
+                positions[static_cast<std::size_t>(i) % 15] = specials[static_cast<std::size_t>(i) % 8];
+                break;
+            case 2:
+                for (auto& p : positions) p = specials[static_cast<std::size_t>(i + kind(rng)) % 8];
+                break;
+            case 3:
+                time -= 10000;
+                break;
+            case 4:
+                time += 3000000;
+                break;
+            default:
+                break;
         }
         time += 33333;
         f.annotator->push_frame(time, positions.data());

@@ -124,15 +124,15 @@ TEST_CASE("continuous recordings: frames outside every interval are no action, a
     const ModelView view = world.model.view();
     std::vector<ToyFrame> frames = toy_stream(world, {0, 1, 2, 3, 1}, {});
     // The toy repeats the boundary instant in the next action; a recording has one frame per instant.
-    frames.erase(std::unique(frames.begin(), frames.end(), [](const ToyFrame& a, const ToyFrame& b) { return a.time_us == b.time_us; }),
+    frames.erase(std::unique(frames.begin(), frames.end(),
+                             [](const ToyFrame& a, const ToyFrame& b) { return a.time_us == b.time_us; }),
                  frames.end());
     LabelledRecording recording{"s1", toy_clip(frames, "rec.txt"), {}};
     // Intervals from the toy's truth, except the third action, which stays unlabelled.
     std::size_t begin = 0, omitted_frames = 0;
     for (std::size_t f = 1; f <= frames.size(); ++f) {
         if (f < frames.size() && frames[f].action == frames[begin].action) continue;
-        if (recording.intervals.size() == 2 && omitted_frames == 0)
-            omitted_frames = f - begin;
+        if (recording.intervals.size() == 2 && omitted_frames == 0) omitted_frames = f - begin;
         else
             recording.intervals.push_back({world.model.label_names[static_cast<std::size_t>(frames[begin].action)],
                                            recording.clip.times[begin], recording.clip.times[f - 1]});
@@ -153,7 +153,7 @@ TEST_CASE("continuous recordings: frames outside every interval are no action, a
     CHECK(report.settled.action_frame_accuracy > 0.8);
     const double share = static_cast<double>(omitted_frames) / static_cast<double>(frames.size());
     CHECK(report.settled.frame_accuracy == doctest::Approx(report.settled.action_frame_accuracy * (1 - share) +
-                                                            report.settled.no_action_accuracy * share));
+                                                           report.settled.no_action_accuracy * share));
     // Entries of a list: grouped by file, and a whole clip cannot be a recording.
     ClipListEntry whole;
     whole.path = "a.txt";
@@ -172,7 +172,8 @@ TEST_CASE("annotate_clip returns a contiguous label timeline covering the clip")
     // The settled timeline follows the performance: spans, frame by frame, against the toy's truth.
     std::size_t frame = 0, right = 0;
     for (const LabelSpan& span : spans)
-        for (std::size_t k = 0; k < span.frames && frame < frames.size(); ++k, ++frame) right += span.label == frames[frame].action;
+        for (std::size_t k = 0; k < span.frames && frame < frames.size(); ++k, ++frame)
+            right += span.label == frames[frame].action;
     CHECK(frame == frames.size());
     CHECK(static_cast<double>(right) / static_cast<double>(frames.size()) > 0.8);
     std::size_t frames_covered = 0;

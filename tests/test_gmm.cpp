@@ -57,7 +57,8 @@ std::vector<double> direct_posterior(const RandomGmm& g, const Eigen::VectorXd& 
         const Eigen::FullPivLU<Eigen::MatrixXd> lu(g.covariances[j]);
         const Eigen::VectorXd diff = x - g.means[j];
         const double q = diff.dot(lu.inverse() * diff);
-        const double density = std::exp(-0.5 * q) / std::sqrt(std::pow(2 * pi, static_cast<double>(x.size())) * lu.determinant());
+        const double density =
+            std::exp(-0.5 * q) / std::sqrt(std::pow(2 * pi, static_cast<double>(x.size())) * lu.determinant());
         p.push_back(g.weights[j] * density);
         total += p.back();
     }
@@ -153,7 +154,7 @@ TEST_CASE("projection computes P (x - m) in the model's layout") {
     data.feature_dim = 2;
     data.projection_mean = {1, 2, 3, 4, 5, 6};
     // P = [[1, 0, 0, 0, 0, 0], [0.5, 0, 0, 0, 0, -2]], stored column by column.
-    data.projection_matrix = {1, 0.5f,   0, 0,   0, 0,   0, 0,   0, 0,   0, -2};
+    data.projection_matrix = {1, 0.5f, 0, 0, 0, 0, 0, 0, 0, 0, 0, -2};
     const ModelView view = data.view();
     const float pose[6] = {2, 2, 3, 4, 5, 10};
     float feature[2] = {};
@@ -206,11 +207,10 @@ TEST_CASE("the portable log is accurate from subnormals to the largest float") {
         else worst_absolute = std::max(worst_absolute, err / std::fabs(exact));
     }
     CHECK(worst_ulp_near_one <= 3.0);  // the (m−1)/(m+1) division costs one more ulp near 1
-    CHECK(worst_absolute < 2.5e-7);  // relative: about 2 ulp
+    CHECK(worst_absolute < 2.5e-7);    // relative: about 2 ulp
     CHECK(detail::log_portable(1.0f) == 0.0f);
     CHECK(detail::log_portable(0.0f) == -std::numeric_limits<float>::infinity());
     CHECK(detail::is_nan(detail::log_portable(-1.0f)));
     CHECK(detail::is_nan(detail::log_portable(std::numeric_limits<float>::quiet_NaN())));
-    CHECK(detail::log_portable(std::numeric_limits<float>::infinity()) ==
-          std::numeric_limits<float>::infinity());
+    CHECK(detail::log_portable(std::numeric_limits<float>::infinity()) == std::numeric_limits<float>::infinity());
 }

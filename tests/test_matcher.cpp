@@ -45,8 +45,7 @@ void fill(RandomMatching& m, std::mt19937& rng, MatchVariant variant, LengthNorm
     const bool integers = uniform(0, 1) == 0;
     m.w.resize(static_cast<std::size_t>(K * K));
     for (auto& x : m.w)
-        x = integers ? static_cast<float>(uniform(0, 3))
-                     : std::uniform_real_distribution<float>(0.0f, 2.0f)(rng);
+        x = integers ? static_cast<float>(uniform(0, 3)) : std::uniform_real_distribution<float>(0.0f, 2.0f)(rng);
     const int R = uniform(1, 6);
     for (int r = 0; r < R; ++r) {
         const int length = uniform(1, 40);
@@ -72,8 +71,8 @@ void fill(RandomMatching& m, std::mt19937& rng, MatchVariant variant, LengthNorm
 }
 
 template <class Cap>
-void check_against_batch(MatchVariant variant, LengthNormalization normalization, int cases,
-                         std::uint32_t seed, long& windows_checked, long& both_orientations) {
+void check_against_batch(MatchVariant variant, LengthNormalization normalization, int cases, std::uint32_t seed,
+                         long& windows_checked, long& both_orientations) {
     std::mt19937 rng(seed);
     auto matcher = std::make_unique<WindowMatcher<Cap>>();
     for (int c = 0; c < cases; ++c) {
@@ -98,8 +97,8 @@ void check_against_batch(MatchVariant variant, LengthNormalization normalization
                     test::batch_distance(window, rep, m.w, static_cast<std::size_t>(K), variant, normalization);
                 const float got = matcher->completed_distances()[r];
                 if (!test::same_bits(expected, got)) {
-                    FAIL("case " << c << " rep " << r << " window@" << start << ": incremental " << got
-                                 << " != batch " << expected);
+                    FAIL("case " << c << " rep " << r << " window@" << start << ": incremental " << got << " != batch "
+                                 << expected);
                 }
             }
             ++windows_checked;

@@ -46,7 +46,11 @@ TEST_CASE("each kind of corruption is refused") {
         {"up axis", [](host::ModelData& m) { m.up_axis = 3; }},
         {"pose joint out of range", [](host::ModelData& m) { m.pose_joints[1] = 5; }},
         {"no pose joints", [](host::ModelData& m) { m.pose_joints.clear(); }},
-        {"bad scale", [](host::ModelData& m) { m.scale_mode = ScaleMode::hip_width; m.reference_scale = 0; }},
+        {"bad scale",
+         [](host::ModelData& m) {
+             m.scale_mode = ScaleMode::hip_width;
+             m.reference_scale = 0;
+         }},
         {"feature dim", [](host::ModelData& m) { m.feature_dim = 11; }},
         {"NaN mean", [](host::ModelData& m) { m.gmm_means[3] = kNaN; }},
         {"NaN factor", [](host::ModelData& m) { m.gmm_factors.back() = kNaN; }},

@@ -54,10 +54,10 @@ ModelData random_fields(std::uint64_t seed) {
 #define FILL_TABLE(T, FIELD, SIZE, LOW, HIGH) \
     m.FIELD.clear();                          \
     for (int i = 0; i < 3; ++i) m.FIELD.push_back(random_value<T>(rng, LOW, HIGH));
-#define FILL_NAMES(FIELD, COUNT)                                             \
-    {                                                                        \
+#define FILL_NAMES(FIELD, COUNT)                                              \
+    {                                                                         \
         const std::vector<std::string> names{"walk", "sit down", "\xc3\xbc"}; \
-        m.FIELD.assign(names.begin(), names.end());                          \
+        m.FIELD.assign(names.begin(), names.end());                           \
     }
     ACTIONSTRING_MODEL_FIELDS(FILL_SCALAR, FILL_COUNT, FILL_TABLE, FILL_NAMES)
 #undef FILL_SCALAR
@@ -103,14 +103,14 @@ TEST_CASE("the artifact holds one line per stored field and refuses a value out 
 #undef COUNT_NAMES
     CHECK(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) == expected_lines);
     // Each integer scalar one past its upper bound is refused, naming the field.
-#define OVER_SCALAR(T, FIELD, INITIAL, LOW, HIGH)                                                         \
-    if constexpr (!std::is_floating_point_v<T>) {                                                         \
+#define OVER_SCALAR(T, FIELD, INITIAL, LOW, HIGH)                                                           \
+    if constexpr (!std::is_floating_point_v<T>) {                                                           \
         const std::string line = std::string(#FIELD " ") + std::to_string(static_cast<long long>(m.FIELD)); \
-        std::string bad = text;                                                                           \
-        const std::size_t at = ("\n" + bad).find("\n" + line + "\n"); /* a whole line */                \
-        REQUIRE(at != std::string::npos);                                                                 \
-        bad.replace(at, line.size(), std::string(#FIELD " ") + std::to_string((HIGH) + 1LL));             \
-        CHECK_THROWS_WITH_AS(parse_fields("over.model", bad), doctest::Contains(#FIELD), ReadError);      \
+        std::string bad = text;                                                                             \
+        const std::size_t at = ("\n" + bad).find("\n" + line + "\n"); /* a whole line */                    \
+        REQUIRE(at != std::string::npos);                                                                   \
+        bad.replace(at, line.size(), std::string(#FIELD " ") + std::to_string((HIGH) + 1LL));               \
+        CHECK_THROWS_WITH_AS(parse_fields("over.model", bad), doctest::Contains(#FIELD), ReadError);        \
     }
 #define OVER_COUNT(T, FIELD, TABLE)
 #define OVER_TABLE(T, FIELD, SIZE, LOW, HIGH)
@@ -130,9 +130,8 @@ TEST_CASE("the view points at every table and counts it") {
 #define VIEW_COUNT(T, FIELD, TABLE) CHECK_MESSAGE(static_cast<std::size_t>(v.FIELD) == m.TABLE.size(), #FIELD);
 #define VIEW_TABLE(T, FIELD, SIZE, LOW, HIGH) \
     CHECK_MESSAGE(v.FIELD == (m.FIELD.empty() ? nullptr : m.FIELD.data()), #FIELD);
-#define VIEW_NAMES(FIELD, COUNT)                                                \
-    for (std::size_t i = 0; i < m.FIELD.size(); ++i)                            \
-        CHECK_MESSAGE(std::string(v.FIELD[i]) == m.FIELD[i], #FIELD);
+#define VIEW_NAMES(FIELD, COUNT) \
+    for (std::size_t i = 0; i < m.FIELD.size(); ++i) CHECK_MESSAGE(std::string(v.FIELD[i]) == m.FIELD[i], #FIELD);
     ACTIONSTRING_MODEL_FIELDS(VIEW_SCALAR, VIEW_COUNT, VIEW_TABLE, VIEW_NAMES)
 #undef VIEW_SCALAR
 #undef VIEW_COUNT
@@ -145,10 +144,10 @@ TEST_CASE("a valid model's tables agree with their sizes; the loader refuses one
     CHECK(mismatched_table(world.model) == nullptr);
 #define GROW_SCALAR(T, FIELD, INITIAL, LOW, HIGH)
 #define GROW_COUNT(T, FIELD, TABLE)
-#define GROW_TABLE(T, FIELD, SIZE, LOW, HIGH)                                        \
-    {                                                                                \
-        ToyWorld grown = make_toy_world();                                           \
-        grown.model.FIELD.push_back(T{});                                            \
+#define GROW_TABLE(T, FIELD, SIZE, LOW, HIGH)                                                                 \
+    {                                                                                                         \
+        ToyWorld grown = make_toy_world();                                                                    \
+        grown.model.FIELD.push_back(T{});                                                                     \
         CHECK_THROWS_AS_MESSAGE(parse_model("grown.model", serialize_model(grown.model)), ReadError, #FIELD); \
     }
 #define GROW_NAMES(FIELD, COUNT)
@@ -163,9 +162,11 @@ TEST_CASE("the generated header sets every field of the view") {
     ToyWorld world = make_toy_world();
     const std::string text = serialize_model(world.model);
     const std::string header = generate_header(world.model, artifact_checksum(text), "walk", "walk.model");
-#define HEADER_SCALAR(T, FIELD, INITIAL, LOW, HIGH) CHECK_MESSAGE(header.find("    m." #FIELD " = ") != std::string::npos, #FIELD);
+#define HEADER_SCALAR(T, FIELD, INITIAL, LOW, HIGH) \
+    CHECK_MESSAGE(header.find("    m." #FIELD " = ") != std::string::npos, #FIELD);
 #define HEADER_COUNT(T, FIELD, TABLE) CHECK_MESSAGE(header.find("    m." #FIELD " = ") != std::string::npos, #FIELD);
-#define HEADER_TABLE(T, FIELD, SIZE, LOW, HIGH) CHECK_MESSAGE(header.find("    m." #FIELD " = ") != std::string::npos, #FIELD);
+#define HEADER_TABLE(T, FIELD, SIZE, LOW, HIGH) \
+    CHECK_MESSAGE(header.find("    m." #FIELD " = ") != std::string::npos, #FIELD);
 #define HEADER_NAMES(FIELD, COUNT) CHECK_MESSAGE(header.find("    m." #FIELD " = ") != std::string::npos, #FIELD);
     ACTIONSTRING_MODEL_FIELDS(HEADER_SCALAR, HEADER_COUNT, HEADER_TABLE, HEADER_NAMES)
 #undef HEADER_SCALAR

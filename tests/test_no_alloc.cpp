@@ -17,8 +17,8 @@ std::atomic<long> g_eigen_violations{0};
 void note_eigen_violation() { ++g_eigen_violations; }
 
 #define EIGEN_RUNTIME_NO_MALLOC
-#define eigen_assert(condition)                 \
-    do {                                        \
+#define eigen_assert(condition)                   \
+    do {                                          \
         if (!(condition)) note_eigen_violation(); \
     } while (false)
 
@@ -100,7 +100,6 @@ TEST_CASE("the tripwires fire") {
     Eigen::internal::set_is_malloc_allowed(true);
     CHECK(snapshot().eigen > before.eigen);
 }
-
 
 TEST_CASE("streaming thousands of frames through the annotator allocates nothing") {
     using Cap = actionstring::host::ToyCapacity;

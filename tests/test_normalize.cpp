@@ -100,12 +100,14 @@ TEST_CASE("hip-width scaling maps actors of different size together") {
     world.model.reference_scale = 0.2f;
     const ModelView view = world.model.view();
     const std::vector<float> reference = normalized(view, world.key_poses[2]);
-    const std::vector<float> tall = normalized(view, transform(world.key_poses[2], Eigen::Matrix3f::Identity(), {0, 1, 0}, 1.3f));
+    const std::vector<float> tall =
+        normalized(view, transform(world.key_poses[2], Eigen::Matrix3f::Identity(), {0, 1, 0}, 1.3f));
     CHECK(max_difference(reference, tall) < 1e-5);
     world.model.scale_mode = ScaleMode::none;
     const ModelView unscaled = world.model.view();
-    CHECK(max_difference(normalized(unscaled, world.key_poses[2]),
-                         normalized(unscaled, transform(world.key_poses[2], Eigen::Matrix3f::Identity(), {0, 1, 0}, 1.3f))) > 0.1);
+    CHECK(max_difference(
+              normalized(unscaled, world.key_poses[2]),
+              normalized(unscaled, transform(world.key_poses[2], Eigen::Matrix3f::Identity(), {0, 1, 0}, 1.3f))) > 0.1);
 }
 
 TEST_CASE("frames that are not poses are rejected with a reason") {

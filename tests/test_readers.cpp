@@ -66,7 +66,8 @@ TEST_CASE("AMC forward kinematics, worked by hand") {
     const AsfSkeleton s = parse_asf("t.asf", kAsf);
     // Frame 1: root at (45, 90, 0) units and turned 90° about y; the femur's rx = 90°
     // is a turn about C·x = global y, which leaves a bone pointing down pointing down.
-    const Clip clip = parse_amc("t.amc", amc("1\r\nroot 45 90 0 0 90 0\nlfemur 90 0 0\n2\nroot 0 0 0 0 0 0\nlfemur 0 0 90\n"), s);
+    const Clip clip =
+        parse_amc("t.amc", amc("1\r\nroot 45 90 0 0 90 0\nlfemur 90 0 0\n2\nroot 0 0 0 0 0 0\nlfemur 0 0 90\n"), s);
     REQUIRE(clip.frame_count() == 2);
     REQUIRE(clip.joint_count() == 4);
     CHECK(clip.times[1] == doctest::Approx(1.0 / 120.0));
@@ -95,15 +96,20 @@ TEST_CASE("AMC forward kinematics, worked by hand") {
 TEST_CASE("ASF/AMC bad input names the file, line and what was expected") {
     const AsfSkeleton s = parse_asf("t.asf", kAsf);
     check_error([&] { parse_amc("t.amc", amc(""), s); }, 0, "no frames");
-    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 2\n"), s); }, 6, "has 2 values, expected 3");
-    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 x 3\n"), s); }, 6, "expected a bone value, got 'x'");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 2\n"), s); }, 6,
+                "has 2 values, expected 3");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 x 3\n"), s); }, 6,
+                "expected a bone value, got 'x'");
     check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 nan 3\n"), s); }, 6, "finite");
     check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 inf 3\n"), s); }, 6, "finite");
     check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 1e300 3\n"), s); }, 6, "out of range");
-    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 2 3\nrtibia 4\n"), s); }, 7, "unknown bone 'rtibia'");
-    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\n2\nroot 0 0 0 0 0 0\nlfemur 0 0 0\n"), s); }, 4, "no line for bone 'lfemur'");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 2 3\nrtibia 4\n"), s); }, 7,
+                "unknown bone 'rtibia'");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\n2\nroot 0 0 0 0 0 0\nlfemur 0 0 0\n"), s); }, 4,
+                "no line for bone 'lfemur'");
     check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 2 3\n1\n"), s); }, 7, "does not follow");
-    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 2 3\n2\nroot 0 0 0"), s); }, 8, "root has 3 values");
+    check_error([&] { parse_amc("t.amc", amc("1\nroot 0 0 0 0 0 0\nlfemur 1 2 3\n2\nroot 0 0 0"), s); }, 8,
+                "root has 3 values");
     check_error([&] { parse_amc("t.amc", amc("lfemur 1 2 3\n"), s); }, 4, "expected a frame number");
     check_error([&] { parse_asf("x.asf", ""); }, 0, "no :root section");
     check_error([&] { parse_asf("x.asf", "garbage\x01\x02 text\n"); }, 0, "no :root section");
@@ -121,7 +127,8 @@ TEST_CASE("ASF/AMC bad input names the file, line and what was expected") {
     std::string unknown = asf;
     unknown.replace(unknown.find("lhipjoint lfemur"), 16, "lhipjoint lfoot");
     check_error([&] { parse_asf("x.asf", unknown); }, 44, "unknown bone 'lfoot'");
-    check_error([&] { parse_asf("x.asf", asf.substr(0, asf.find("  end\n  begin\n     id 2"))); }, 16, "missing its 'end'");
+    check_error([&] { parse_asf("x.asf", asf.substr(0, asf.find("  end\n  begin\n     id 2"))); }, 16,
+                "missing its 'end'");
     check_error([&] { read_clip("/nonexistent/x.amc", {}, "/nonexistent/x.asf"); }, 0, "cannot open");
     check_error([&] { read_clip("/nonexistent/x.amc"); }, 0, "needs its ASF skeleton");
 }
@@ -150,7 +157,7 @@ TEST_CASE("BVH channel orders, End Sites, several roots, units and up axis") {
     CHECK(clip.parents == std::vector<int>{-1, 0, 1, 0, 3, -1});
     // Height ≈ 110 units from knee to head over the clip → centimetres.
     const float* f0 = clip.frame(0);
-    CHECK(f0[1] == doctest::Approx(0.9));            // hips at 90 cm
+    CHECK(f0[1] == doctest::Approx(0.9));              // hips at 90 cm
     CHECK(f0[7] == doctest::Approx(0.9 + 0.5 + 0.6));  // head straight above
     // Left leg: Zrotation 90 on LeftUpLeg turns the shin (0, −80, 0) to (80, 0, 0).
     CHECK(f0[12] == doctest::Approx(-0.1 + 0.8));
@@ -170,15 +177,20 @@ TEST_CASE("BVH bad input") {
     const std::string head = "HIERARCHY\nROOT A\n{\n  OFFSET 0 0 0\n  CHANNELS 3 Xposition Yposition Zposition\n";
     check_error([&] { parse_bvh("t.bvh", ""); }, 0, "empty file");
     check_error([&] { parse_bvh("t.bvh", "HIERARCHY\nROOT A\n{\n  OFFSET 0 0\n"); }, 4, "file ends");
-    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 2\nFrame Time: 0.1\n1 2 3\n"); }, 10, "after 1 of 2 frames");
-    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n1 2\n"); }, 10, "has 2 values, expected 3");
-    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n1 2 3\n4 5 6\n"); }, 11, "more frame lines");
-    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 1\nFrame Time: 0\n1 2 3\n"); }, 9, "positive frame time");
+    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 2\nFrame Time: 0.1\n1 2 3\n"); }, 10,
+                "after 1 of 2 frames");
+    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n1 2\n"); }, 10,
+                "has 2 values, expected 3");
+    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n1 2 3\n4 5 6\n"); }, 11,
+                "more frame lines");
+    check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 1\nFrame Time: 0\n1 2 3\n"); }, 9,
+                "positive frame time");
     check_error([&] { parse_bvh("t.bvh", head + "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n1 nan 3\n"); }, 10, "finite");
     check_error([&] { parse_bvh("t.bvh", head + "  JOINT A\n  {\n"); }, 6, "duplicate joint name 'A'");
-    check_error([&] { parse_bvh("t.bvh", "HIERARCHY\nROOT A\n{\n  OFFSET 0 0 0\n  CHANNELS 2 Xposition Wrotation\n"); }, 5,
-                "expected a channel such as");
-    check_error([&] { parse_bvh("t.bvh", "HIERARCHY\nROOT A\n{\n  OFFSET 0 0 0\n  CHANNELS 9 Xposition\n"); }, 5, "at most 6 channels");
+    check_error([&] { parse_bvh("t.bvh", "HIERARCHY\nROOT A\n{\n  OFFSET 0 0 0\n  CHANNELS 2 Xposition Wrotation\n"); },
+                5, "expected a channel such as");
+    check_error([&] { parse_bvh("t.bvh", "HIERARCHY\nROOT A\n{\n  OFFSET 0 0 0\n  CHANNELS 9 Xposition\n"); }, 5,
+                "at most 6 channels");
     std::string deep = "HIERARCHY\nROOT J0\n{\nOFFSET 0 0 0\n";
     for (int i = 1; i < 400; ++i) deep += "JOINT J" + std::to_string(i) + "\n{\nOFFSET 0 1 0\n";
     check_error([&] { parse_bvh("t.bvh", deep); }, 773, "nested deeper");  // JOINT J257 on line 3·257 + 2
@@ -265,7 +277,8 @@ TEST_CASE("joint CSV") {
 }
 
 TEST_CASE("clip lists resolve paths against their folder") {
-    const auto entries = parse_clip_list("l.tsv", "path\tlabel\tsubject\tskeleton\nx/a.amc\tjump\tbd\tasf/b.asf\n/abs/c.amc\trun\tmm\ts.asf\n", "/data");
+    const auto entries = parse_clip_list(
+        "l.tsv", "path\tlabel\tsubject\tskeleton\nx/a.amc\tjump\tbd\tasf/b.asf\n/abs/c.amc\trun\tmm\ts.asf\n", "/data");
     REQUIRE(entries.size() == 2);
     CHECK(entries[0].path == "/data/x/a.amc");
     CHECK(entries[0].skeleton == "/data/asf/b.asf");
@@ -275,17 +288,22 @@ TEST_CASE("clip lists resolve paths against their folder") {
     CHECK(reordered[0].path == "d/f.txt");
     CHECK(reordered[0].subject == "s1");
     check_error([&] { parse_clip_list("l.tsv", "path\tlabel\n", "d"); }, 1, "path, label and subject");
-    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\na\tb\n", "d"); }, 2, "expected 3 tab-separated fields");
+    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\na\tb\n", "d"); }, 2,
+                "expected 3 tab-separated fields");
     check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\na\t\tc\n", "d"); }, 2, "empty label");
     check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\n", "d"); }, 1, "names no clips");
-    const auto intervals = parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\tend\nr.txt\twalk\ts1\t8.4\t13\n", "d");
+    const auto intervals =
+        parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\tend\nr.txt\twalk\ts1\t8.4\t13\n", "d");
     CHECK(intervals[0].has_interval);
     CHECK(intervals[0].start_s == 8.4);
     CHECK(intervals[0].end_s == 13.0);
     CHECK_FALSE(entries[0].has_interval);
-    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\na\tb\tc\t1\n", "d"); }, 1, "both 'start' and 'end'");
-    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\tend\na\tb\tc\t2\t1\n", "d"); }, 2, "not before the start");
-    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\tend\na\tb\tc\tnan\t1\n", "d"); }, 2, "finite");
+    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\na\tb\tc\t1\n", "d"); }, 1,
+                "both 'start' and 'end'");
+    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\tend\na\tb\tc\t2\t1\n", "d"); }, 2,
+                "not before the start");
+    check_error([&] { parse_clip_list("l.tsv", "path\tlabel\tsubject\tstart\tend\na\tb\tc\tnan\t1\n", "d"); }, 2,
+                "finite");
 }
 
 TEST_CASE("joint roles can be overridden and must exist") {

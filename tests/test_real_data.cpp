@@ -68,7 +68,8 @@ double lowest(const Clip& clip, const std::vector<std::string>& joints) {
         const int j = clip.joint_index(name);
         REQUIRE(j >= 0);
         for (std::size_t f = 0; f < clip.frame_count(); ++f)
-            low = std::min(low, static_cast<double>(clip.frame(f)[3 * static_cast<std::size_t>(j) + static_cast<std::size_t>(clip.up_axis)]));
+            low = std::min(low, static_cast<double>(clip.frame(
+                                    f)[3 * static_cast<std::size_t>(j) + static_cast<std::size_t>(clip.up_axis)]));
     }
     return low;
 }
@@ -93,7 +94,8 @@ TEST_CASE("HDM05: every listed clip reads, frame counts match, bones keep their 
             // Frame count from the file itself: lines holding only a frame number.
             std::size_t counted = 0;
             for (const std::string& line : lines_of(entry.path))
-                counted += !line.empty() && std::all_of(line.begin(), line.end(), [](char c) { return c >= '0' && c <= '9'; });
+                counted +=
+                    !line.empty() && std::all_of(line.begin(), line.end(), [](char c) { return c >= '0' && c <= '9'; });
             CHECK(clip.frame_count() == counted);
             CHECK(clip.joint_count() == 31);
             CHECK(clip.roles.complete());
@@ -144,7 +146,8 @@ TEST_CASE("HDM05: feet reach the floor and one joint matches a hand calculation"
     Eigen::Vector3d dir(direction[0], direction[1], direction[2]);
     dir.normalize();
     // lhipjoint has no dofs and a zero axis: it turns with the root (root order RX RY RZ).
-    const Eigen::Vector3d hip = root_position + length * metres * (rotation_xyz_degrees(root[3], root[4], root[5]) * dir);
+    const Eigen::Vector3d hip =
+        root_position + length * metres * (rotation_xyz_degrees(root[3], root[4], root[5]) * dir);
     const float* f = clip.frame(0);
     for (int a = 0; a < 3; ++a) {
         CHECK(f[a] == doctest::Approx(root_position[a]).epsilon(1e-6));
@@ -168,7 +171,8 @@ TEST_CASE("MSR Action3D: every listed file reads; lost tracking is flagged, not 
         }
     CHECK(files == 557);
     const Clip all_zero = read_clip(test::data_dir() + "/msr-action3d/skeletons/a13_s09_e02_skeleton3D.txt");
-    CHECK(static_cast<std::size_t>(std::count(all_zero.lost.begin(), all_zero.lost.end(), 1)) == all_zero.frame_count());
+    CHECK(static_cast<std::size_t>(std::count(all_zero.lost.begin(), all_zero.lost.end(), 1)) ==
+          all_zero.frame_count());
     const Clip mostly_lost = read_clip(test::data_dir() + "/msr-action3d/skeletons/a13_s09_e03_skeleton3D.txt");
     CHECK(mostly_lost.frame_count() == 936);
     CHECK(std::count(mostly_lost.lost.begin(), mostly_lost.lost.end(), 1) == 740);
@@ -205,7 +209,8 @@ TEST_CASE("BVH: the engine-rig files read, stand on the floor, and a joint match
         CHECK(clip.up_axis == 1);  // 002_01's extra root turns its Z-up hierarchy upright
         CHECK(clip.roles.complete());
         CHECK(bone_length_drift(clip) < 1e-5);
-        const double floor = lowest(clip, {"CC_Base_L_ToeBase", "CC_Base_R_ToeBase", "CC_Base_L_Foot", "CC_Base_R_Foot"});
+        const double floor =
+            lowest(clip, {"CC_Base_L_ToeBase", "CC_Base_R_ToeBase", "CC_Base_L_Foot", "CC_Base_R_Foot"});
         CHECK(floor > -0.05);
         CHECK(floor < 0.12);
     }
@@ -224,5 +229,7 @@ TEST_CASE("BVH: the engine-rig files read, stand on the floor, and a joint match
     REQUIRE(first_frame.size() > 3);
     const Clip clip = read_clip(path);
     for (int a = 0; a < 3; ++a)
-        CHECK(clip.frame(0)[a] == doctest::Approx(0.01 * (offset[static_cast<std::size_t>(a)] + first_frame[static_cast<std::size_t>(a)])).epsilon(1e-6));
+        CHECK(clip.frame(0)[a] ==
+              doctest::Approx(0.01 * (offset[static_cast<std::size_t>(a)] + first_frame[static_cast<std::size_t>(a)]))
+                  .epsilon(1e-6));
 }

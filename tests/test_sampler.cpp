@@ -110,8 +110,8 @@ TEST_CASE("the same performance gives the same string at any frame rate") {
         return string;
     };
     const std::vector<Character> reference = encode(120.0, 0.0, 0.0);
-    for (const auto& setting : {std::tuple{30.0, 0.0, 0.0}, std::tuple{60.0, 0.3, 0.0},
-                                std::tuple{30.0, 0.4, 0.2}, std::tuple{15.0, 0.0, 0.0}}) {
+    for (const auto& setting : {std::tuple{30.0, 0.0, 0.0}, std::tuple{60.0, 0.3, 0.0}, std::tuple{30.0, 0.4, 0.2},
+                                std::tuple{15.0, 0.0, 0.0}}) {
         const double rate = std::get<0>(setting), jitter = std::get<1>(setting), drop = std::get<2>(setting);
         CAPTURE(rate);
         CAPTURE(drop);
@@ -119,7 +119,8 @@ TEST_CASE("the same performance gives the same string at any frame rate") {
         // Lengths differ only by where the last frame falls; characters only near pose changes.
         CHECK(std::abs(static_cast<long>(other.size()) - static_cast<long>(reference.size())) <= 1);
         std::size_t differing = 0;
-        for (std::size_t i = 0; i < std::min(other.size(), reference.size()); ++i) differing += other[i] != reference[i];
+        for (std::size_t i = 0; i < std::min(other.size(), reference.size()); ++i)
+            differing += other[i] != reference[i];
         CHECK(static_cast<double>(differing) <= 0.08 * static_cast<double>(reference.size()));
     }
 }

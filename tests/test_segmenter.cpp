@@ -83,12 +83,16 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
                                        const std::vector<Character>& stream) {
     const float inf = std::numeric_limits<float>::infinity();
     const std::size_t T = stream.size(), R = m.representative_count;
-    struct End { int rep; std::size_t start; };
+    struct End {
+        int rep;
+        std::size_t start;
+    };
     std::vector<End> ends(T);
     std::vector<float> end_cost(T);
     std::vector<std::vector<float>> cost(R);
     std::vector<std::vector<std::size_t>> start(R);
-    for (std::size_t r = 0; r < R; ++r) cost[r].assign(m.representative_length(r) + 1, inf), start[r].assign(m.representative_length(r) + 1, 0);
+    for (std::size_t r = 0; r < R; ++r)
+        cost[r].assign(m.representative_length(r) + 1, inf), start[r].assign(m.representative_length(r) + 1, 0);
     std::vector<LabelId> settled(T, unknown_label);
     auto weight = [&](Character a, Character b) { return m.character_distances[a * m.character_count + b]; };
     auto label = [&](int rep) { return rep < 0 ? unknown_label : m.representative_labels[rep]; };
@@ -107,7 +111,8 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
                 float v = i >= 2 ? cost[r][i - 1] : entry;
                 std::size_t from = i >= 2 ? start[r][i - 1] : t;
                 if (cost[r][i] + config.stay_penalty < v) v = cost[r][i] + config.stay_penalty, from = start[r][i];
-                const float skip = i >= 3 ? cost[r][i - 2] + config.skip_penalty : (i == 2 ? entry + config.skip_penalty : inf);
+                const float skip =
+                    i >= 3 ? cost[r][i - 2] + config.skip_penalty : (i == 2 ? entry + config.skip_penalty : inf);
                 if (skip < v) v = skip, from = i >= 3 ? start[r][i - 2] : t;
                 next[r][i] = v + weight(rep[i - 1], stream[t]);
                 next_start[r][i] = from;
@@ -118,7 +123,8 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
             const std::size_t n = m.representative_length(r);
             for (std::size_t i = n; i >= 1; --i)
                 if (next[r][i] < best) best = next[r][i], best_rep = static_cast<int>(r), best_start = next_start[r][i];
-            if (next[r][n] < best_end) best_end = next[r][n], end_rep = static_cast<int>(r), end_start = next_start[r][n];
+            if (next[r][n] < best_end)
+                best_end = next[r][n], end_rep = static_cast<int>(r), end_start = next_start[r][n];
         }
         cost = next;
         start = next_start;
@@ -149,12 +155,14 @@ TEST_CASE("settled labels equal a full-table reference of the same recurrence") 
         config.segment_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
         config.stay_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
         config.skip_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
-        if (trial % 3 == 0) config.unknown_cost = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
+        if (trial % 3 == 0)
+            config.unknown_cost = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
         REQUIRE(segmenter->init(t.view, config) == Status::ok);
         const std::uint32_t settle = segmenter->settle_chars();
         CHECK(settle == static_cast<std::uint32_t>(config.settle_delay_us / 100000));
         std::vector<Character> stream(static_cast<std::size_t>(std::uniform_int_distribution<int>(1, 150)(rng)));
-        for (auto& c : stream) c = static_cast<Character>(std::uniform_int_distribution<int>(0, t.view.character_count - 1)(rng));
+        for (auto& c : stream)
+            c = static_cast<Character>(std::uniform_int_distribution<int>(0, t.view.character_count - 1)(rng));
         const std::vector<LabelId> expected = reference_settled(t.view, config, settle, stream);
         std::vector<LabelId> got(stream.size(), unknown_label);
         for (std::size_t i = 0; i < stream.size(); ++i) {
@@ -229,10 +237,26 @@ TEST_CASE("characters unlike every representative are 'no action' when the unkno
     for (Character c : stream)
         if (segmenter->push(c)) got.push_back(segmenter->settled_label());
     for (std::size_t i = got.size(); i < stream.size(); ++i) got.push_back(segmenter->provisional_label(i));
-    const std::vector<LabelId> expected{unknown_label, unknown_label, unknown_label, unknown_label, unknown_label, unknown_label,
-                                        1, 1, 1, 1, 1, 1,
-                                        unknown_label, unknown_label, unknown_label, unknown_label, unknown_label, unknown_label,
-                                        unknown_label, unknown_label};
+    const std::vector<LabelId> expected{unknown_label,
+                                        unknown_label,
+                                        unknown_label,
+                                        unknown_label,
+                                        unknown_label,
+                                        unknown_label,
+                                        1,
+                                        1,
+                                        1,
+                                        1,
+                                        1,
+                                        1,
+                                        unknown_label,
+                                        unknown_label,
+                                        unknown_label,
+                                        unknown_label,
+                                        unknown_label,
+                                        unknown_label,
+                                        unknown_label,
+                                        unknown_label};
     CHECK(got == expected);
 
     // Without the unknown cost the same characters must go to the only action.

@@ -14,8 +14,7 @@ using test::chars;
 
 namespace {
 const std::vector<float> W = test::unit_weights(10);
-float d(const std::string& a, const std::string& b, MatchVariant v,
-        LengthNormalization n = LengthNormalization::none) {
+float d(const std::string& a, const std::string& b, MatchVariant v, LengthNormalization n = LengthNormalization::none) {
     return batch_distance(chars(a), chars(b), W, 10, v, n);
 }
 }  // namespace
@@ -64,7 +63,7 @@ TEST_CASE("the shorter string indexes the rows; equal lengths put the query firs
     CHECK(batch_distance(chars("1"), chars("22"), w, 3, MatchVariant::whole) == 2.0f);  // A1 = "1"
     CHECK(batch_distance(chars("22"), chars("1"), w, 3, MatchVariant::whole) == 2.0f);  // A1 = "1" again
     CHECK(batch_distance(chars("2"), chars("11"), w, 3, MatchVariant::whole) == 0.0f);
-    CHECK(batch_distance(chars("1"), chars("2"), w, 3, MatchVariant::whole) == 1.0f);   // query is A1
+    CHECK(batch_distance(chars("1"), chars("2"), w, 3, MatchVariant::whole) == 1.0f);  // query is A1
     CHECK(batch_distance(chars("2"), chars("1"), w, 3, MatchVariant::whole) == 0.0f);
 }
 
@@ -77,8 +76,7 @@ TEST_CASE("length normalisation") {
     CHECK(d("345", "12345", MatchVariant::whole, LengthNormalization::query) == doctest::Approx(2.0 / 3.0));
     // A constant offset W = 1 everywhere: path normalisation gives 1 for any pair.
     std::vector<float> ones(9, 1.0f);
-    CHECK(batch_distance(chars("1221"), chars("120"), ones, 3, MatchVariant::whole,
-                         LengthNormalization::path) == 1.0f);
+    CHECK(batch_distance(chars("1221"), chars("120"), ones, 3, MatchVariant::whole, LengthNormalization::path) == 1.0f);
 }
 
 TEST_CASE("bad arguments are refused, never answered with NaN") {

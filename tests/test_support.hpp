@@ -36,18 +36,16 @@ inline std::vector<float> unit_weights(std::size_t K) {
 
 /// Batch distance with a workspace of the right size; CHECKs nothing itself.
 inline float batch_distance(const std::vector<actionstring::Character>& query,
-                            const std::vector<actionstring::Character>& reference,
-                            const std::vector<float>& w, std::size_t K,
-                            actionstring::MatchVariant variant,
-                            actionstring::LengthNormalization normalization =
-                                actionstring::LengthNormalization::none,
+                            const std::vector<actionstring::Character>& reference, const std::vector<float>& w,
+                            std::size_t K, actionstring::MatchVariant variant,
+                            actionstring::LengthNormalization normalization = actionstring::LengthNormalization::none,
                             actionstring::Status* status = nullptr) {
     std::vector<actionstring::detail::Cell> workspace(
         actionstring::string_distance_cells(query.size(), reference.size()));
     float d = -1.0f;
-    const auto s = actionstring::string_distance(
-        query.data(), query.size(), reference.data(), reference.size(),
-        actionstring::CharacterWeights{w.data(), K}, {variant, normalization}, workspace.data(), &d);
+    const auto s = actionstring::string_distance(query.data(), query.size(), reference.data(), reference.size(),
+                                                 actionstring::CharacterWeights{w.data(), K}, {variant, normalization},
+                                                 workspace.data(), &d);
     if (status != nullptr) *status = s;
     return d;
 }

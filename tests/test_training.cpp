@@ -65,11 +65,13 @@ TEST_CASE("EM: the penalised log-likelihood never decreases and the blobs are fo
         REQUIRE(slow.report.objective.size() > 10);
         CHECK(slow.report.reseeded.empty());
         for (std::size_t i = 1; i < slow.report.objective.size(); ++i)
-            CHECK(slow.report.objective[i] >= slow.report.objective[i - 1] - 1e-9 * std::fabs(slow.report.objective[i - 1]));
+            CHECK(slow.report.objective[i] >=
+                  slow.report.objective[i - 1] - 1e-9 * std::fabs(slow.report.objective[i - 1]));
         const GmmFit fit = fit_gmm(blobs(200, 3), 3, kind, 1e-3, 200, 1e-10, 5);
         CHECK(fit.report.converged);
         std::set<int> found;
-        for (const auto& mean : fit.means) found.insert(static_cast<int>(std::lround(mean[0])) * 10 + static_cast<int>(std::lround(mean[1])));
+        for (const auto& mean : fit.means)
+            found.insert(static_cast<int>(std::lround(mean[0])) * 10 + static_cast<int>(std::lround(mean[1])));
         CHECK(found == std::set<int>{0, 30, 4});
         for (double w : fit.weights) CHECK(w == doctest::Approx(1.0 / 3).epsilon(0.05));
     }
@@ -96,11 +98,13 @@ TEST_CASE("EM: degenerate data gives finite tables or a clear error") {
         const auto& o = recovered.report.objective;
         const auto& r = recovered.report.reseeded;
         for (std::size_t i = 1; i < o.size(); ++i)
-            if (std::find(r.begin(), r.end(), static_cast<int>(i)) == r.end()) CHECK(o[i] >= o[i - 1] - 1e-9 * std::fabs(o[i - 1]));
+            if (std::find(r.begin(), r.end(), static_cast<int>(i)) == r.end())
+                CHECK(o[i] >= o[i - 1] - 1e-9 * std::fabs(o[i - 1]));
         CHECK(r.size() <= 8 * 3);
     }
     // Fewer samples than components, non-finite samples: refused.
-    CHECK_THROWS_AS(fit_gmm(Eigen::MatrixXd::Zero(2, 3), 4, Covariance::full, 1e-4, 10, 1e-8, 1), std::invalid_argument);
+    CHECK_THROWS_AS(fit_gmm(Eigen::MatrixXd::Zero(2, 3), 4, Covariance::full, 1e-4, 10, 1e-8, 1),
+                    std::invalid_argument);
     Eigen::MatrixXd bad = blobs(10, 1);
     bad(1, 3) = std::nan("");
     CHECK_THROWS_AS(fit_gmm(bad, 2, Covariance::full, 1e-4, 10, 1e-8, 1), std::invalid_argument);
@@ -128,7 +132,10 @@ TEST_CASE("agglomeration merges while ≤ σ, keeps the medoid first, leaves sin
     // Strings 0–2 close together, 3–4 close together, 5 alone.
     std::vector<std::vector<double>> d(6, std::vector<double>(6, 50.0));
     for (int i = 0; i < 6; ++i) d[static_cast<std::size_t>(i)][static_cast<std::size_t>(i)] = 0;
-    auto set = [&](int a, int b, double v) { d[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] = d[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] = v; };
+    auto set = [&](int a, int b, double v) {
+        d[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] =
+            d[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] = v;
+    };
     set(0, 1, 2);
     set(1, 2, 2);
     set(0, 2, 4);
@@ -202,7 +209,8 @@ TEST_CASE("the same inputs and seed give byte-identical artifacts and headers") 
     ModelData b = train_model(train, options);
     const std::string text_a = serialize_model(a), text_b = serialize_model(b);
     CHECK(text_a == text_b);
-    CHECK(generate_header(a, artifact_checksum(text_a), "m", "a.model") == generate_header(b, artifact_checksum(text_b), "m", "a.model"));
+    CHECK(generate_header(a, artifact_checksum(text_a), "m", "a.model") ==
+          generate_header(b, artifact_checksum(text_b), "m", "a.model"));
     options.seed = 2;
     ModelData c = train_model(train, options);
     CHECK(serialize_model(c) != text_a);  // the seed matters, so the comparison above can fail

@@ -170,9 +170,7 @@ public:
     /// Characters between a character and its settled label.
     std::uint32_t settle_chars() const noexcept { return segmenter_.settle_chars(); }
     /// Time of a character's tick (any character of the current stream).
-    std::int64_t character_time_us(std::uint64_t character) const noexcept {
-        return encoder_.tick_time_us(character);
-    }
+    std::int64_t character_time_us(std::uint64_t character) const noexcept { return encoder_.tick_time_us(character); }
     /// Characters in the current stream's string so far.
     std::uint64_t characters() const noexcept { return matcher_.characters_pushed(); }
     /// The most recent character (meaningful once characters() > 0).

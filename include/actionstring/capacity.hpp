@@ -43,8 +43,8 @@ struct DefaultLimits {
 /// storage from one.
 template <class Limits>
 struct Capacity {
-    static_assert(Limits::joints > 0 && Limits::pose_joints > 0 && Limits::feature_dim > 0 &&
-                      Limits::components > 0 && Limits::representatives > 0 && Limits::representative_chars > 0,
+    static_assert(Limits::joints > 0 && Limits::pose_joints > 0 && Limits::feature_dim > 0 && Limits::components > 0 &&
+                      Limits::representatives > 0 && Limits::representative_chars > 0,
                   "every capacity must be positive");
     using limits = Limits;
     static constexpr std::size_t max_joints = Limits::joints;
@@ -69,8 +69,8 @@ struct Capacity {
 
     /// True when the feature tables fit (what a StringEncoder needs).
     static constexpr bool fits_features(const ModelView& m) noexcept {
-        return m.joint_count <= max_joints && m.pose_dim() <= max_pose_dim &&
-               m.feature_dim <= max_feature_dim && m.component_count <= max_components;
+        return m.joint_count <= max_joints && m.pose_dim() <= max_pose_dim && m.feature_dim <= max_feature_dim &&
+               m.component_count <= max_components;
     }
 
     /// True when the matching tables fit (what a WindowMatcher needs).

@@ -69,14 +69,11 @@ inline Classification classify_distances(const ModelView& model, const float* di
 
     float other = detail::infinity();
     for (std::size_t r = 0; r < R; ++r)
-        if (model.representative_labels[r] != result.nearest_label && distances[r] < other)
-            other = distances[r];
+        if (model.representative_labels[r] != result.nearest_label && distances[r] < other) other = distances[r];
     if (!(result.distance <= model.unknown_distance)) return result;  // unknown
     result.label = result.nearest_label;
-    if (!detail::is_finite(other))
-        result.confidence = 1.0f;
-    else if (other > result.distance)
-        result.confidence = (other - result.distance) / other;
+    if (!detail::is_finite(other)) result.confidence = 1.0f;
+    else if (other > result.distance) result.confidence = (other - result.distance) / other;
     return result;
 }
 

@@ -117,8 +117,7 @@ private:
         // Cannot fail: normalize_pose bounded the pose and init() checked that
         // no bounded pose overflows the GMM. Should it ever, repeat the last
         // character rather than invent one.
-        if (!model_->has_gmm())
-            last_ = descend_tree(*model_, feature);
+        if (!model_->has_gmm()) last_ = descend_tree(*model_, feature);
         else if (gmm_posterior<Cap::max_feature_dim>(*model_, feature, posterior_) == Status::ok)
             last_ = descend_tree(*model_, posterior_);
         characters_[slot] = last_;

@@ -17,8 +17,7 @@ namespace actionstring {
 /// Squared Mahalanobis distance ‖U_j (z − μ_j)‖² of a feature to component j.
 /// @tparam MaxFeatureDim bound on model.feature_dim (stack scratch)
 template <std::size_t MaxFeatureDim>
-inline float gmm_mahalanobis_sq(const ModelView& model, std::size_t component,
-                                const float* feature) noexcept {
+inline float gmm_mahalanobis_sq(const ModelView& model, std::size_t component, const float* feature) noexcept {
     const std::size_t d = model.feature_dim;
     const float* mean = model.gmm_means + component * d;
     const float* factor = model.gmm_factors + component * model.factor_size();

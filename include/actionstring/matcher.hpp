@@ -42,8 +42,7 @@ public:
         if (status != Status::ok) return status;
         if (!Cap::fits_matching(model)) return Status::model_exceeds_capacity;
         for (std::size_t r = 0; r < model.representative_count; ++r)
-            if (model.representative_length(r) + model.window_chars > 0xFFFFu)
-                return Status::model_exceeds_capacity;
+            if (model.representative_length(r) + model.window_chars > 0xFFFFu) return Status::model_exceeds_capacity;
         model_ = &model;
         lanes_ = model.max_open_windows();
         track_paths_ = model.normalization == LengthNormalization::path;
@@ -68,10 +67,8 @@ public:
         if (model_ == nullptr || character >= model_->character_count) return false;
         const ModelView& m = *model_;
         if (pushed_ % m.step_chars == 0) open_window(static_cast<std::size_t>((pushed_ / m.step_chars) % lanes_));
-        if (track_paths_)
-            advance<true>(character);
-        else
-            advance<false>(character);
+        if (track_paths_) advance<true>(character);
+        else advance<false>(character);
         bool completed = false;
         for (std::size_t lane = 0; lane < lanes_; ++lane) {
             Window& window = windows_[lane];
@@ -107,9 +104,7 @@ private:
         std::uint32_t filled = 0;
     };
 
-    bool window_is_a1(std::size_t r) const noexcept {
-        return model_->window_chars <= model_->representative_length(r);
-    }
+    bool window_is_a1(std::size_t r) const noexcept { return model_->window_chars <= model_->representative_length(r); }
     std::size_t first_cell(std::size_t r) const noexcept { return model_->representative_offsets[r] + r; }
 
     // Path lengths exist only when the capacity provides them; the modulo
@@ -130,7 +125,8 @@ private:
             if (!window_is_a1(r)) continue;  // a column needs the window's first character
             const std::size_t base = first_cell(r);
             store(base, lane, detail::dp_origin());
-            for (std::size_t j = 1; j <= m.representative_length(r); ++j) store(base + j, lane, detail::dp_row0(m.variant));
+            for (std::size_t j = 1; j <= m.representative_length(r); ++j)
+                store(base + j, lane, detail::dp_row0(m.variant));
         }
     }
 
@@ -151,10 +147,8 @@ private:
                         store(base + i, lane, detail::dp_col0(m.variant, w(rep[i - 1], c)));
                 }
             }
-            if (window_is_a1(r))
-                advance_row<Paths>(base, rep, len, c, w);
-            else
-                advance_column<Paths>(r, base, rep, len, c, w);
+            if (window_is_a1(r)) advance_row<Paths>(base, rep, len, c, w);
+            else advance_column<Paths>(r, base, rep, len, c, w);
         }
     }
 

@@ -80,9 +80,8 @@ struct ModelView {
     constexpr std::size_t tree_dim() const noexcept { return has_gmm() ? component_count : feature_dim; }
     /// Floats per component in gmm_factors.
     constexpr std::size_t factor_size() const noexcept {
-        return covariance == Covariance::full
-                   ? static_cast<std::size_t>(feature_dim) * (feature_dim + 1u) / 2u
-                   : feature_dim;
+        return covariance == Covariance::full ? static_cast<std::size_t>(feature_dim) * (feature_dim + 1u) / 2u
+                                              : feature_dim;
     }
     constexpr std::uint32_t representative_length(std::size_t r) const noexcept {
         return representative_offsets[r + 1] - representative_offsets[r];
@@ -130,11 +129,10 @@ inline Status validate_feature_tables(const ModelView& m) noexcept {
     // Skeleton.
     if (m.joint_count == 0 || m.up_axis > 2) return bad;
     if (m.scale_mode > ScaleMode::hip_width || m.covariance > Covariance::diagonal) return bad;
-    if (m.root_joint >= m.joint_count || m.left_hip_joint >= m.joint_count ||
-        m.right_hip_joint >= m.joint_count || m.left_hip_joint == m.right_hip_joint)
+    if (m.root_joint >= m.joint_count || m.left_hip_joint >= m.joint_count || m.right_hip_joint >= m.joint_count ||
+        m.left_hip_joint == m.right_hip_joint)
         return bad;
-    if (m.scale_mode == ScaleMode::hip_width &&
-        !(detail::is_finite(m.reference_scale) && m.reference_scale > 0.0f))
+    if (m.scale_mode == ScaleMode::hip_width && !(detail::is_finite(m.reference_scale) && m.reference_scale > 0.0f))
         return bad;
     if (m.pose_joint_count == 0 || m.pose_joints == nullptr) return bad;
     for (std::size_t i = 0; i < m.pose_joint_count; ++i)

@@ -34,13 +34,10 @@ constexpr float max_pose_coordinate = 1.0e4f;
 /// @return ok, non_finite_input, tracking_lost (every joint the model reads is
 ///         exactly at the origin, as Kinect reports lost tracking),
 ///         degenerate_pose (no facing direction) or pose_out_of_range
-inline Status normalize_pose(const ModelView& model, const float* positions,
-                             float* pose_out) noexcept {
+inline Status normalize_pose(const ModelView& model, const float* positions, float* pose_out) noexcept {
     if (positions == nullptr || pose_out == nullptr || model.up_axis > 2) return Status::invalid_argument;
     using Vec3 = Eigen::Vector3f;
-    auto joint = [positions](std::size_t index) {
-        return Eigen::Map<const Vec3>(positions + 3 * index);
-    };
+    auto joint = [positions](std::size_t index) { return Eigen::Map<const Vec3>(positions + 3 * index); };
 
     // Validate only the joints the model reads: engine rigs carry many more.
     bool any_non_zero = false;
@@ -66,12 +63,10 @@ inline Status normalize_pose(const ModelView& model, const float* positions,
     const float hip_width = hips.norm();
     const float horizontal = std::sqrt(hips[h1] * hips[h1] + hips[h2] * hips[h2]);
     // Hips nearly along the up axis leave the facing undefined (below ~0.06°).
-    if (!(horizontal > 1.0e-6f) || !(horizontal > 1.0e-3f * hip_width))
-        return Status::degenerate_pose;
+    if (!(horizontal > 1.0e-6f) || !(horizontal > 1.0e-3f * hip_width)) return Status::degenerate_pose;
     const float cos_a = hips[h1] / horizontal;
     const float sin_a = hips[h2] / horizontal;
-    const float scale =
-        model.scale_mode == ScaleMode::hip_width ? model.reference_scale / hip_width : 1.0f;
+    const float scale = model.scale_mode == ScaleMode::hip_width ? model.reference_scale / hip_width : 1.0f;
 
     for (std::size_t k = 0; k < model.pose_joint_count; ++k) {
         const Vec3 rel = (joint(model.pose_joints[k]) - root) * scale;

@@ -67,10 +67,8 @@ public:
         const std::uint64_t last_due = now / period_us_;
         for (; next_tick_ <= last_due; ++next_tick_) {
             const std::uint64_t tick = next_tick_ * period_us_;
-            if (tick - last < now - tick)
-                ++plan.from_previous;
-            else
-                ++plan.from_current;
+            if (tick - last < now - tick) ++plan.from_previous;
+            else ++plan.from_current;
         }
         last_us_ = time_us;
         return plan;

@@ -64,8 +64,9 @@ public:
         const Status status = validate_matching_tables(model);
         if (status != Status::ok) return status;
         if (!(config.settle_delay_us >= 0) || !(config.segment_penalty >= 0.0f) || !(config.stay_penalty >= 0.0f) ||
-            !(config.skip_penalty >= 0.0f) || !(config.unknown_cost >= 0.0f) || !detail::is_finite(config.segment_penalty) ||
-            !detail::is_finite(config.stay_penalty) || !detail::is_finite(config.skip_penalty))
+            !(config.skip_penalty >= 0.0f) || !(config.unknown_cost >= 0.0f) ||
+            !detail::is_finite(config.segment_penalty) || !detail::is_finite(config.stay_penalty) ||
+            !detail::is_finite(config.skip_penalty))
             return Status::invalid_argument;
         if (model.representative_count > Cap::max_representatives ||
             model.total_representative_chars() > Cap::max_representative_chars)
@@ -157,7 +158,8 @@ public:
     /// Final label of a settled character among the last settled_history();
     /// unknown_label for any other index.
     LabelId settled_label(std::uint64_t index) const noexcept {
-        if (!has_settled() || index > settled_character() || settled_character() - index >= ring_size) return unknown_label;
+        if (!has_settled() || index > settled_character() || settled_character() - index >= ring_size)
+            return unknown_label;
         return settled_[index % ring_size];
     }
     /// How many settled labels settled_label(index) remembers.

@@ -35,17 +35,28 @@ enum class Status : std::uint8_t {
 /// Short, stable, human-readable name of a status code (static storage).
 constexpr const char* status_name(Status status) noexcept {
     switch (status) {
-        case Status::ok: return "ok";
-        case Status::non_finite_input: return "non_finite_input";
-        case Status::tracking_lost: return "tracking_lost";
-        case Status::degenerate_pose: return "degenerate_pose";
-        case Status::pose_out_of_range: return "pose_out_of_range";
-        case Status::time_went_backwards: return "time_went_backwards";
-        case Status::stream_restarted: return "stream_restarted";
-        case Status::invalid_model: return "invalid_model";
-        case Status::model_exceeds_capacity: return "model_exceeds_capacity";
-        case Status::invalid_argument: return "invalid_argument";
-        case Status::not_initialized: return "not_initialized";
+        case Status::ok:
+            return "ok";
+        case Status::non_finite_input:
+            return "non_finite_input";
+        case Status::tracking_lost:
+            return "tracking_lost";
+        case Status::degenerate_pose:
+            return "degenerate_pose";
+        case Status::pose_out_of_range:
+            return "pose_out_of_range";
+        case Status::time_went_backwards:
+            return "time_went_backwards";
+        case Status::stream_restarted:
+            return "stream_restarted";
+        case Status::invalid_model:
+            return "invalid_model";
+        case Status::model_exceeds_capacity:
+            return "model_exceeds_capacity";
+        case Status::invalid_argument:
+            return "invalid_argument";
+        case Status::not_initialized:
+            return "not_initialized";
     }
     return "unknown_status";
 }
@@ -53,9 +64,8 @@ constexpr const char* status_name(Status status) noexcept {
 /// True for the codes that describe a single rejected frame rather than a
 /// broken model or a programming error: the stream can go on after them.
 constexpr bool is_frame_rejection(Status status) noexcept {
-    return status == Status::non_finite_input || status == Status::tracking_lost ||
-           status == Status::degenerate_pose || status == Status::pose_out_of_range ||
-           status == Status::time_went_backwards;
+    return status == Status::non_finite_input || status == Status::tracking_lost || status == Status::degenerate_pose ||
+           status == Status::pose_out_of_range || status == Status::time_went_backwards;
 }
 
 }  // namespace actionstring

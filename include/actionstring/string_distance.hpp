@@ -21,9 +21,7 @@ struct MatchOptions {
 };
 
 /// Cells the batch distance needs for strings of lengths n and m.
-constexpr std::size_t string_distance_cells(std::size_t n, std::size_t m) noexcept {
-    return (n + 1) * (m + 1);
-}
+constexpr std::size_t string_distance_cells(std::size_t n, std::size_t m) noexcept { return (n + 1) * (m + 1); }
 
 /// Distance between a query string and a reference string.
 ///
@@ -37,9 +35,8 @@ constexpr std::size_t string_distance_cells(std::size_t n, std::size_t m) noexce
 /// @param distance   receives the distance on Status::ok
 /// @return ok, or invalid_argument for empty strings, null pointers, a
 ///         character outside W, or strings too long for path lengths
-inline Status string_distance(const Character* query, std::size_t query_length,
-                              const Character* reference, std::size_t reference_length,
-                              CharacterWeights weights, MatchOptions options,
+inline Status string_distance(const Character* query, std::size_t query_length, const Character* reference,
+                              std::size_t reference_length, CharacterWeights weights, MatchOptions options,
                               detail::Cell* workspace, float* distance) noexcept {
     if (query == nullptr || reference == nullptr || workspace == nullptr || distance == nullptr ||
         weights.values == nullptr || query_length == 0 || reference_length == 0 ||
@@ -63,8 +60,7 @@ inline Status string_distance(const Character* query, std::size_t query_length,
     for (std::size_t i = 1; i <= n; ++i) {
         at(i, 0) = detail::dp_col0(options.variant, weights(a1[i - 1], a2[0]));
         for (std::size_t j = 1; j <= m; ++j)
-            at(i, j) = detail::dp_step(at(i - 1, j - 1), at(i - 1, j), at(i, j - 1),
-                                       weights(a1[i - 1], a2[j - 1]));
+            at(i, j) = detail::dp_step(at(i - 1, j - 1), at(i - 1, j), at(i, j - 1), weights(a1[i - 1], a2[j - 1]));
     }
 
     const auto query_len = static_cast<std::uint32_t>(query_length);

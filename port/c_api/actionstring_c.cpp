@@ -22,8 +22,10 @@ struct State {
 };
 
 static_assert(ACTIONSTRING_OK == static_cast<int>(actionstring::Status::ok), "status values match");
-static_assert(ACTIONSTRING_TIME_WENT_BACKWARDS == static_cast<int>(actionstring::Status::time_went_backwards), "status values match");
-static_assert(ACTIONSTRING_NOT_INITIALIZED == static_cast<int>(actionstring::Status::not_initialized), "status values match");
+static_assert(ACTIONSTRING_TIME_WENT_BACKWARDS == static_cast<int>(actionstring::Status::time_went_backwards),
+              "status values match");
+static_assert(ACTIONSTRING_NOT_INITIALIZED == static_cast<int>(actionstring::Status::not_initialized),
+              "status values match");
 
 actionstring_status code(actionstring::Status status) { return static_cast<actionstring_status>(status); }
 

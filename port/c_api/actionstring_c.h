@@ -16,15 +16,15 @@
 #include <stdint.h>
 
 #if defined(_WIN32) && defined(ACTIONSTRING_C_SHARED)
-#  if defined(ACTIONSTRING_C_BUILDING)
-#    define ACTIONSTRING_C_API __declspec(dllexport)
-#  else
-#    define ACTIONSTRING_C_API __declspec(dllimport)
-#  endif
-#elif defined(ACTIONSTRING_C_SHARED) && defined(__GNUC__)
-#  define ACTIONSTRING_C_API __attribute__((visibility("default")))
+#if defined(ACTIONSTRING_C_BUILDING)
+#define ACTIONSTRING_C_API __declspec(dllexport)
 #else
-#  define ACTIONSTRING_C_API
+#define ACTIONSTRING_C_API __declspec(dllimport)
+#endif
+#elif defined(ACTIONSTRING_C_SHARED) && defined(__GNUC__)
+#define ACTIONSTRING_C_API __attribute__((visibility("default")))
+#else
+#define ACTIONSTRING_C_API
 #endif
 
 #ifdef __cplusplus
@@ -35,16 +35,16 @@ extern "C" {
 typedef int32_t actionstring_status;
 enum {
     ACTIONSTRING_OK = 0,
-    ACTIONSTRING_NON_FINITE_INPUT = 1,     /**< frame rejected: NaN or infinity */
-    ACTIONSTRING_TRACKING_LOST = 2,        /**< frame rejected: every joint at the origin */
-    ACTIONSTRING_DEGENERATE_POSE = 3,      /**< frame rejected: hips give no facing direction */
-    ACTIONSTRING_POSE_OUT_OF_RANGE = 4,    /**< frame rejected: too far from every key-pose */
-    ACTIONSTRING_TIME_WENT_BACKWARDS = 5,  /**< frame rejected: earlier than the previous frame */
-    ACTIONSTRING_STREAM_RESTARTED = 6,     /**< frame accepted after a long gap; windows restarted */
+    ACTIONSTRING_NON_FINITE_INPUT = 1,    /**< frame rejected: NaN or infinity */
+    ACTIONSTRING_TRACKING_LOST = 2,       /**< frame rejected: every joint at the origin */
+    ACTIONSTRING_DEGENERATE_POSE = 3,     /**< frame rejected: hips give no facing direction */
+    ACTIONSTRING_POSE_OUT_OF_RANGE = 4,   /**< frame rejected: too far from every key-pose */
+    ACTIONSTRING_TIME_WENT_BACKWARDS = 5, /**< frame rejected: earlier than the previous frame */
+    ACTIONSTRING_STREAM_RESTARTED = 6,    /**< frame accepted after a long gap; windows restarted */
     ACTIONSTRING_INVALID_MODEL = 7,
     ACTIONSTRING_MODEL_EXCEEDS_CAPACITY = 8,
-    ACTIONSTRING_INVALID_ARGUMENT = 9,     /**< null pointer, short or misaligned buffer, wrong count */
-    ACTIONSTRING_NOT_INITIALIZED = 10      /**< the state was not set up by actionstring_init() */
+    ACTIONSTRING_INVALID_ARGUMENT = 9, /**< null pointer, short or misaligned buffer, wrong count */
+    ACTIONSTRING_NOT_INITIALIZED = 10  /**< the state was not set up by actionstring_init() */
 };
 
 /** Opaque state: lives in caller-owned memory. */
@@ -52,10 +52,10 @@ typedef struct actionstring_state actionstring_state;
 
 /** What one actionstring_push_frame() did. */
 typedef struct actionstring_frame_result {
-    actionstring_status status;   /**< OK or STREAM_RESTARTED when accepted, else why rejected */
-    uint32_t characters;          /**< characters appended to the action string */
-    uint32_t windows_completed;   /**< windows that completed (and may have changed the label) */
-    uint32_t characters_settled;  /**< characters whose final label the segmenter decided */
+    actionstring_status status;  /**< OK or STREAM_RESTARTED when accepted, else why rejected */
+    uint32_t characters;         /**< characters appended to the action string */
+    uint32_t windows_completed;  /**< windows that completed (and may have changed the label) */
+    uint32_t characters_settled; /**< characters whose final label the segmenter decided */
 } actionstring_frame_result;
 
 /** Bytes and alignment the state needs. */

@@ -51,4 +51,5 @@ inline void log_write(const char* text) noexcept { actionstring_board_write(text
 }  // namespace actionstring
 
 #define ACTIONSTRING_PORT_ASSERT(condition) \
-    ((condition) ? static_cast<void>(0) : ::actionstring::port::fail("assertion failed: " #condition, __FILE__, __LINE__))
+    ((condition) ? static_cast<void>(0)     \
+                 : ::actionstring::port::fail("assertion failed: " #condition, __FILE__, __LINE__))

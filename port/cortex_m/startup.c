@@ -36,7 +36,10 @@ __attribute__((section(".vectors"), used)) static void (*const vector_table[16])
     Fault_Handler, /* MemManage */
     Fault_Handler, /* BusFault */
     Fault_Handler, /* UsageFault */
-    0, 0, 0, 0,
+    0,
+    0,
+    0,
+    0,
     Fault_Handler, /* SVCall */
     Fault_Handler, /* DebugMonitor */
     0,
@@ -99,6 +102,7 @@ void Reset_Handler(void) {
     SYST_RVR = SYSTICK_RELOAD;
     SYST_CVR = 0u;
     SYST_CSR = 0x7u; /* enable, interrupt on wrap, core clock */
-    for (void (**constructor)(void) = __init_array_start; constructor < __init_array_end; ++constructor) (*constructor)();
+    for (void (**constructor)(void) = __init_array_start; constructor < __init_array_end; ++constructor)
+        (*constructor)();
     actionstring_board_exit(main());
 }

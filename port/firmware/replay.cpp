@@ -99,11 +99,21 @@ int main() {
         line.text("model rejected: ").text(actionstring::status_name(status)).write();
         return 1;
     }
-    line.text("replay: ").number(stream::kFrameCount).text(" frames, ").number(stream::kSegmentCount)
-        .text(" clips, model ").text(model::kModelChecksum).write();
+    line.text("replay: ")
+        .number(stream::kFrameCount)
+        .text(" frames, ")
+        .number(stream::kSegmentCount)
+        .text(" clips, model ")
+        .text(model::kModelChecksum)
+        .write();
     line.text("# port ").text(actionstring::port::name()).write();
-    line.text("# state bytes: annotator ").number(sizeof(Annotator)).text(" encoder ")
-        .number(sizeof(actionstring::StringEncoder<Cap>)).text(" segmenter ").number(sizeof(actionstring::ActionSegmenter<Cap>)).write();
+    line.text("# state bytes: annotator ")
+        .number(sizeof(Annotator))
+        .text(" encoder ")
+        .number(sizeof(actionstring::StringEncoder<Cap>))
+        .text(" segmenter ")
+        .number(sizeof(actionstring::ActionSegmenter<Cap>))
+        .write();
 #if defined(__arm__)
     line.text("# calibration instructions 2000000 cycles ").number(calibration_cycles(1000000u)).write();
 #endif
@@ -119,8 +129,15 @@ int main() {
         const std::uint64_t begin = actionstring::port::cycle_count();
         const actionstring::FrameResult result = annotator.push_frame(stream::kFrameTimeUs[f], positions);
         const std::uint64_t cycles = actionstring::port::cycle_count() - begin;
-        line.text("# cycles ").number(f).text(" ").number(cycles).text(" ").number(result.characters).text(" ")
-            .number(result.characters_settled).write();
+        line.text("# cycles ")
+            .number(f)
+            .text(" ")
+            .number(cycles)
+            .text(" ")
+            .number(result.characters)
+            .text(" ")
+            .number(result.characters_settled)
+            .write();
         if (result.status != actionstring::Status::ok && result.status != actionstring::Status::stream_restarted) {
             ++rejected;
             line.text("rejected ").number(f).text(" ").text(actionstring::status_name(result.status)).write();
@@ -137,11 +154,23 @@ int main() {
         }
         hash = fnv1a(hash, static_cast<std::uint32_t>(annotator.live_label()));
     }
-    line.text("end: frames ").number(stream::kFrameCount).text(" settled ").number(settled).text(" rejected ")
-        .number(rejected).text(" characters ").number(annotator.characters()).text(" labels fnv1a32 ").hex(hash).write();
+    line.text("end: frames ")
+        .number(stream::kFrameCount)
+        .text(" settled ")
+        .number(settled)
+        .text(" rejected ")
+        .number(rejected)
+        .text(" characters ")
+        .number(annotator.characters())
+        .text(" labels fnv1a32 ")
+        .hex(hash)
+        .write();
 #if defined(__arm__)
-    line.text("# stack bytes used ").number(actionstring_board_stack_used()).text(" of ")
-        .number(actionstring_board_stack_size()).write();
+    line.text("# stack bytes used ")
+        .number(actionstring_board_stack_used())
+        .text(" of ")
+        .number(actionstring_board_stack_size())
+        .write();
 #endif
     annotator.~Annotator();
     return 0;

@@ -21,8 +21,7 @@ inline const char* name() noexcept { return "posix"; }
 
 /// Monotonic time in nanoseconds (arbitrary origin).
 inline std::int64_t monotonic_ns() noexcept {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(
-               std::chrono::steady_clock::now().time_since_epoch())
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
         .count();
 }
 
@@ -44,4 +43,5 @@ inline void log_write(const char* text) noexcept { std::fputs(text, stdout); }
 
 /// Checks an invariant in port-level code (the runtime itself reports by status).
 #define ACTIONSTRING_PORT_ASSERT(condition) \
-    ((condition) ? static_cast<void>(0) : ::actionstring::port::fail("assertion failed: " #condition, __FILE__, __LINE__))
+    ((condition) ? static_cast<void>(0)     \
+                 : ::actionstring::port::fail("assertion failed: " #condition, __FILE__, __LINE__))

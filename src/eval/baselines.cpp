@@ -60,7 +60,8 @@ void predict_nearest(ClipResults& r, const std::vector<std::vector<Character>>& 
 
 }  // namespace
 
-ClipResults evaluate_all_strings(const ModelView& model, const std::vector<LabelledClip>& train, const std::vector<LabelledClip>& clips) {
+ClipResults evaluate_all_strings(const ModelView& model, const std::vector<LabelledClip>& train,
+                                 const std::vector<LabelledClip>& clips) {
     ClipResults r = start_results("1-NN over all training strings", model, clips);
     std::vector<std::vector<Character>> references;
     for (const LabelledClip& t : train) references.push_back(clip_string(model, t.clip));
@@ -72,7 +73,7 @@ ClipResults evaluate_all_strings(const ModelView& model, const std::vector<Label
 }
 
 ClipResults evaluate_pca_characters(const ModelView& model, const std::vector<LabelledClip>& train,
-                                   const std::vector<LabelledClip>& clips, std::uint32_t seed) {
+                                    const std::vector<LabelledClip>& clips, std::uint32_t seed) {
     ClipResults r = start_results("1-NN, PCA-only characters (no GMM)", model, clips);
     const std::size_t d = model.feature_dim;
     const double rate_hz = 1e6 / static_cast<double>(model.string_period_us);
@@ -82,7 +83,8 @@ ClipResults evaluate_pca_characters(const ModelView& model, const std::vector<La
         sample_poses(model, clip, rate_hz, poses);
         const std::size_t D = model.pose_dim();
         std::vector<float> out(poses.size() / D * d);
-        for (std::size_t i = 0; i < poses.size() / D; ++i) project_pose(model, poses.data() + i * D, out.data() + i * d);
+        for (std::size_t i = 0; i < poses.size() / D; ++i)
+            project_pose(model, poses.data() + i * D, out.data() + i * d);
         return out;
     };
     std::vector<std::vector<float>> train_features;
@@ -117,7 +119,8 @@ ClipResults evaluate_pca_characters(const ModelView& model, const std::vector<La
     const CharacterWeights weights{distances.data(), K};
     auto string_of = [&](const std::vector<float>& features) {
         std::vector<Character> string;
-        for (std::size_t i = 0; i + d <= features.size(); i += d) string.push_back(descend_tree(pca_view, features.data() + i));
+        for (std::size_t i = 0; i + d <= features.size(); i += d)
+            string.push_back(descend_tree(pca_view, features.data() + i));
         return string;
     };
     std::vector<std::vector<Character>> references;
@@ -129,8 +132,8 @@ ClipResults evaluate_pca_characters(const ModelView& model, const std::vector<La
     return r;
 }
 
-ClipResults evaluate_pose_dtw(const ModelView& model, const std::vector<LabelledClip>& train, const std::vector<LabelledClip>& clips,
-                              double rate_hz) {
+ClipResults evaluate_pose_dtw(const ModelView& model, const std::vector<LabelledClip>& train,
+                              const std::vector<LabelledClip>& clips, double rate_hz) {
     ClipResults r = start_results("DTW 1-NN on normalised poses", model, clips);
     const std::size_t D = model.pose_dim();
     auto poses_of = [&](const Clip& clip) {

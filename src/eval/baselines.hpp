@@ -24,7 +24,7 @@ ClipResults evaluate_all_strings(const ModelView& model, const std::vector<Label
 /// model's string distance. Beside evaluate_all_strings it isolates what the
 /// GMM adds.
 ClipResults evaluate_pca_characters(const ModelView& model, const std::vector<LabelledClip>& train,
-                                   const std::vector<LabelledClip>& clips, std::uint32_t seed = 1);
+                                    const std::vector<LabelledClip>& clips, std::uint32_t seed = 1);
 
 /// Baseline: classic DTW 1-NN on normalised poses sampled at `rate_hz`
 /// (Euclidean frame distance, whole-to-whole boundaries). Uses the model's

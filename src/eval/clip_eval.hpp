@@ -14,12 +14,12 @@ namespace host {
 /// Clip-recognition results of one method on one list.
 struct ClipResults {
     std::string method;
-    std::vector<std::string> labels;               ///< Row and column names of the confusion matrix.
-    std::vector<std::vector<int>> confusion;       ///< [true][predicted]; the last column counts "unknown".
-    std::vector<int> predictions;                  ///< Per clip: index into labels, or −1 for unknown.
+    std::vector<std::string> labels;          ///< Row and column names of the confusion matrix.
+    std::vector<std::vector<int>> confusion;  ///< [true][predicted]; the last column counts "unknown".
+    std::vector<int> predictions;             ///< Per clip: index into labels, or −1 for unknown.
     double clip_accuracy = 0;
     double unknown_rate = 0;
-    std::vector<double> precision, recall;         ///< Per label (NaN-free: 0 when undefined).
+    std::vector<double> precision, recall;  ///< Per label (NaN-free: 0 when undefined).
 };
 
 /// Results of `method` ready for predictions: the model's labels, then every

@@ -28,8 +28,9 @@ std::vector<Segment> runs(const std::vector<int>& labels) {
 
 }  // namespace
 
-OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<int>& predicted, const std::vector<double>& times,
-                             const std::vector<std::size_t>& stream_starts, const std::vector<double>* emitted) {
+OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<int>& predicted,
+                             const std::vector<double>& times, const std::vector<std::size_t>& stream_starts,
+                             const std::vector<double>* emitted) {
     OnlineResults r;
     r.frames = truth.size();
     if (r.frames == 0) return r;
@@ -43,7 +44,8 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
     r.frame_accuracy = static_cast<double>(right) / static_cast<double>(r.frames);
     r.no_action_frames = no_action;
     if (no_action < r.frames)
-        r.action_frame_accuracy = static_cast<double>(right - no_action_right) / static_cast<double>(r.frames - no_action);
+        r.action_frame_accuracy =
+            static_cast<double>(right - no_action_right) / static_cast<double>(r.frames - no_action);
     if (no_action > 0) r.no_action_accuracy = static_cast<double>(no_action_right) / static_cast<double>(no_action);
 
     // Segments and label changes, per stream so boundaries between subjects do not count.
@@ -54,7 +56,8 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
         const std::size_t begin = stream_starts[s], end = stream_starts[s + 1];
         if (end <= begin) continue;
         const std::vector<int> t(truth.begin() + static_cast<long>(begin), truth.begin() + static_cast<long>(end));
-        const std::vector<int> p(predicted.begin() + static_cast<long>(begin), predicted.begin() + static_cast<long>(end));
+        const std::vector<int> p(predicted.begin() + static_cast<long>(begin),
+                                 predicted.begin() + static_cast<long>(end));
         const auto true_runs = runs(t), predicted_runs = runs(p);
         minutes += (times[end - 1] - times[begin]) / 60.0;
         true_changes += static_cast<int>(true_runs.size()) - 1;
@@ -67,10 +70,12 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
             for (std::size_t q = 0; q < predicted_runs.size(); ++q) {
                 const Segment& guess = predicted_runs[q];
                 if (used[q] || guess.label != segment.label) continue;
-                const std::size_t overlap_begin = std::max(segment.begin, guess.begin), overlap_end = std::min(segment.end, guess.end);
+                const std::size_t overlap_begin = std::max(segment.begin, guess.begin),
+                                  overlap_end = std::min(segment.end, guess.end);
                 if (overlap_end <= overlap_begin) continue;
                 const double overlap = static_cast<double>(overlap_end - overlap_begin);
-                const double joined = static_cast<double>(std::max(segment.end, guess.end) - std::min(segment.begin, guess.begin));
+                const double joined =
+                    static_cast<double>(std::max(segment.end, guess.end) - std::min(segment.begin, guess.begin));
                 if (overlap / joined >= 0.5) {
                     used[q] = true;
                     ++matched;
@@ -155,11 +160,13 @@ OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledC
         const ConcatenatedStream stream = concatenate_stream(segments);
         StreamTimeline timeline;
         timeline.name = "subject " + subject.first;
-        for (std::size_t f = 0; f < stream.frame_count(); ++f) timeline.times_s.push_back(us_to_seconds(stream.times_us[f]));
+        for (std::size_t f = 0; f < stream.frame_count(); ++f)
+            timeline.times_s.push_back(us_to_seconds(stream.times_us[f]));
         timeline.truth.assign(stream.frame_count(), unknown_frame);
         for (std::size_t s = 0; s < stream.segment_labels.size(); ++s) {
             const int label = model_label(names, stream.segment_labels[s]);
-            const std::size_t end = s + 1 < stream.segment_first_frame.size() ? stream.segment_first_frame[s + 1] : stream.frame_count();
+            const std::size_t end =
+                s + 1 < stream.segment_first_frame.size() ? stream.segment_first_frame[s + 1] : stream.frame_count();
             for (std::size_t f = stream.segment_first_frame[s]; f < end; ++f) timeline.truth[f] = label;
         }
         timeline.labels = label_stream(model, config, timeline.times_s, stream.positions.data(), stream.joints);

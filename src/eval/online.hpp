@@ -26,10 +26,10 @@ struct OnlineResults {
     double action_frame_accuracy = 0;  ///< Over frames inside a labelled action.
     double no_action_accuracy = 0;     ///< Share of "no action" frames labelled unknown.
     double segment_precision = 0, segment_recall = 0, segment_f1 = 0;  ///< Temporal IoU ≥ 0.5, one-to-one.
-    double mean_delay_s = 0;      ///< From a true segment's start to its first correct label (found segments).
-    int missed_segments = 0;      ///< True segments never labelled correctly.
+    double mean_delay_s = 0;  ///< From a true segment's start to its first correct label (found segments).
+    int missed_segments = 0;  ///< True segments never labelled correctly.
     double label_changes_per_min = 0, true_changes_per_min = 0;
-    double flicker_per_min = 0;   ///< Label changes per minute beyond the true ones (≥ 0).
+    double flicker_per_min = 0;  ///< Label changes per minute beyond the true ones (≥ 0).
 };
 
 /// Scores a labelled timeline: per frame the true and predicted label (−1
@@ -38,8 +38,9 @@ struct OnlineResults {
 /// changes never span two streams; the last start is the end). `emitted`, when
 /// given, is when each frame's label was output (a settled label comes later
 /// than its frame); label delay is measured to that time.
-OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<int>& predicted, const std::vector<double>& times,
-                             const std::vector<std::size_t>& stream_starts, const std::vector<double>* emitted = nullptr);
+OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<int>& predicted,
+                             const std::vector<double>& times, const std::vector<std::size_t>& stream_starts,
+                             const std::vector<double>* emitted = nullptr);
 
 /// One evaluated stream, for reports and pictures.
 struct StreamTimeline {

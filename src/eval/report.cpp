@@ -62,7 +62,8 @@ std::string confusion_svg(const ClipResults& r) {
         int support = 0;
         for (int v : r.confusion[t]) support += v;
         const int y = top + cell * static_cast<int>(t);
-        svg << "<text x=\"" << left - 6 << "\" y=\"" << y + cell / 2 + 4 << "\" text-anchor=\"end\">" << escape(r.labels[t]) << "</text>\n";
+        svg << "<text x=\"" << left - 6 << "\" y=\"" << y + cell / 2 + 4 << "\" text-anchor=\"end\">"
+            << escape(r.labels[t]) << "</text>\n";
         for (std::size_t p = 0; p <= L; ++p) {
             const int v = r.confusion[t][p];
             const double share = support > 0 ? static_cast<double>(v) / support : 0.0;
@@ -70,8 +71,8 @@ std::string confusion_svg(const ClipResults& r) {
             const bool diagonal = p == t;
             char fill[16];
             std::snprintf(fill, sizeof fill, diagonal ? "#%02x%02xff" : "#ff%02x%02x", shade, shade);
-            svg << "<rect x=\"" << left + cell * static_cast<int>(p) << "\" y=\"" << y << "\" width=\"" << cell << "\" height=\"" << cell
-                << "\" fill=\"" << (v == 0 ? "#ffffff" : fill) << "\" stroke=\"#bbbbbb\"/>\n";
+            svg << "<rect x=\"" << left + cell * static_cast<int>(p) << "\" y=\"" << y << "\" width=\"" << cell
+                << "\" height=\"" << cell << "\" fill=\"" << (v == 0 ? "#ffffff" : fill) << "\" stroke=\"#bbbbbb\"/>\n";
             if (v != 0)
                 svg << "<text x=\"" << left + cell * static_cast<int>(p) + cell / 2 << "\" y=\"" << y + cell / 2 + 4
                     << "\" text-anchor=\"middle\">" << v << "</text>\n";
@@ -99,11 +100,13 @@ std::string timeline_svg(const StreamTimeline& stream, const std::vector<std::st
     std::ostringstream svg;
     svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << left + plot + 20 << "\" height=\"" << height
         << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-    svg << "<text x=\"10\" y=\"20\" font-size=\"15\">" << escape(stream.name) << ": true vs predicted labels over time</text>\n";
+    svg << "<text x=\"10\" y=\"20\" font-size=\"15\">" << escape(stream.name)
+        << ": true vs predicted labels over time</text>\n";
     auto x_of = [&](double t) { return left + (t - begin) / seconds * plot; };
     for (int k = 0; k < 4; ++k) {
         const int y = 40 + k * (row + gap);
-        svg << "<text x=\"" << left - 6 << "\" y=\"" << y + row / 2 + 4 << "\" text-anchor=\"end\">" << rows[k].name << "</text>\n";
+        svg << "<text x=\"" << left - 6 << "\" y=\"" << y + row / 2 + 4 << "\" text-anchor=\"end\">" << rows[k].name
+            << "</text>\n";
         const std::vector<int>& v = *rows[k].labels;
         for (std::size_t i = 0; i < v.size();) {
             std::size_t j = i;
@@ -111,10 +114,12 @@ std::string timeline_svg(const StreamTimeline& stream, const std::vector<std::st
             const double x0 = x_of(stream.times_s[i]);
             const double x1 = j < n ? x_of(stream.times_s[j]) : x_of(end);
             char geometry[96];
-            std::snprintf(geometry, sizeof geometry, "x=\"%.1f\" y=\"%d\" width=\"%.1f\" height=\"%d\"", x0, y, std::max(x1 - x0, 0.5), row);
+            std::snprintf(geometry, sizeof geometry, "x=\"%.1f\" y=\"%d\" width=\"%.1f\" height=\"%d\"", x0, y,
+                          std::max(x1 - x0, 0.5), row);
             svg << "<rect " << geometry << " fill=\"" << colour(v[i]) << "\"><title>"
-                << escape(v[i] >= 0 && static_cast<std::size_t>(v[i]) < labels.size() ? labels[static_cast<std::size_t>(v[i])]
-                                                                                          : std::string(v[i] == unknown_frame ? "unknown / no action" : "label not in the model"))
+                << escape(v[i] >= 0 && static_cast<std::size_t>(v[i]) < labels.size()
+                              ? labels[static_cast<std::size_t>(v[i])]
+                              : std::string(v[i] == unknown_frame ? "unknown / no action" : "label not in the model"))
                 << "</title></rect>\n";
             i = j;
         }
@@ -122,15 +127,18 @@ std::string timeline_svg(const StreamTimeline& stream, const std::vector<std::st
     const int axis = 40 + 4 * (row + gap);
     for (double t = 0; t <= seconds + 1e-9; t += seconds > 120 ? 30 : 10) {
         char tick[160];
-        std::snprintf(tick, sizeof tick, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%d\" y2=\"%d\" stroke=\"#444\"/><text x=\"%.1f\" y=\"%d\" text-anchor=\"middle\">%.0f s</text>\n",
-                      x_of(begin + t), x_of(begin + t), axis - 4, axis + 2, x_of(begin + t), axis + 16, t);
+        std::snprintf(
+            tick, sizeof tick,
+            "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%d\" y2=\"%d\" stroke=\"#444\"/><text x=\"%.1f\" y=\"%d\" text-anchor=\"middle\">%.0f s</text>\n",
+            x_of(begin + t), x_of(begin + t), axis - 4, axis + 2, x_of(begin + t), axis + 16, t);
         svg << tick;
     }
     for (std::size_t l = 0; l <= labels.size(); ++l) {
         const int x = 10 + static_cast<int>(l % 4) * 220, y = axis + 30 + static_cast<int>(l / 4) * 18;
         const int id = l < labels.size() ? static_cast<int>(l) : -1;
-        svg << "<rect x=\"" << x << "\" y=\"" << y - 10 << "\" width=\"12\" height=\"12\" fill=\"" << colour(id) << "\"/><text x=\"" << x + 16
-            << "\" y=\"" << y << "\">" << escape(id >= 0 ? labels[l] : std::string("unknown / no action")) << "</text>\n";
+        svg << "<rect x=\"" << x << "\" y=\"" << y - 10 << "\" width=\"12\" height=\"12\" fill=\"" << colour(id)
+            << "\"/><text x=\"" << x + 16 << "\" y=\"" << y << "\">"
+            << escape(id >= 0 ? labels[l] : std::string("unknown / no action")) << "</text>\n";
     }
     svg << "</svg>\n";
     return svg.str();
@@ -140,11 +148,14 @@ void write_report(const std::string& dir, const std::string& title, const std::v
                   const OnlineReport* online, const std::vector<std::string>& labels) {
     ::mkdir(dir.c_str(), 0777);
     struct stat info {};
-    if (::stat(dir.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) throw std::runtime_error("cannot create the folder " + dir);
+    if (::stat(dir.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
+        throw std::runtime_error("cannot create the folder " + dir);
     std::ostringstream md;
     md.precision(3);
-    md << std::fixed << "# " << title << "\n\n## Clip recognition\n\n| method | clip accuracy | unknown |\n|---|---:|---:|\n";
-    for (const ClipResults& r : clip_results) md << "| " << r.method << " | " << r.clip_accuracy << " | " << r.unknown_rate << " |\n";
+    md << std::fixed << "# " << title
+       << "\n\n## Clip recognition\n\n| method | clip accuracy | unknown |\n|---|---:|---:|\n";
+    for (const ClipResults& r : clip_results)
+        md << "| " << r.method << " | " << r.clip_accuracy << " | " << r.unknown_rate << " |\n";
     if (!clip_results.empty()) {
         write_file(dir + "/confusion.svg", confusion_svg(clip_results.front()));
         md << "\n![confusion matrix](confusion.svg)\n";
@@ -152,11 +163,13 @@ void write_report(const std::string& dir, const std::string& title, const std::v
     if (online != nullptr) {
         md << "\n## Online labelling of concatenated streams\n\n"
            << "| rule | frame accuracy | segment F1 | mean delay (s) | missed segments | flicker (/min) |\n|---|---:|---:|---:|---:|---:|\n";
-        const std::pair<const char*, const OnlineResults*> rules[] = {
-            {"segmenter, settled labels", &online->settled}, {"segmenter, live labels", &online->live}, {"paper: latest window wins", &online->window}};
+        const std::pair<const char*, const OnlineResults*> rules[] = {{"segmenter, settled labels", &online->settled},
+                                                                      {"segmenter, live labels", &online->live},
+                                                                      {"paper: latest window wins", &online->window}};
         for (const auto& rule : rules)
-            md << "| " << rule.first << " | " << rule.second->frame_accuracy << " | " << rule.second->segment_f1 << " | "
-               << rule.second->mean_delay_s << " | " << rule.second->missed_segments << " | " << rule.second->flicker_per_min << " |\n";
+            md << "| " << rule.first << " | " << rule.second->frame_accuracy << " | " << rule.second->segment_f1
+               << " | " << rule.second->mean_delay_s << " | " << rule.second->missed_segments << " | "
+               << rule.second->flicker_per_min << " |\n";
         md << "\n";
         for (std::size_t s = 0; s < online->streams.size(); ++s) {
             const std::string file = "timeline_" + std::to_string(s + 1) + ".svg";

@@ -42,7 +42,8 @@ Eigen::Matrix3d euler(const LineScanner& scanner, std::string_view order, const 
     bool seen[3] = {false, false, false};
     for (char c : order) {
         const int axis = c == 'X' || c == 'x' ? 0 : c == 'Y' || c == 'y' ? 1 : c == 'Z' || c == 'z' ? 2 : -1;
-        if (axis < 0 || seen[axis]) scanner.fail("expected a rotation order of X, Y and Z once each, got " + quoted(order));
+        if (axis < 0 || seen[axis])
+            scanner.fail("expected a rotation order of X, Y and Z once each, got " + quoted(order));
         seen[axis] = true;
         m = axis_rotation(axis, angles[axis] * to_radians) * m;
     }
@@ -104,8 +105,10 @@ AsfSkeleton parse_asf(const std::string& name, std::string_view text) {
                 skeleton.root_order.clear();
                 for (std::size_t i = 1; i < words.size(); ++i) {
                     const int code = dof_code(words[i]);
-                    if (code < 0 || code == 6) scanner.fail("expected a root channel (TX TY TZ RX RY RZ), got " + quoted(words[i]));
-                    if (std::find(skeleton.root_order.begin(), skeleton.root_order.end(), code) != skeleton.root_order.end())
+                    if (code < 0 || code == 6)
+                        scanner.fail("expected a root channel (TX TY TZ RX RY RZ), got " + quoted(words[i]));
+                    if (std::find(skeleton.root_order.begin(), skeleton.root_order.end(), code) !=
+                        skeleton.root_order.end())
                         scanner.fail("root channel " + quoted(words[i]) + " appears twice");
                     skeleton.root_order.push_back(code);
                 }
@@ -145,7 +148,8 @@ AsfSkeleton parse_asf(const std::string& name, std::string_view text) {
                     has_length = true;
                 } else if (w[0] == "axis") {
                     if (w.size() != 5) scanner.fail("expected 'axis <x> <y> <z> <order>'");
-                    for (int a = 0; a < 3; ++a) axis.angles[a] = parse_number(scanner, w[static_cast<std::size_t>(a) + 1], "an axis angle");
+                    for (int a = 0; a < 3; ++a)
+                        axis.angles[a] = parse_number(scanner, w[static_cast<std::size_t>(a) + 1], "an axis angle");
                     axis.order = std::string(w[4]);
                     axis.line = scanner.line_number();
                 } else if (w[0] == "dof") {
@@ -163,10 +167,13 @@ AsfSkeleton parse_asf(const std::string& name, std::string_view text) {
                 }
             }
             if (bone.name.empty()) scanner.fail_at(begin_line, "bone has no name");
-            if (!has_direction || !has_length) scanner.fail_at(begin_line, "bone " + quoted(bone.name) + " lacks a direction or length");
-            if (bone.name == "root" || index.count(bone.name)) scanner.fail_at(begin_line, "duplicate bone name " + quoted(bone.name));
+            if (!has_direction || !has_length)
+                scanner.fail_at(begin_line, "bone " + quoted(bone.name) + " lacks a direction or length");
+            if (bone.name == "root" || index.count(bone.name))
+                scanner.fail_at(begin_line, "duplicate bone name " + quoted(bone.name));
             const double norm = bone.direction.norm();
-            if (!(norm > 1e-9) && bone.length > 0) scanner.fail_at(begin_line, "bone " + quoted(bone.name) + " has a zero direction");
+            if (!(norm > 1e-9) && bone.length > 0)
+                scanner.fail_at(begin_line, "bone " + quoted(bone.name) + " has a zero direction");
             if (norm > 1e-9) bone.direction /= norm;
             index.emplace(bone.name, static_cast<int>(skeleton.bones.size()));
             skeleton.bones.push_back(std::move(bone));
@@ -183,7 +190,8 @@ AsfSkeleton parse_asf(const std::string& name, std::string_view text) {
                 const auto found = index.find(std::string(words[i]));
                 if (found == index.end()) scanner.fail("unknown bone " + quoted(words[i]) + " in :hierarchy");
                 AsfBone& child = skeleton.bones[static_cast<std::size_t>(found->second)];
-                if (child.parent != -1 || found->second == parent) scanner.fail("bone " + quoted(words[i]) + " is given a second parent");
+                if (child.parent != -1 || found->second == parent)
+                    scanner.fail("bone " + quoted(words[i]) + " is given a second parent");
                 child.parent = parent == -1 ? -2 : parent;  // −2 marks "child of the root" until resolved
             }
         }
@@ -201,7 +209,8 @@ AsfSkeleton parse_asf(const std::string& name, std::string_view text) {
         try {
             skeleton.bones[b].axis = euler(axis_scanner, axis.order, axis.angles, to_radians);
         } catch (const ReadError&) {
-            throw ReadError(name, axis.line, "expected a rotation order of X, Y and Z once each, got " + quoted(axis.order));
+            throw ReadError(name, axis.line,
+                            "expected a rotation order of X, Y and Z once each, got " + quoted(axis.order));
         }
     }
     const double orientation[3] = {root_orientation.x(), root_orientation.y(), root_orientation.z()};
@@ -212,7 +221,8 @@ AsfSkeleton parse_asf(const std::string& name, std::string_view text) {
 
     // Parents before children: breadth-first from the root; anything left is unconnected.
     for (AsfBone& bone : skeleton.bones) {
-        if (bone.parent == -1) throw ReadError(name, 0, "bone " + quoted(bone.name) + " is not connected to the root in :hierarchy");
+        if (bone.parent == -1)
+            throw ReadError(name, 0, "bone " + quoted(bone.name) + " is not connected to the root in :hierarchy");
         if (bone.parent == -2) bone.parent = -1;
     }
     std::vector<int> frontier;
@@ -232,7 +242,8 @@ AsfSkeleton parse_asf(const std::string& name, std::string_view text) {
     return skeleton;
 }
 
-Clip parse_amc(const std::string& name, std::string_view text, const AsfSkeleton& skeleton, const ReadOptions& options) {
+Clip parse_amc(const std::string& name, std::string_view text, const AsfSkeleton& skeleton,
+               const ReadOptions& options) {
     LineScanner scanner(name, text);
     const double rate = options.frame_rate_hz > 0 ? options.frame_rate_hz : 120.0;
     const std::size_t bone_count = skeleton.bones.size();
@@ -277,7 +288,8 @@ Clip parse_amc(const std::string& name, std::string_view text, const AsfSkeleton
         if (!root_seen) scanner.fail_at(frame_line, "frame " + std::to_string(previous_frame) + " has no root line");
         for (std::size_t b = 0; b < bone_count; ++b)
             if (!skeleton.bones[b].dofs.empty() && seen_in_frame[b] != frames + 1)
-                scanner.fail_at(frame_line, "frame " + std::to_string(previous_frame) + " has no line for bone " + quoted(skeleton.bones[b].name));
+                scanner.fail_at(frame_line, "frame " + std::to_string(previous_frame) + " has no line for bone " +
+                                                quoted(skeleton.bones[b].name));
         // Root.
         Eigen::Vector3d translation = Eigen::Vector3d::Zero();
         Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
@@ -300,12 +312,14 @@ Clip parse_amc(const std::string& name, std::string_view text, const AsfSkeleton
                 else if (code < 6) offset[code - 3] = v * length_scale;
                 else length += v * length_scale;
             }
-            const Eigen::Matrix3d& parent_global = bone.parent < 0 ? root_global : global[static_cast<std::size_t>(bone.parent)];
-            const Eigen::Vector3d& parent_position = bone.parent < 0 ? root_position : joint[static_cast<std::size_t>(bone.parent)];
+            const Eigen::Matrix3d& parent_global =
+                bone.parent < 0 ? root_global : global[static_cast<std::size_t>(bone.parent)];
+            const Eigen::Vector3d& parent_position =
+                bone.parent < 0 ? root_position : joint[static_cast<std::size_t>(bone.parent)];
             const Eigen::Matrix3d local = bone.axis * motion * bone.axis.transpose();
             global[static_cast<std::size_t>(b)] = parent_global * local;
-            joint[static_cast<std::size_t>(b)] =
-                parent_position + parent_global * (bone.axis * offset) + length * (global[static_cast<std::size_t>(b)] * bone.direction);
+            joint[static_cast<std::size_t>(b)] = parent_position + parent_global * (bone.axis * offset) +
+                                                 length * (global[static_cast<std::size_t>(b)] * bone.direction);
         }
         for (int a = 0; a < 3; ++a) clip.positions.push_back(static_cast<float>(root_position[a]));
         for (std::size_t b = 0; b < bone_count; ++b)
@@ -322,7 +336,8 @@ Clip parse_amc(const std::string& name, std::string_view text, const AsfSkeleton
             const long number = parse_index(scanner, words[0], "a frame number");
             if (previous_frame >= 0) finish_frame();
             if (number <= previous_frame)
-                scanner.fail("frame number " + std::to_string(number) + " does not follow " + std::to_string(previous_frame));
+                scanner.fail("frame number " + std::to_string(number) + " does not follow " +
+                             std::to_string(previous_frame));
             previous_frame = number;
             frame_line = scanner.line_number();
             fast_guess = 0;
@@ -332,8 +347,10 @@ Clip parse_amc(const std::string& name, std::string_view text, const AsfSkeleton
         if (words[0] == "root") {
             if (root_seen) scanner.fail("the root appears twice in frame " + std::to_string(previous_frame));
             if (words.size() != skeleton.root_order.size() + 1)
-                scanner.fail("root has " + std::to_string(words.size() - 1) + " values, expected " + std::to_string(skeleton.root_order.size()));
-            for (std::size_t i = 1; i < words.size(); ++i) root_values[i - 1] = parse_number(scanner, words[i], "a root value");
+                scanner.fail("root has " + std::to_string(words.size() - 1) + " values, expected " +
+                             std::to_string(skeleton.root_order.size()));
+            for (std::size_t i = 1; i < words.size(); ++i)
+                root_values[i - 1] = parse_number(scanner, words[i], "a root value");
             root_seen = true;
             continue;
         }
@@ -342,14 +359,15 @@ Clip parse_amc(const std::string& name, std::string_view text, const AsfSkeleton
             b = static_cast<int>(fast_guess);
         } else {
             const auto found = index.find(std::string(words[0]));
-            if (found == index.end()) scanner.fail("unknown bone " + quoted(words[0]) + " (not in " + skeleton.source + ")");
+            if (found == index.end())
+                scanner.fail("unknown bone " + quoted(words[0]) + " (not in " + skeleton.source + ")");
             b = found->second;
         }
         fast_guess = static_cast<std::size_t>(b) + 1;
         const AsfBone& bone = skeleton.bones[static_cast<std::size_t>(b)];
         if (words.size() != bone.dofs.size() + 1)
-            scanner.fail("bone " + quoted(bone.name) + " has " + std::to_string(words.size() - 1) + " values, expected " +
-                         std::to_string(bone.dofs.size()));
+            scanner.fail("bone " + quoted(bone.name) + " has " + std::to_string(words.size() - 1) +
+                         " values, expected " + std::to_string(bone.dofs.size()));
         if (seen_in_frame[static_cast<std::size_t>(b)] == frames + 1)
             scanner.fail("bone " + quoted(bone.name) + " appears twice in frame " + std::to_string(previous_frame));
         seen_in_frame[static_cast<std::size_t>(b)] = frames + 1;

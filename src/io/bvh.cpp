@@ -88,7 +88,8 @@ void parse_joint_body(TokenStream& tokens, std::vector<BvhJoint>& joints, std::u
         for (long c = 0; c < count; ++c) {
             const std::string_view name = tokens.expect("a channel name");
             const int code = channel_code(name);
-            if (code < 0) tokens.scanner().fail("expected a channel such as Xposition or Zrotation, got " + quoted(name));
+            if (code < 0)
+                tokens.scanner().fail("expected a channel such as Xposition or Zrotation, got " + quoted(name));
             if (std::find(channels.begin(), channels.end(), code) != channels.end())
                 tokens.scanner().fail("channel " + quoted(name) + " appears twice");
             channels.push_back(code);
@@ -124,10 +125,10 @@ void parse_joint_body(TokenStream& tokens, std::vector<BvhJoint>& joints, std::u
 // Metres per file unit from the body's height in file units: m, cm, mm or inches.
 double guess_scale(double height) {
     if (height < 3.0) return 1.0;
-    if (height < 30.0) return 0.1;       // decimetres: unusual, but keeps the figure human
-    if (height < 110.0) return 0.0254;   // inches (a 1.0–2.8 m person is 40–110 in)
-    if (height < 300.0) return 0.01;     // centimetres
-    return 0.001;                        // millimetres
+    if (height < 30.0) return 0.1;      // decimetres: unusual, but keeps the figure human
+    if (height < 110.0) return 0.0254;  // inches (a 1.0–2.8 m person is 40–110 in)
+    if (height < 300.0) return 0.01;    // centimetres
+    return 0.001;                       // millimetres
 }
 
 }  // namespace
@@ -174,7 +175,8 @@ Clip parse_bvh(const std::string& name, std::string_view text, const ReadOptions
     std::vector<Eigen::Vector3d> position(J);
     std::vector<double> values(channel_count);
     // The declared count is untrusted: reserve no more frames than the text could hold.
-    const std::size_t plausible_frames = std::min(static_cast<std::size_t>(frame_count), text.size() / (2 * std::max<std::size_t>(channel_count, 1)) + 1);
+    const std::size_t plausible_frames = std::min(static_cast<std::size_t>(frame_count),
+                                                  text.size() / (2 * std::max<std::size_t>(channel_count, 1)) + 1);
     clip.positions.reserve(plausible_frames * J * 3);
     const double to_radians = kPi / 180.0;
     std::string_view line;
@@ -183,8 +185,8 @@ Clip parse_bvh(const std::string& name, std::string_view text, const ReadOptions
             scanner.fail("file ends after " + std::to_string(f) + " of " + std::to_string(frame_count) + " frames");
         const std::vector<std::string_view> words = split_words(line);
         if (words.size() != channel_count)
-            scanner.fail("frame " + std::to_string(f + 1) + " has " + std::to_string(words.size()) + " values, expected " +
-                         std::to_string(channel_count));
+            scanner.fail("frame " + std::to_string(f + 1) + " has " + std::to_string(words.size()) +
+                         " values, expected " + std::to_string(channel_count));
         for (std::size_t c = 0; c < channel_count; ++c) values[c] = parse_number(scanner, words[c], "a channel value");
         for (std::size_t j = 0; j < J; ++j) {
             const BvhJoint& joint = joints[j];
@@ -194,7 +196,9 @@ Clip parse_bvh(const std::string& name, std::string_view text, const ReadOptions
                 const int code = joint.channels[c];
                 const double v = values[joint.first_channel + c];
                 if (code < 3) translation[code] += v;
-                else rotation = rotation * Eigen::AngleAxisd(v * to_radians, Eigen::Vector3d::Unit(code - 3)).toRotationMatrix();
+                else
+                    rotation = rotation *
+                               Eigen::AngleAxisd(v * to_radians, Eigen::Vector3d::Unit(code - 3)).toRotationMatrix();
             }
             if (joint.parent < 0) {
                 global[j] = rotation;
@@ -222,8 +226,10 @@ Clip parse_bvh(const std::string& name, std::string_view text, const ReadOptions
         int head = -1;
         for (std::size_t j = 0; j < J && head < 0; ++j) {
             std::string lower = clip.joint_names[j];
-            std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-            if (lower.find("head") != std::string::npos && lower.find("end") == std::string::npos) head = static_cast<int>(j);
+            std::transform(lower.begin(), lower.end(), lower.begin(),
+                           [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+            if (lower.find("head") != std::string::npos && lower.find("end") == std::string::npos)
+                head = static_cast<int>(j);
         }
         const std::size_t root = static_cast<std::size_t>(clip.roles.root >= 0 ? clip.roles.root : 0);
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -231,8 +237,9 @@ Clip parse_bvh(const std::string& name, std::string_view text, const ReadOptions
             const float* p = clip.frame(f);
             if (head >= 0) {
                 for (int a = 0; a < 3; ++a)
-                    sum[a] += std::fabs(static_cast<double>(p[3 * static_cast<std::size_t>(head) + static_cast<std::size_t>(a)]) -
-                                        static_cast<double>(p[3 * root + static_cast<std::size_t>(a)]));
+                    sum[a] += std::fabs(
+                        static_cast<double>(p[3 * static_cast<std::size_t>(head) + static_cast<std::size_t>(a)]) -
+                        static_cast<double>(p[3 * root + static_cast<std::size_t>(a)]));
                 continue;
             }
             for (int a = 0; a < 3; ++a) {

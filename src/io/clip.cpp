@@ -36,7 +36,9 @@ void assign_roles(Clip& clip, const RoleNames& names) {
     if (!names.empty()) {
         auto find = [&](const std::string& joint, const char* role) {
             const int index = clip.joint_index(joint);
-            if (index < 0) throw ReadError(clip.source, 0, std::string("the ") + role + " joint " + quoted(joint) + " is not in the file");
+            if (index < 0)
+                throw ReadError(clip.source, 0,
+                                std::string("the ") + role + " joint " + quoted(joint) + " is not in the file");
             return index;
         };
         clip.roles.root = names.root.empty() ? -1 : find(names.root, "root");

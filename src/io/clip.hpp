@@ -40,13 +40,13 @@ struct RoleNames {
 
 /// One recording: joints, per-frame times and joint positions in metres.
 struct Clip {
-    std::string source;                    ///< Where it came from, for messages.
+    std::string source;  ///< Where it came from, for messages.
     std::vector<std::string> joint_names;
-    std::vector<int> parents;              ///< Parent joint per joint (−1 at a root); empty when the format has none.
-    std::vector<double> times;             ///< Seconds, non-decreasing (equal times may repeat).
-    std::vector<float> positions;          ///< frames × joints × xyz, metres.
-    std::vector<std::uint8_t> lost;        ///< Per frame, 1 when tracking was lost (every joint at the origin).
-    int up_axis = 1;                       ///< 0 = x, 1 = y, 2 = z.
+    std::vector<int> parents;        ///< Parent joint per joint (−1 at a root); empty when the format has none.
+    std::vector<double> times;       ///< Seconds, non-decreasing (equal times may repeat).
+    std::vector<float> positions;    ///< frames × joints × xyz, metres.
+    std::vector<std::uint8_t> lost;  ///< Per frame, 1 when tracking was lost (every joint at the origin).
+    int up_axis = 1;                 ///< 0 = x, 1 = y, 2 = z.
     JointRoles roles;
 
     std::size_t joint_count() const noexcept { return joint_names.size(); }

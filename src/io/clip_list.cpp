@@ -13,13 +13,19 @@ namespace host {
 std::vector<ClipListEntry> parse_clip_list(const std::string& name, std::string_view text, const std::string& folder) {
     LineScanner scanner(name, text);
     std::string_view line;
-    if (!scanner.next_content(line)) scanner.fail_at(0, "empty clip list: expected a header 'path label subject [skeleton]'");
+    if (!scanner.next_content(line))
+        scanner.fail_at(0, "empty clip list: expected a header 'path label subject [skeleton]'");
     const std::vector<std::string_view> header = split_fields(line, '\t');
-    int path_column = -1, label_column = -1, subject_column = -1, skeleton_column = -1, start_column = -1, end_column = -1;
+    int path_column = -1, label_column = -1, subject_column = -1, skeleton_column = -1, start_column = -1,
+        end_column = -1;
     for (std::size_t c = 0; c < header.size(); ++c) {
-        int* column = header[c] == "path" ? &path_column : header[c] == "label" ? &label_column
-                    : header[c] == "subject" ? &subject_column : header[c] == "skeleton" ? &skeleton_column
-                    : header[c] == "start" ? &start_column : header[c] == "end" ? &end_column : nullptr;
+        int* column = header[c] == "path"       ? &path_column
+                      : header[c] == "label"    ? &label_column
+                      : header[c] == "subject"  ? &subject_column
+                      : header[c] == "skeleton" ? &skeleton_column
+                      : header[c] == "start"    ? &start_column
+                      : header[c] == "end"      ? &end_column
+                                                : nullptr;
         if (column == nullptr) continue;
         if (*column >= 0) scanner.fail("column " + quoted(header[c]) + " appears twice in the header");
         *column = static_cast<int>(c);
@@ -35,7 +41,8 @@ std::vector<ClipListEntry> parse_clip_list(const std::string& name, std::string_
     while (scanner.next_content(line)) {
         const std::vector<std::string_view> fields = split_fields(line, '\t');
         if (fields.size() != header.size())
-            scanner.fail("expected " + std::to_string(header.size()) + " tab-separated fields, got " + std::to_string(fields.size()));
+            scanner.fail("expected " + std::to_string(header.size()) + " tab-separated fields, got " +
+                         std::to_string(fields.size()));
         ClipListEntry entry;
         const auto field = [&](int column, const char* what) {
             const std::string_view value = fields[static_cast<std::size_t>(column)];
@@ -52,7 +59,8 @@ std::vector<ClipListEntry> parse_clip_list(const std::string& name, std::string_
             entry.end_s = parse_number(scanner, field(end_column, "end"), "an end time in seconds");
             if (!(entry.end_s >= entry.start_s))
                 scanner.fail("expected the end time (" + std::string(fields[static_cast<std::size_t>(end_column)]) +
-                             ") not before the start time (" + std::string(fields[static_cast<std::size_t>(start_column)]) + ")");
+                             ") not before the start time (" +
+                             std::string(fields[static_cast<std::size_t>(start_column)]) + ")");
         }
         entry.line = scanner.line_number();
         entries.push_back(std::move(entry));
@@ -82,9 +90,10 @@ Clip read_clip(const ClipListEntry& entry, const ReadOptions& options) {
         if (!whole.lost.empty()) cut.lost.push_back(whole.lost[f]);
     }
     if (cut.times.empty())
-        throw ReadError(entry.path, 0, "no frame between " + std::to_string(entry.start_s) + " s and " + std::to_string(entry.end_s) +
-                                           " s (list line " + std::to_string(entry.line) + "); the file spans " +
-                                           std::to_string(whole.times.front()) + " to " + std::to_string(whole.times.back()) + " s");
+        throw ReadError(entry.path, 0,
+                        "no frame between " + std::to_string(entry.start_s) + " s and " + std::to_string(entry.end_s) +
+                            " s (list line " + std::to_string(entry.line) + "); the file spans " +
+                            std::to_string(whole.times.front()) + " to " + std::to_string(whole.times.back()) + " s");
     return cut;
 }
 

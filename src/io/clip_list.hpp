@@ -14,7 +14,7 @@ namespace host {
 
 /// One line of a clip list.
 struct ClipListEntry {
-    std::string path;      ///< Resolved against the list's folder.
+    std::string path;  ///< Resolved against the list's folder.
     std::string label;
     std::string subject;
     std::string skeleton;  ///< Resolved; empty when the list has no skeleton column.
@@ -45,7 +45,8 @@ struct LabelledClip {
 };
 
 /// Reads every entry's clip, in list order. Throws ReadError.
-std::vector<LabelledClip> load_labelled_clips(const std::vector<ClipListEntry>& entries, const ReadOptions& options = {});
+std::vector<LabelledClip> load_labelled_clips(const std::vector<ClipListEntry>& entries,
+                                              const ReadOptions& options = {});
 /// Reads a clip list and every clip it names.
 std::vector<LabelledClip> load_labelled_clips(const std::string& list_path, const ReadOptions& options = {});
 

@@ -32,13 +32,13 @@ struct AsfBone {
 /// A parsed ASF file.
 struct AsfSkeleton {
     std::string source;
-    double length_scale = 0;   ///< Metres per ASF length unit.
+    double length_scale = 0;  ///< Metres per ASF length unit.
     bool degrees = true;
     std::vector<int> root_order;  ///< Root channels in AMC order (same codes as AsfBone::dofs).
     Eigen::Matrix3d root_axis = Eigen::Matrix3d::Identity();
     Eigen::Vector3d root_position = Eigen::Vector3d::Zero();  ///< Metres.
-    std::vector<AsfBone> bones;        ///< In file order.
-    std::vector<int> evaluation_order; ///< Bones with every parent before its children.
+    std::vector<AsfBone> bones;                               ///< In file order.
+    std::vector<int> evaluation_order;                        ///< Bones with every parent before its children.
 };
 
 AsfSkeleton parse_asf(const std::string& name, std::string_view text);
@@ -83,7 +83,7 @@ struct LabelInterval {
 };
 /// UTKinect's actionLabel.txt: sequence name → intervals in file order.
 std::vector<std::pair<std::string, std::vector<LabelInterval>>> parse_utkinect_labels(const std::string& name,
-                                                                                        std::string_view text);
+                                                                                      std::string_view text);
 
 /// Reads any supported file by its extension (.amc needs `skeleton`, an ASF
 /// path; .txt is told apart by its first line: 4 values → MSR Action3D,

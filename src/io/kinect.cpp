@@ -12,18 +12,18 @@ namespace host {
 
 const std::vector<std::string>& kinect_v1_joint_names() {
     static const std::vector<std::string> names = {
-        "HipCenter", "Spine", "ShoulderCenter", "Head", "ShoulderLeft", "ElbowLeft", "WristLeft",
-        "HandLeft", "ShoulderRight", "ElbowRight", "WristRight", "HandRight", "HipLeft", "KneeLeft",
-        "AnkleLeft", "FootLeft", "HipRight", "KneeRight", "AnkleRight", "FootRight"};
+        "HipCenter", "Spine",         "ShoulderCenter", "Head",       "ShoulderLeft", "ElbowLeft", "WristLeft",
+        "HandLeft",  "ShoulderRight", "ElbowRight",     "WristRight", "HandRight",    "HipLeft",   "KneeLeft",
+        "AnkleLeft", "FootLeft",      "HipRight",       "KneeRight",  "AnkleRight",   "FootRight"};
     return names;
 }
 
 const std::vector<std::string>& kinect_v2_joint_names() {
     static const std::vector<std::string> names = {
-        "SpineBase", "SpineMid", "Neck", "Head", "ShoulderLeft", "ElbowLeft", "WristLeft", "HandLeft",
-        "ShoulderRight", "ElbowRight", "WristRight", "HandRight", "HipLeft", "KneeLeft", "AnkleLeft",
-        "FootLeft", "HipRight", "KneeRight", "AnkleRight", "FootRight", "SpineShoulder", "HandTipLeft",
-        "ThumbLeft", "HandTipRight", "ThumbRight"};
+        "SpineBase",   "SpineMid",      "Neck",         "Head",       "ShoulderLeft", "ElbowLeft", "WristLeft",
+        "HandLeft",    "ShoulderRight", "ElbowRight",   "WristRight", "HandRight",    "HipLeft",   "KneeLeft",
+        "AnkleLeft",   "FootLeft",      "HipRight",     "KneeRight",  "AnkleRight",   "FootRight", "SpineShoulder",
+        "HandTipLeft", "ThumbLeft",     "HandTipRight", "ThumbRight"};
     return names;
 }
 
@@ -32,9 +32,9 @@ const std::vector<std::string>& kinect_v2_joint_names() {
 // is the side MSR lists first, which is also UTKinect's (Kinect SDK) left.
 const std::vector<std::string>& msr_action3d_joint_names() {
     static const std::vector<std::string> names = {
-        "ShoulderLeft", "ShoulderRight", "ShoulderCenter", "Spine", "HipLeft", "HipRight", "HipCenter",
-        "ElbowLeft", "ElbowRight", "WristLeft", "WristRight", "HandLeft", "HandRight", "KneeLeft",
-        "KneeRight", "AnkleLeft", "AnkleRight", "FootLeft", "FootRight", "Head"};
+        "ShoulderLeft", "ShoulderRight", "ShoulderCenter", "Spine",      "HipLeft",   "HipRight",  "HipCenter",
+        "ElbowLeft",    "ElbowRight",    "WristLeft",      "WristRight", "HandLeft",  "HandRight", "KneeLeft",
+        "KneeRight",    "AnkleLeft",     "AnkleRight",     "FootLeft",   "FootRight", "Head"};
     return names;
 }
 
@@ -56,7 +56,8 @@ std::vector<int> parents_by_name(const std::vector<std::string>& names) {
             parents.push_back(-1);
             continue;
         }
-        parents.push_back(static_cast<int>(std::find(names.begin(), names.end(), sdk[static_cast<std::size_t>(parent)]) - names.begin()));
+        parents.push_back(static_cast<int>(
+            std::find(names.begin(), names.end(), sdk[static_cast<std::size_t>(parent)]) - names.begin()));
     }
     return parents;
 }
@@ -86,13 +87,16 @@ Clip parse_msr_skeleton(const std::string& name, std::string_view text, const Re
         if (words.size() != 4)
             scanner.fail("expected 4 values 'x y z c' on a joint line, got " + std::to_string(words.size()));
         if (rows % 20 == 0) frame_start_line = scanner.line_number();
-        for (int a = 0; a < 3; ++a) clip.positions.push_back(static_cast<float>(parse_number(scanner, words[static_cast<std::size_t>(a)], "a coordinate")));
+        for (int a = 0; a < 3; ++a)
+            clip.positions.push_back(
+                static_cast<float>(parse_number(scanner, words[static_cast<std::size_t>(a)], "a coordinate")));
         parse_number(scanner, words[3], "a confidence value");
         ++rows;
     }
     if (rows == 0) scanner.fail_at(0, "empty file: expected 20 joint lines per frame");
     if (rows % 20 != 0)
-        scanner.fail_at(frame_start_line, "the last frame has " + std::to_string(rows % 20) + " of 20 joint lines (truncated file?)");
+        scanner.fail_at(frame_start_line,
+                        "the last frame has " + std::to_string(rows % 20) + " of 20 joint lines (truncated file?)");
     for (std::size_t f = 0; f < rows / 20; ++f) clip.times.push_back(static_cast<double>(f) / rate);
     finish_kinect_clip(clip, options);
     return clip;
@@ -112,9 +116,11 @@ Clip parse_utkinect(const std::string& name, std::string_view text, const ReadOp
         if (words.size() != 61)
             scanner.fail("expected a frame id and 60 coordinates, got " + std::to_string(words.size()) + " values");
         const long id = parse_index(scanner, words[0], "a frame id");
-        if (id < previous_id) scanner.fail("frame id " + std::to_string(id) + " comes after " + std::to_string(previous_id));
+        if (id < previous_id)
+            scanner.fail("frame id " + std::to_string(id) + " comes after " + std::to_string(previous_id));
         previous_id = id;
-        for (std::size_t i = 1; i < 61; ++i) clip.positions.push_back(static_cast<float>(parse_number(scanner, words[i], "a coordinate")));
+        for (std::size_t i = 1; i < 61; ++i)
+            clip.positions.push_back(static_cast<float>(parse_number(scanner, words[i], "a coordinate")));
         clip.times.push_back(static_cast<double>(id) / rate);
     }
     if (clip.times.empty()) scanner.fail_at(0, "empty file: expected frame lines");
@@ -130,7 +136,8 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
     if (header.empty() || !(iequals(header[0], "timestamp") || iequals(header[0], "time") || iequals(header[0], "t")))
         scanner.fail("expected the first column to be 'timestamp' (seconds), got " + quoted(header[0]));
     if ((header.size() - 1) % 3 != 0 || header.size() < 4)
-        scanner.fail("expected a timestamp and three columns (x, y, z) per joint, got " + std::to_string(header.size()) + " columns");
+        scanner.fail("expected a timestamp and three columns (x, y, z) per joint, got " +
+                     std::to_string(header.size()) + " columns");
     Clip clip;
     clip.source = name;
     for (std::size_t c = 1; c < header.size(); c += 3) {
@@ -138,12 +145,16 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
         for (int a = 0; a < 3; ++a) {
             const std::string_view column = header[c + static_cast<std::size_t>(a)];
             const char axis = "xyz"[a];
-            if (column.size() < 3 || !(column[column.size() - 2] == '_' || column[column.size() - 2] == '.' || column[column.size() - 2] == ' ') ||
+            if (column.size() < 3 ||
+                !(column[column.size() - 2] == '_' || column[column.size() - 2] == '.' ||
+                  column[column.size() - 2] == ' ') ||
                 std::tolower(static_cast<unsigned char>(column.back())) != axis)
-                scanner.fail("expected column " + std::to_string(c + static_cast<std::size_t>(a) + 1) + " to be '<joint>_" + axis + "', got " + quoted(column));
+                scanner.fail("expected column " + std::to_string(c + static_cast<std::size_t>(a) + 1) +
+                             " to be '<joint>_" + axis + "', got " + quoted(column));
             const std::string base(column.substr(0, column.size() - 2));
             if (a == 0) joint = base;
-            else if (base != joint) scanner.fail("columns " + quoted(header[c]) + " and " + quoted(column) + " name different joints");
+            else if (base != joint)
+                scanner.fail("columns " + quoted(header[c]) + " and " + quoted(column) + " name different joints");
         }
         if (std::find(clip.joint_names.begin(), clip.joint_names.end(), joint) != clip.joint_names.end())
             scanner.fail("duplicate joint " + quoted(joint));
@@ -153,19 +164,22 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
     while (scanner.next_content(line, '#')) {
         const std::vector<std::string_view> fields = split_fields(line, ',');
         if (fields.size() != header.size())
-            scanner.fail("expected " + std::to_string(header.size()) + " columns, got " + std::to_string(fields.size()));
+            scanner.fail("expected " + std::to_string(header.size()) + " columns, got " +
+                         std::to_string(fields.size()));
         const double t = parse_number(scanner, fields[0], "a timestamp");
         if (t < previous) scanner.fail("timestamp " + std::string(fields[0]) + " is earlier than the previous row's");
         previous = t;
         clip.times.push_back(t);
-        for (std::size_t c = 1; c < fields.size(); ++c) clip.positions.push_back(static_cast<float>(parse_number(scanner, fields[c], "a coordinate")));
+        for (std::size_t c = 1; c < fields.size(); ++c)
+            clip.positions.push_back(static_cast<float>(parse_number(scanner, fields[c], "a coordinate")));
     }
     if (clip.times.empty()) scanner.fail("no data rows after the header");
     finish_kinect_clip(clip, options);
     return clip;
 }
 
-std::vector<std::pair<std::string, std::vector<LabelInterval>>> parse_utkinect_labels(const std::string& name, std::string_view text) {
+std::vector<std::pair<std::string, std::vector<LabelInterval>>> parse_utkinect_labels(const std::string& name,
+                                                                                      std::string_view text) {
     LineScanner scanner(name, text);
     std::vector<std::pair<std::string, std::vector<LabelInterval>>> sequences;
     std::string_view line;

@@ -11,8 +11,9 @@ std::vector<LabelledRecording> read_recordings(const std::vector<ClipListEntry>&
     std::map<std::string, std::size_t> index;
     for (const ClipListEntry& entry : entries) {
         if (!entry.has_interval)
-            throw ReadError(entry.path, 0, "list line " + std::to_string(entry.line) +
-                                               ": a continuous recording needs 'start' and 'end' columns for its labelled intervals");
+            throw ReadError(entry.path, 0,
+                            "list line " + std::to_string(entry.line) +
+                                ": a continuous recording needs 'start' and 'end' columns for its labelled intervals");
         auto found = index.find(entry.path);
         if (found == index.end()) {
             ClipListEntry whole = entry;

@@ -23,12 +23,14 @@ ConcatenatedStream concatenate_stream(const std::vector<StreamSegment>& segments
     for (const StreamSegment& segment : segments) {
         const Clip& clip = *segment.clip;
         if (clip.joint_count() != joints)
-            throw std::invalid_argument(clip.source + ": " + std::to_string(clip.joint_count()) + " joints, the stream has " +
-                                        std::to_string(joints));
-        const double period = clip.frame_count() > 1 ? clip.duration() / static_cast<double>(clip.frame_count() - 1) : 1.0 / 120.0;
+            throw std::invalid_argument(clip.source + ": " + std::to_string(clip.joint_count()) +
+                                        " joints, the stream has " + std::to_string(joints));
+        const double period =
+            clip.frame_count() > 1 ? clip.duration() / static_cast<double>(clip.frame_count() - 1) : 1.0 / 120.0;
         const std::size_t frames =
-            segment.max_seconds > 0 ? std::min(clip.frame_count(), static_cast<std::size_t>(segment.max_seconds / period) + 1)
-                                    : clip.frame_count();
+            segment.max_seconds > 0
+                ? std::min(clip.frame_count(), static_cast<std::size_t>(segment.max_seconds / period) + 1)
+                : clip.frame_count();
         if (frames == 0) continue;
         if (!times_us.empty()) offset_s = us_to_seconds(times_us.back()) + period - clip.times.front();
         else offset_s = -clip.times.front();

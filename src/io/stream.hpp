@@ -23,8 +23,8 @@ struct StreamSegment {
 /// previous one ends, so the times never jump or go back.
 struct ConcatenatedStream {
     std::size_t joints = 0;
-    std::vector<std::int64_t> times_us;            ///< Per frame.
-    std::vector<float> positions;                 ///< frames × joints × xyz, metres.
+    std::vector<std::int64_t> times_us;  ///< Per frame.
+    std::vector<float> positions;        ///< frames × joints × xyz, metres.
     std::vector<std::uint32_t> segment_first_frame;
     std::vector<std::string> segment_labels;
     std::size_t frame_count() const noexcept { return times_us.size(); }

@@ -89,7 +89,8 @@ std::vector<std::string_view> split_fields(std::string_view line, char delimiter
     std::size_t start = 0;
     for (;;) {
         const std::size_t end = line.find(delimiter, start);
-        fields.push_back(trim(line.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start)));
+        fields.push_back(
+            trim(line.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start)));
         if (end == std::string_view::npos) break;
         start = end + 1;
     }
@@ -138,8 +139,7 @@ bool is_number(std::string_view token) {
 
 double parse_number(const LineScanner& scanner, std::string_view token, const char* what) {
     double value = 0;
-    if (!parse_double(token, value))
-        scanner.fail(std::string("expected ") + what + ", got " + quoted(token));
+    if (!parse_double(token, value)) scanner.fail(std::string("expected ") + what + ", got " + quoted(token));
     if (!std::isfinite(value)) scanner.fail(std::string("expected a finite ") + what + ", got " + quoted(token));
     if (std::fabs(value) > max_abs_value)
         scanner.fail(std::string(what) + " " + quoted(token) + " is out of range (|value| > 1e7)");

@@ -27,10 +27,12 @@ public:
 
     std::vector<std::string_view> line(const char* name) {
         std::string_view text;
-        if (!scanner_.next(text)) scanner_.fail(std::string("file ends where '") + name + "' was expected (truncated?)");
+        if (!scanner_.next(text))
+            scanner_.fail(std::string("file ends where '") + name + "' was expected (truncated?)");
         words_ = split_words(text);
         if (words_.empty() || words_[0] != name)
-            scanner_.fail(std::string("expected '") + name + "', got " + quoted(words_.empty() ? std::string_view() : words_[0]));
+            scanner_.fail(std::string("expected '") + name + "', got " +
+                          quoted(words_.empty() ? std::string_view() : words_[0]));
         return words_;
     }
     long integer(const char* name, long low, long high) {
@@ -47,7 +49,8 @@ public:
     std::vector<T> ints(const char* name, long low, long high) {
         const auto words = count_line(name);
         std::vector<T> out;
-        for (std::size_t i = 2; i < words.size(); ++i) out.push_back(static_cast<T>(checked(words[i], name, low, high)));
+        for (std::size_t i = 2; i < words.size(); ++i)
+            out.push_back(static_cast<T>(checked(words[i], name, low, high)));
         return out;
     }
     std::vector<float> floats(const char* name) {
@@ -78,8 +81,8 @@ private:
         const std::string text(token);
         const long long v = std::strtoll(text.c_str(), &end, 10);
         if (end == text.c_str() || *end != '\0' || v < low || v > high)
-            scanner_.fail(std::string("expected an integer in [") + std::to_string(low) + ", " + std::to_string(high) + "] for '" + name +
-                          "', got " + quoted(token));
+            scanner_.fail(std::string("expected an integer in [") + std::to_string(low) + ", " + std::to_string(high) +
+                          "] for '" + name + "', got " + quoted(token));
         return static_cast<long>(v);
     }
     float to_float(std::string_view token, const char* name) {
@@ -197,7 +200,8 @@ ModelData parse_fields(const std::string& name, std::string_view fields) {
 
 std::string serialize_model(const ModelData& model) {
     const std::string body = write_fields(model);
-    return std::string(kMagic) + " " + std::to_string(artifact_version) + "\nchecksum fnv1a64 " + hex64(fnv1a64(body)) + "\n" + body;
+    return std::string(kMagic) + " " + std::to_string(artifact_version) + "\nchecksum fnv1a64 " + hex64(fnv1a64(body)) +
+           "\n" + body;
 }
 
 std::string artifact_checksum(std::string_view text) {
@@ -214,7 +218,8 @@ ModelData parse_model(const std::string& name, std::string_view text) {
     std::string_view line;
     if (!scanner.next(line)) scanner.fail_at(0, "empty file: expected an actionstring model");
     const auto magic = split_words(line);
-    if (magic.size() != 2 || magic[0] != kMagic) scanner.fail("not an actionstring model (expected 'actionstring-model <version>')");
+    if (magic.size() != 2 || magic[0] != kMagic)
+        scanner.fail("not an actionstring model (expected 'actionstring-model <version>')");
     if (magic[1] != std::to_string(artifact_version))
         scanner.fail("model format version " + std::string(magic[1]) + " is not supported; this build reads version " +
                      std::to_string(artifact_version) + " (retrain or use a matching build)");
@@ -225,15 +230,16 @@ ModelData parse_model(const std::string& name, std::string_view text) {
     const std::size_t body_start = static_cast<std::size_t>(line.data() + line.size() - text.data()) + 1;
     const std::string_view body = body_start <= text.size() ? text.substr(body_start) : std::string_view();
     if (hex64(fnv1a64(body)) != checksum[2])
-        scanner.fail("checksum mismatch: the file is corrupt or was edited (expected " + std::string(checksum[2]) + ", got " +
-                     hex64(fnv1a64(body)) + ")");
+        scanner.fail("checksum mismatch: the file is corrupt or was edited (expected " + std::string(checksum[2]) +
+                     ", got " + hex64(fnv1a64(body)) + ")");
 
     FieldReader f(scanner);
     ModelData m = read_fields(f);
 
     // Sizes the view cannot check by itself, then the runtime's own validation.
     if (const char* table = mismatched_table(m))
-        throw ReadError(name, 0, std::string("the size of table '") + table + "' does not agree with the fields it depends on");
+        throw ReadError(name, 0,
+                        std::string("the size of table '") + table + "' does not agree with the fields it depends on");
     if (m.node_characters.size() > 32767) throw ReadError(name, 0, "more than 32767 tree nodes");
     if (validate_model(m.view()) != Status::ok)
         throw ReadError(name, 0, "the tables are inconsistent (index out of range or non-finite value)");

@@ -68,8 +68,7 @@ std::size_t table_bytes(const ModelView& m) {
 }
 
 void set_gmm(ModelData& model, const std::vector<Eigen::VectorXd>& means,
-             const std::vector<Eigen::MatrixXd>& covariances, const std::vector<double>& weights,
-             Covariance kind) {
+             const std::vector<Eigen::MatrixXd>& covariances, const std::vector<double>& weights, Covariance kind) {
     const std::size_t J = means.size();
     if (J == 0 || covariances.size() != J || weights.size() != J)
         throw std::invalid_argument("set_gmm: means, covariances and weights differ in count");

@@ -107,8 +107,7 @@ std::size_t table_bytes(const ModelView& model);
 /// Throws std::invalid_argument on size mismatch, a non-positive weight, or a
 /// covariance that is not symmetric positive definite.
 void set_gmm(ModelData& model, const std::vector<Eigen::VectorXd>& means,
-             const std::vector<Eigen::MatrixXd>& covariances, const std::vector<double>& weights,
-             Covariance kind);
+             const std::vector<Eigen::MatrixXd>& covariances, const std::vector<double>& weights, Covariance kind);
 
 /// W[a][b] = L1 distance between the leaf centroids of characters a and b.
 void set_character_distances_from_leaves(ModelData& model);

@@ -24,8 +24,7 @@ double clip_accuracy(const ModelView& model, const std::vector<LabelledClip>& cl
 /// distance (the first on ties), or −1 when none can be compared (an empty
 /// string on either side). `workspace` is scratch reused between calls.
 long nearest_string(const std::vector<Character>& query, const std::vector<std::vector<Character>>& references,
-                    const CharacterWeights& weights, const MatchOptions& options,
-                    std::vector<detail::Cell>& workspace);
+                    const CharacterWeights& weights, const MatchOptions& options, std::vector<detail::Cell>& workspace);
 
 }  // namespace host
 }  // namespace actionstring

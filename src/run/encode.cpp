@@ -24,7 +24,8 @@ constexpr std::int64_t kNeverRestart = std::int64_t{1} << 62;
 std::vector<Character> clip_string(const ModelView& model, const Clip& clip) {
     auto encoder = std::make_unique<StringEncoder<HostCapacity>>();
     const Status status = encoder->init(model, kNeverRestart);
-    if (status != Status::ok) throw std::invalid_argument(std::string("model rejected by the encoder: ") + status_name(status));
+    if (status != Status::ok)
+        throw std::invalid_argument(std::string("model rejected by the encoder: ") + status_name(status));
     std::vector<Character> string;
     for (std::size_t f = 0; f < clip.frame_count(); ++f) {
         const EncodedFrame e = encoder->push_frame(seconds_to_us(clip.times[f]), clip.frame(f));

@@ -59,7 +59,8 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
         if (annotator->characters() > 0) frame_char[f] = static_cast<long long>(epoch + annotator->characters() - 1);
     }
     // At the end of the stream, the unsettled tail gets what the best explanation says of it then.
-    for (std::uint64_t c = annotator->has_settled() ? annotator->settled_character() + 1 : 0; c < annotator->characters(); ++c) {
+    for (std::uint64_t c = annotator->has_settled() ? annotator->settled_character() + 1 : 0;
+         c < annotator->characters(); ++c) {
         char_label[epoch + c] = frame_label(annotator->provisional_label(c));
         char_emitted[epoch + c] = times_s.back();
     }

@@ -12,13 +12,11 @@ namespace actionstring {
 namespace host {
 namespace {
 
-
-
 constexpr double kPi = 3.14159265358979323846;
 
 // Hands relative to the pelvis in the canonical frame (y up, right hip on +z).
 std::vector<float> key_pose(float lx, float ly, float lz, float rx, float ry, float rz) {
-    return {0, 0, 0,  0, 0, -0.1f,  0, 0, 0.1f,  lx, ly, lz,  rx, ry, rz};
+    return {0, 0, 0, 0, 0, -0.1f, 0, 0, 0.1f, lx, ly, lz, rx, ry, rz};
 }
 
 // Balanced tree over the components: node centroids are the mean of their
@@ -52,16 +50,16 @@ Eigen::Vector3d rotate_about_y(const Eigen::Vector3d& p, double angle) {
 // Pose of an action at time t since its start: hold each key-pose for the
 // first 60 % of its slot, then blend linearly to the next.
 std::vector<float> action_pose(const ToyWorld& world, const ToyAction& action, double t) {
-    const double slot = std::clamp(t / action.seconds_per_pose, 0.0, static_cast<double>(action.key_poses.size()) - 1e-9);
+    const double slot =
+        std::clamp(t / action.seconds_per_pose, 0.0, static_cast<double>(action.key_poses.size()) - 1e-9);
     const auto index = static_cast<std::size_t>(slot);
     const double phase = slot - static_cast<double>(index);
     const auto& a = world.key_poses[static_cast<std::size_t>(action.key_poses[index])];
-    const auto& b = world.key_poses[static_cast<std::size_t>(
-        action.key_poses[std::min(index + 1, action.key_poses.size() - 1)])];
+    const auto& b =
+        world.key_poses[static_cast<std::size_t>(action.key_poses[std::min(index + 1, action.key_poses.size() - 1)])];
     const double blend = phase < 0.6 ? 0.0 : (phase - 0.6) / 0.4;
     std::vector<float> pose(a.size());
-    for (std::size_t i = 0; i < a.size(); ++i)
-        pose[i] = static_cast<float>((1.0 - blend) * a[i] + blend * b[i]);
+    for (std::size_t i = 0; i < a.size(); ++i) pose[i] = static_cast<float>((1.0 - blend) * a[i] + blend * b[i]);
     return pose;
 }
 
@@ -128,8 +126,7 @@ ToyWorld make_toy_world(const ToyOptions& options) {
     using Cap = ToyCapacity;
     for (std::size_t a = 0; a < world.actions.size(); ++a) {
         StringEncoder<Cap> encoder;
-        if (encoder.init(view, 1000000) != Status::ok)
-            throw std::logic_error("toy model rejected by the encoder");
+        if (encoder.init(view, 1000000) != Status::ok) throw std::logic_error("toy model rejected by the encoder");
         ToyStreamOptions clean;
         clean.position_noise_m = 0.0;
         clean.frame_rate_hz = 60.0;

@@ -72,9 +72,9 @@ ToyWorld make_toy_world(const ToyOptions& options = {});
 /// Stream settings for toy_stream().
 struct ToyStreamOptions {
     double frame_rate_hz = 30.0;
-    double position_noise_m = 0.01;   ///< Gaussian noise per coordinate.
-    double frame_time_jitter = 0.0;   ///< Fraction of a frame period, uniform ±.
-    double drop_probability = 0.0;    ///< Chance that a frame is missing.
+    double position_noise_m = 0.01;  ///< Gaussian noise per coordinate.
+    double frame_time_jitter = 0.0;  ///< Fraction of a frame period, uniform ±.
+    double drop_probability = 0.0;   ///< Chance that a frame is missing.
     std::uint32_t seed = 1;
 };
 

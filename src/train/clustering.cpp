@@ -102,7 +102,8 @@ ClusterTree build_cluster_tree(const std::vector<float>& features, std::size_t d
         for (std::size_t k = 0; k < dim; ++k) centre[0][k] = features[first * dim + k];
         std::vector<double> weight(count);
         double total = 0;
-        for (std::size_t m = 0; m < count; ++m) total += weight[m] = l2sq(features.data() + current.members[m] * dim, centre[0].data(), dim);
+        for (std::size_t m = 0; m < count; ++m)
+            total += weight[m] = l2sq(features.data() + current.members[m] * dim, centre[0].data(), dim);
         if (!(total > 0)) continue;  // every member identical: cannot split
         double target = std::uniform_real_distribution<double>(0.0, total)(rng);
         std::size_t second = count - 1;
@@ -131,7 +132,8 @@ ClusterTree build_cluster_tree(const std::vector<float>& features, std::size_t d
                 for (std::size_t m = 0; m < count; ++m)
                     if (side[m] == c) {
                         ++members;
-                        for (std::size_t k = 0; k < dim; ++k) sum[k] += static_cast<double>(features[current.members[m] * dim + k]);
+                        for (std::size_t k = 0; k < dim; ++k)
+                            sum[k] += static_cast<double>(features[current.members[m] * dim + k]);
                     }
                 if (members > 0)
                     for (std::size_t k = 0; k < dim; ++k) centre[c][k] = sum[k] / static_cast<double>(members);

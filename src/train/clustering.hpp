@@ -12,9 +12,9 @@ namespace host {
 
 /// The cluster tree in the runtime's table layout.
 struct ClusterTree {
-    std::vector<float> centroids;         ///< node × dim.
-    std::vector<std::int16_t> children;   ///< node × 2, −1 at leaves.
-    std::vector<Character> characters;    ///< Leaf characters, numbered breadth-first.
+    std::vector<float> centroids;        ///< node × dim.
+    std::vector<std::int16_t> children;  ///< node × 2, −1 at leaves.
+    std::vector<Character> characters;   ///< Leaf characters, numbered breadth-first.
     int character_count = 0;
 };
 

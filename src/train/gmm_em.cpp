@@ -64,8 +64,9 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
     const Eigen::Index d = x.rows(), n = x.cols();
     const int J = components;
     if (J < 1) throw std::invalid_argument("the GMM needs at least one component");
-    if (n < J) throw std::invalid_argument("the GMM has " + std::to_string(J) + " components but only " + std::to_string(n) +
-                                           " training samples: use fewer components or more data");
+    if (n < J)
+        throw std::invalid_argument("the GMM has " + std::to_string(J) + " components but only " + std::to_string(n) +
+                                    " training samples: use fewer components or more data");
     if (!x.allFinite()) throw std::invalid_argument("GMM training samples contain non-finite values");
     if (!(covariance_floor > 0)) throw std::invalid_argument("the covariance floor must be positive");
     const bool diagonal = covariance == Covariance::diagonal;
@@ -102,10 +103,13 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
             const Eigen::MatrixXd centred = x.colwise() - mean;
             Eigen::MatrixXd cov;
             if (diagonal) {
-                const Eigen::VectorXd var = (centred.array().square().matrix() * resp.row(j).transpose()).array() + lambda;
+                const Eigen::VectorXd var =
+                    (centred.array().square().matrix() * resp.row(j).transpose()).array() + lambda;
                 cov = Eigen::MatrixXd((var / nj).asDiagonal());
             } else {
-                cov = (centred * resp.row(j).asDiagonal() * centred.transpose() + lambda * Eigen::MatrixXd::Identity(d, d)) / nj;
+                cov = (centred * resp.row(j).asDiagonal() * centred.transpose() +
+                       lambda * Eigen::MatrixXd::Identity(d, d)) /
+                      nj;
                 cov = 0.5 * (cov + cov.transpose());
             }
             fit.means[static_cast<std::size_t>(j)] = mean;
@@ -138,8 +142,9 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
                     ++others;
                 }
             fit.means[static_cast<std::size_t>(j)] = x.col(worst);
-            fit.covariances[static_cast<std::size_t>(j)] = others > 0 ? Eigen::MatrixXd(typical / others)
-                                                                      : Eigen::MatrixXd(lambda * Eigen::MatrixXd::Identity(d, d));
+            fit.covariances[static_cast<std::size_t>(j)] =
+                others > 0 ? Eigen::MatrixXd(typical / others)
+                           : Eigen::MatrixXd(lambda * Eigen::MatrixXd::Identity(d, d));
             fit.weights[static_cast<std::size_t>(j)] = 1.0 / current;
         }
         if (reseeded) {
@@ -163,13 +168,15 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
                 penalty += inv.sum();
             } else {
                 Eigen::LLT<Eigen::MatrixXd> llt(cov);
-                if (llt.info() != Eigen::Success) throw std::runtime_error("EM: a covariance lost positive definiteness");
+                if (llt.info() != Eigen::Success)
+                    throw std::runtime_error("EM: a covariance lost positive definiteness");
                 const Eigen::MatrixXd solved = llt.matrixL().solve(centred);
                 q = solved.colwise().squaredNorm();
                 log_det = 2.0 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
                 penalty += llt.solve(Eigen::MatrixXd::Identity(d, d)).trace();
             }
-            log_joint.row(j) = (std::log(fit.weights[static_cast<std::size_t>(j)]) - 0.5 * (static_cast<double>(d) * kLog2Pi + log_det)) -
+            log_joint.row(j) = (std::log(fit.weights[static_cast<std::size_t>(j)]) -
+                                0.5 * (static_cast<double>(d) * kLog2Pi + log_det)) -
                                0.5 * q.array();
         }
         const Eigen::RowVectorXd peak = log_joint.colwise().maxCoeff();

@@ -21,33 +21,33 @@ namespace host {
 /// boundaries (see models/README.md for the measurements).
 struct TrainingOptions {
     // Features.
-    int components = 20;                        ///< J.
+    int components = 20;  ///< J.
     Covariance covariance = Covariance::full;
-    double covariance_floor = 1e-4;             ///< λ/N̄ of the MAP prior: variance added to an average component (units²).
-    int pca_dim = 24;                           ///< d; 0 = no projection.
-    double feature_rate_hz = 30.0;              ///< Frames per second used to fit the GMM and the tree.
+    double covariance_floor = 1e-4;  ///< λ/N̄ of the MAP prior: variance added to an average component (units²).
+    int pca_dim = 24;                ///< d; 0 = no projection.
+    double feature_rate_hz = 30.0;   ///< Frames per second used to fit the GMM and the tree.
     int em_max_iterations = 100;
     /// EM runs from seeds seed, seed+1, …; the fit with the highest final
     /// objective (training data only) is kept. Default 1: on hdm05 the
     /// training likelihood did not reliably pick the seeds that generalise
     /// (8 restarts from three base seeds gave 0.955, 0.795, 0.909 on val).
     int em_restarts = 1;
-    double em_tolerance = 1e-6;                 ///< Stop when the objective's relative change is below this.
+    double em_tolerance = 1e-6;  ///< Stop when the objective's relative change is below this.
     ScaleMode scale_mode = ScaleMode::none;
     // Characters.
-    double epsilon = 1.0;                       ///< Split a cluster whose L1 diameter is ≥ ε.
+    double epsilon = 1.0;  ///< Split a cluster whose L1 diameter is ≥ ε.
     int max_characters = 4096;
     // Strings and representatives.
     double string_rate_hz = 12.0;
     MatchVariant variant = MatchVariant::whole;
     LengthNormalization normalization = LengthNormalization::none;
-    double sigma = 6.0;                         ///< Merge clusters while their centroid distance ≤ σ.
-    bool keep_singletons = false;               ///< Paper: clusters of one string are noise.
+    double sigma = 6.0;            ///< Merge clusters while their centroid distance ≤ σ.
+    bool keep_singletons = false;  ///< Paper: clusters of one string are noise.
     // Labelling.
     int neighbours = 1;
     double window_seconds = 2.0;
     double step_seconds = 0.5;
-    double unknown_distance = -1.0;             ///< < 0: never unknown.
+    double unknown_distance = -1.0;  ///< < 0: never unknown.
     std::uint32_t seed = 1;
     /// Called with the name of each stage as it starts (progress reports); may be empty.
     std::function<void(const char*)> progress;
@@ -57,8 +57,8 @@ struct TrainingOptions {
 struct TrainingReport {
     std::size_t frames_read = 0, frames_used = 0, frames_rejected = 0, feature_samples = 0;
     EmReport em;
-    int em_restart_chosen = 0;                ///< Index of the kept restart.
-    std::vector<double> em_restart_objectives; ///< Final objective of each restart.
+    int em_restart_chosen = 0;                  ///< Index of the kept restart.
+    std::vector<double> em_restart_objectives;  ///< Final objective of each restart.
     int characters = 0;
     int strings = 0, representatives = 0;
     std::vector<int> representatives_per_label;

@@ -7,7 +7,8 @@ namespace actionstring {
 namespace host {
 
 void fit_pca(const Eigen::MatrixXd& samples, int dim, Eigen::VectorXd& mean, Eigen::MatrixXd& axes) {
-    if (dim <= 0 || dim > samples.rows()) throw std::invalid_argument("PCA dimension must be between 1 and the pose dimension");
+    if (dim <= 0 || dim > samples.rows())
+        throw std::invalid_argument("PCA dimension must be between 1 and the pose dimension");
     if (samples.cols() < 2) throw std::invalid_argument("PCA needs at least two samples");
     mean = samples.rowwise().mean();
     const Eigen::MatrixXd centred = samples.colwise() - mean;

@@ -67,7 +67,8 @@ void check_options(const TrainingOptions& o) {
 // Median 3-D hip width over a clip's frames.
 double median_hip_width(const Clip& clip) {
     std::vector<double> widths;
-    const auto l = static_cast<std::size_t>(clip.roles.left_hip) * 3, r = static_cast<std::size_t>(clip.roles.right_hip) * 3;
+    const auto l = static_cast<std::size_t>(clip.roles.left_hip) * 3,
+               r = static_cast<std::size_t>(clip.roles.right_hip) * 3;
     for (std::size_t f = 0; f < clip.frame_count(); ++f) {
         const float* p = clip.frame(f);
         widths.push_back(std::sqrt(std::pow(p[l] - p[r], 2.0) + std::pow(p[l + 1] - p[r + 1], 2.0) +
@@ -188,8 +189,9 @@ TreeFeatures projected_features(ModelData& m, const std::vector<float>& poses, c
 void fit_gmm_tables(ModelData& m, const Eigen::MatrixXd& samples, const TrainingOptions& options, TrainingReport& r) {
     std::vector<GmmFit> fits(static_cast<std::size_t>(options.em_restarts));
     parallel_for(fits.size(), std::min<std::size_t>(2, hardware_workers()), [&](std::size_t k) {
-        fits[k] = fit_gmm(samples, options.components, options.covariance, options.covariance_floor,
-                          options.em_max_iterations, options.em_tolerance, options.seed + static_cast<std::uint32_t>(k));
+        fits[k] =
+            fit_gmm(samples, options.components, options.covariance, options.covariance_floor,
+                    options.em_max_iterations, options.em_tolerance, options.seed + static_cast<std::uint32_t>(k));
     });
     std::size_t chosen = 0;
     for (std::size_t k = 0; k < fits.size(); ++k) {
@@ -261,9 +263,8 @@ void choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips
     m.label_names.assign(label_set.begin(), label_set.end());
     std::map<std::string, LabelId> label_index;
     for (std::size_t l = 0; l < m.label_names.size(); ++l) label_index[m.label_names[l]] = static_cast<LabelId>(l);
-    const auto clusters =
-        agglomerate(pairwise_distances(m.view(), strings, MatchOptions{options.variant, options.normalization}),
-                    options.sigma);
+    const auto clusters = agglomerate(
+        pairwise_distances(m.view(), strings, MatchOptions{options.variant, options.normalization}), options.sigma);
     r.representatives_per_label.assign(m.label_names.size(), 0);
     for (const auto& cluster : clusters) {
         if (cluster.size() < 2 && !options.keep_singletons) continue;
@@ -285,10 +286,12 @@ void choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips
 void set_matching(ModelData& m, const TrainingOptions& options, int representatives) {
     m.variant = options.variant;
     m.normalization = options.normalization;
-    m.window_chars = static_cast<std::uint16_t>(std::max(1L, std::lround(options.window_seconds * options.string_rate_hz)));
+    m.window_chars =
+        static_cast<std::uint16_t>(std::max(1L, std::lround(options.window_seconds * options.string_rate_hz)));
     m.step_chars = static_cast<std::uint16_t>(std::max(1L, std::lround(options.step_seconds * options.string_rate_hz)));
     m.neighbours = static_cast<std::uint16_t>(std::min<int>(options.neighbours, representatives));
-    m.unknown_distance = options.unknown_distance < 0 ? detail::infinity() : static_cast<float>(options.unknown_distance);
+    m.unknown_distance =
+        options.unknown_distance < 0 ? detail::infinity() : static_cast<float>(options.unknown_distance);
     if (!HostCapacity::fits(m.view()))
         throw std::invalid_argument(std::to_string(representatives) + " representatives of " +
                                     std::to_string(m.view().total_representative_chars()) +

@@ -13,12 +13,12 @@
 #include "actionstring_c.h"
 
 static int failures = 0;
-#define CHECK(condition)                                                          \
-    do {                                                                          \
-        if (!(condition)) {                                                       \
+#define CHECK(condition)                                                                  \
+    do {                                                                                  \
+        if (!(condition)) {                                                               \
             fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #condition); \
-            ++failures;                                                           \
-        }                                                                         \
+            ++failures;                                                                   \
+        }                                                                                 \
     } while (0)
 
 /* Room for the state wherever the platform's strictest alignment suffices. */
@@ -100,7 +100,7 @@ static void contract_checks(void) {
         CHECK(strcmp(actionstring_label_name(state), actionstring_label_name_of(label)) == 0);
     }
     CHECK(accepted == 597);
-    CHECK(characters > 50); /* about 12 characters per second of accepted frames */
+    CHECK(characters > 50);                /* about 12 characters per second of accepted frames */
     CHECK(actionstring_label(state) >= 0); /* windows completed: a label was chosen */
     CHECK(actionstring_live_label(state) >= 0);
     CHECK(actionstring_settled_character(state) >= 0);
@@ -155,7 +155,8 @@ static int replay_file(const char* path) {
         actionstring_push_frame(state, time_us, frame, 3 * joints, &result);
         windows += result.windows_completed;
         for (uint32_t k = 0; k < result.characters_settled; ++k) {
-            const int64_t character = actionstring_settled_character(state) - (int64_t)(result.characters_settled - 1u - k);
+            const int64_t character =
+                actionstring_settled_character(state) - (int64_t)(result.characters_settled - 1u - k);
             const int32_t label = actionstring_settled_label(state, character);
             ++settled;
             if (label == shown) continue;

@@ -12,16 +12,16 @@ using namespace actionstring;
 
 // Joints: 0 pelvis, 1 left hip, 2 right hip, 3 hand. The pose is the hand alone.
 constexpr std::uint16_t kPoseJoints[] = {3};
-constexpr float kMeans[] = {0.0f, -0.2f, 0.3f,   0.0f, 0.6f, 0.3f};  // hand down, hand up
-constexpr float kFactors[] = {10.0f, 10.0f, 10.0f,   10.0f, 10.0f, 10.0f};  // σ = 0.1 m
-constexpr float kLogNormalizers[] = {4.1510f, 4.1510f};  // −1.5·log 2π + 3·log 10
+constexpr float kMeans[] = {0.0f, -0.2f, 0.3f, 0.0f, 0.6f, 0.3f};         // hand down, hand up
+constexpr float kFactors[] = {10.0f, 10.0f, 10.0f, 10.0f, 10.0f, 10.0f};  // σ = 0.1 m
+constexpr float kLogNormalizers[] = {4.1510f, 4.1510f};                   // −1.5·log 2π + 3·log 10
 constexpr float kLogWeights[] = {-0.6931f, -0.6931f};
-constexpr float kCentroids[] = {0.5f, 0.5f,   1.0f, 0.0f,   0.0f, 1.0f};
-constexpr std::int16_t kChildren[] = {1, 2,   -1, -1,   -1, -1};
+constexpr float kCentroids[] = {0.5f, 0.5f, 1.0f, 0.0f, 0.0f, 1.0f};
+constexpr std::int16_t kChildren[] = {1, 2, -1, -1, -1, -1};
 constexpr Character kNodeCharacters[] = {0, 0, 1};
-constexpr float kW[] = {0.0f, 2.0f,   2.0f, 0.0f};
+constexpr float kW[] = {0.0f, 2.0f, 2.0f, 0.0f};
 constexpr std::uint32_t kOffsets[] = {0, 8, 16};
-constexpr Character kStrings[] = {0, 0, 1, 1, 0, 0, 1, 1,   1, 1, 1, 1, 1, 1, 1, 1};
+constexpr Character kStrings[] = {0, 0, 1, 1, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
 constexpr LabelId kLabels[] = {0, 1};
 constexpr const char* kLabelNames[] = {"wave", "hold_up"};
 
@@ -78,8 +78,7 @@ int main() {
     if (annotator.init(kModel) != Status::ok) return 2;
     // Standing at x = 1 facing any way, right hand raised.
     for (int frame = 0; frame < 60; ++frame) {
-        const float positions[] = {1.0f, 1.0f, 0.0f,   1.0f, 1.0f, -0.1f,   1.0f, 1.0f, 0.1f,
-                                   1.0f, 1.6f, 0.3f};
+        const float positions[] = {1.0f, 1.0f, 0.0f, 1.0f, 1.0f, -0.1f, 1.0f, 1.0f, 0.1f, 1.0f, 1.6f, 0.3f};
         annotator.push_frame(frame * 33333, positions);
     }
     std::printf("consumer: label %s, confidence %.2f\n", annotator.label_name(),

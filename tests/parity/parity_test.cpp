@@ -80,7 +80,8 @@ TEST_CASE("generated header and loaded artifact agree bit for bit") {
 
 TEST_CASE("the same without a GMM: the tree descends on projected poses") {
     CHECK(fixture_pca::kModel.component_count == 0);
-    check_parity<fixture_pca::ModelCapacity>(fixture_pca::kModel, fixture_pca::kModelChecksum, ACTIONSTRING_FIXTURE_PCA_MODEL);
+    check_parity<fixture_pca::ModelCapacity>(fixture_pca::kModel, fixture_pca::kModelChecksum,
+                                             ACTIONSTRING_FIXTURE_PCA_MODEL);
 }
 
 #if defined(ACTIONSTRING_WITH_EXAMPLE_MODEL)
@@ -101,7 +102,8 @@ TEST_CASE("the committed HDM05 header and its artifact agree bit for bit on real
     }
     host::ModelData loaded = host::load_model(artifact);
     const ModelView view = loaded.view();
-    REQUIRE(std::strcmp(actionstring_hdm05::kModelChecksum + 8, host::artifact_checksum(host::read_file(artifact)).c_str()) == 0);
+    REQUIRE(std::strcmp(actionstring_hdm05::kModelChecksum + 8,
+                        host::artifact_checksum(host::read_file(artifact)).c_str()) == 0);
     auto generated = std::make_unique<Annotator<actionstring_hdm05::ModelCapacity>>();
     auto host_side = std::make_unique<Annotator<HostCapacity>>();
     REQUIRE(generated->init(actionstring_hdm05::kModel) == Status::ok);
@@ -111,8 +113,8 @@ TEST_CASE("the committed HDM05 header and its artifact agree bit for bit on real
     for (const host::ClipListEntry& entry : host::read_clip_list(list)) {
         const host::Clip clip = host::read_clip(entry);
         for (std::size_t f = 0; f < clip.frame_count(); ++f)
-            push_both(*generated, *host_side, view, offset + static_cast<std::int64_t>(clip.times[f] * 1e6), clip.frame(f),
-                      windows, characters);
+            push_both(*generated, *host_side, view, offset + static_cast<std::int64_t>(clip.times[f] * 1e6),
+                      clip.frame(f), windows, characters);
         offset += static_cast<std::int64_t>(clip.duration() * 1e6) + 8333;
     }
     CHECK(windows > 100);

@@ -46,16 +46,18 @@ inline Cell dp_row0(MatchVariant variant) noexcept {
 /// D[i][0], i ≥ 1: W[A1(i)][A2(1)] for the paper's boundaries (one aligned
 /// pair), blocked otherwise.
 inline Cell dp_col0(MatchVariant variant, float weight_with_first_of_a2) noexcept {
-    return variant == MatchVariant::paper ? Cell{weight_with_first_of_a2, 1u}
-                                          : Cell{infinity(), 0u};
+    return variant == MatchVariant::paper ? Cell{weight_with_first_of_a2, 1u} : Cell{infinity(), 0u};
 }
 
 /// Final score of a cell after the chosen length normalisation.
 inline float dp_score(Cell cell, LengthNormalization normalization, std::uint32_t query_length) noexcept {
     switch (normalization) {
-        case LengthNormalization::path: return cell.cost / static_cast<float>(cell.path);
-        case LengthNormalization::query: return cell.cost / static_cast<float>(query_length);
-        case LengthNormalization::none: break;
+        case LengthNormalization::path:
+            return cell.cost / static_cast<float>(cell.path);
+        case LengthNormalization::query:
+            return cell.cost / static_cast<float>(query_length);
+        case LengthNormalization::none:
+            break;
     }
     return cell.cost;
 }
