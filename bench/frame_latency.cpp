@@ -209,7 +209,7 @@ void measure_model(const std::string& name, const ModelView& model, const host::
 
     // The stream's action string, as the encoder emits it.
     auto encoder = std::make_unique<StringEncoder<Cap>>();
-    encoder->init(model, AnnotatorConfig{}.max_gap_us);
+    encoder->init(model, AnnotatorConfig{}.max_gap_us, AnnotatorConfig{}.max_backward_us);
     std::vector<Character> string;
     for (std::size_t f = 0; f < frames; ++f) {
         const EncodedFrame e = encoder->push_frame(stream.times_us[f], stream.frame(f));

@@ -49,8 +49,16 @@ private:
 struct AnnotatorConfig {
     /// A gap longer than this between accepted frames (dropped or rejected
     /// frames, a paused source) restarts the stream: open windows are
-    /// discarded and the label becomes unknown. Must be ≥ the string period.
+    /// discarded and the label becomes unknown. At least one string period, at
+    /// most 60 s and at most max_ticks_per_frame periods, so no frame's work
+    /// grows with its gap (StringSampler::settings_ok()).
     std::int64_t max_gap_us = 1000000;
+    /// A frame up to this much earlier than the last accepted one is rejected
+    /// (jitter, reordered packets); one further back means the clock was reset
+    /// or wrapped (a 32-bit microsecond timer wraps every 71.6 minutes), and
+    /// the stream restarts at it instead of waiting for the clock to catch up.
+    /// In [0, max_gap_us].
+    std::int64_t max_backward_us = 100000;
     /// Settings of the segmenter (settle delay, penalties, unknown cost).
     SegmenterConfig segmenter;
 };
@@ -94,7 +102,7 @@ public:
         model_ = nullptr;
         Status status = matcher_.init(model);
         if (status == Status::ok) status = segmenter_.init(model, config.segmenter);
-        if (status == Status::ok) status = encoder_.init(model, config.max_gap_us);
+        if (status == Status::ok) status = encoder_.init(model, config.max_gap_us, config.max_backward_us);
         if (status != Status::ok) return status;
         model_ = &model;
         reset();

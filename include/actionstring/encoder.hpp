@@ -43,19 +43,22 @@ struct EncodedFrame {
 template <class Cap>
 class StringEncoder {
 public:
-    /// @param max_gap_us a longer gap between accepted frames restarts the
-    ///                   stream; must be ≥ the string period
+    /// @param max_gap_us      a longer gap between accepted frames restarts the stream
+    /// @param max_backward_us a frame this much earlier than the last one or less
+    ///                        is rejected; further back the stream restarts
     /// @return ok, invalid_model (tables, or precision factors that could
-    ///         overflow float), model_exceeds_capacity or invalid_argument
-    Status init(const ModelView& model, std::int64_t max_gap_us) noexcept {
+    ///         overflow float), model_exceeds_capacity, or invalid_argument
+    ///         (times StringSampler::settings_ok() refuses for the model's period)
+    Status init(const ModelView& model, std::int64_t max_gap_us, std::int64_t max_backward_us) noexcept {
         model_ = nullptr;
         const Status status = validate_feature_tables(model);
         if (status != Status::ok) return status;
         if (!Cap::fits_features(model)) return Status::model_exceeds_capacity;
         if (model.has_gmm() && !gmm_is_overflow_safe(model, max_pose_coordinate)) return Status::invalid_model;
-        if (max_gap_us < static_cast<std::int64_t>(model.string_period_us)) return Status::invalid_argument;
+        if (!StringSampler::settings_ok(model.string_period_us, max_gap_us, max_backward_us))
+            return Status::invalid_argument;
         model_ = &model;
-        sampler_.configure(model.string_period_us, max_gap_us);
+        sampler_.configure(model.string_period_us, max_gap_us, max_backward_us);
         reset();
         return Status::ok;
     }

@@ -38,6 +38,7 @@ namespace actionstring {
 struct SegmenterConfig {
     /// How long after a character its label becomes final. Longer sees more
     /// of the action before deciding; the paper's rule answers one window late.
+    /// At most max_settle_delay_us and the capacity's max_settle_chars.
     std::int64_t settle_delay_us = 2000000;
     /// Cost of starting another segment (discourages flicker).
     float segment_penalty = 3.0f;
@@ -48,6 +49,10 @@ struct SegmenterConfig {
     /// Cost per character of "no action" (labelled unknown); infinity turns it off.
     float unknown_cost = detail::infinity();
 };
+
+/// Longest settle delay a segmenter accepts (10 minutes); the capacity's
+/// max_settle_chars usually binds first.
+constexpr std::int64_t max_settle_delay_us = 600000000;
 
 /// Online segmentation state with storage fixed by `Cap`. Holds a pointer to
 /// the ModelView passed to init(): it must outlive the segmenter (or the next
@@ -72,6 +77,7 @@ public:
             model.total_representative_chars() > Cap::max_representative_chars)
             return Status::model_exceeds_capacity;
         if (model.string_period_us == 0) return Status::invalid_model;
+        if (config.settle_delay_us > max_settle_delay_us) return Status::invalid_argument;
         const std::int64_t period = model.string_period_us;
         const std::int64_t settle = (config.settle_delay_us + period / 2) / period;
         if (settle > static_cast<std::int64_t>(Cap::max_settle_chars)) return Status::model_exceeds_capacity;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "actionstring/annotator.hpp"
 #include "actionstring/capacity.hpp"
 #include "actionstring/encoder.hpp"
 #include "actionstring/normalize.hpp"
@@ -16,14 +17,22 @@ namespace actionstring {
 namespace host {
 namespace {
 
-// A clip is one stream: no gap in it restarts the encoder.
-constexpr std::int64_t kNeverRestart = std::int64_t{1} << 62;
+// A clip is timed like a device's stream: a gap longer than the annotator's
+// default restart gap starts the string afresh at the next frame instead of
+// padding the gap with repeated characters, so no clip's string or pose list
+// grows with its gaps.
+constexpr AnnotatorConfig kDeviceTiming{};
 
 }  // namespace
 
 std::vector<Character> clip_string(const ModelView& model, const Clip& clip) {
     auto encoder = std::make_unique<StringEncoder<HostCapacity>>();
-    const Status status = encoder->init(model, kNeverRestart);
+    const Status status = encoder->init(model, kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us);
+    if (status == Status::invalid_argument)
+        throw std::invalid_argument("the model's string period (" + std::to_string(model.string_period_us) +
+                                    " us) is too short: a " + std::to_string(kDeviceTiming.max_gap_us) +
+                                    " us gap would emit more than " + std::to_string(max_ticks_per_frame) +
+                                    " characters in one frame");
     if (status != Status::ok)
         throw std::invalid_argument(std::string("model rejected by the encoder: ") + status_name(status));
     std::vector<Character> string;
@@ -36,8 +45,11 @@ std::vector<Character> clip_string(const ModelView& model, const Clip& clip) {
 }
 
 std::size_t sample_poses(const ModelView& model, const Clip& clip, double rate_hz, std::vector<float>& poses) {
+    const auto period_us = static_cast<std::uint32_t>(std::lround(1e6 / rate_hz));
+    if (!StringSampler::settings_ok(period_us, kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us))
+        throw std::invalid_argument("cannot sample poses at " + std::to_string(rate_hz) + " Hz");
     StringSampler sampler;
-    sampler.configure(static_cast<std::uint32_t>(std::lround(1e6 / rate_hz)), kNeverRestart);
+    sampler.configure(period_us, kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us);
     const std::size_t D = model.pose_dim();
     std::vector<float> previous(D), current(D);
     bool has_previous = false;

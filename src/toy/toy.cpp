@@ -126,7 +126,7 @@ ToyWorld make_toy_world(const ToyOptions& options) {
     using Cap = ToyCapacity;
     for (std::size_t a = 0; a < world.actions.size(); ++a) {
         StringEncoder<Cap> encoder;
-        if (encoder.init(view, 1000000) != Status::ok) throw std::logic_error("toy model rejected by the encoder");
+        if (encoder.init(view, 1000000, 0) != Status::ok) throw std::logic_error("toy model rejected by the encoder");
         ToyStreamOptions clean;
         clean.position_noise_m = 0.0;
         clean.frame_rate_hz = 60.0;
