@@ -246,7 +246,7 @@ TEST_CASE("artifacts round-trip exactly and refuse corruption") {
     world.model.representative_labels[0] = 77;
     const std::vector<std::string> first_label{world.model.label_names[0]};
     world.model.label_names.assign(first_label.begin(), first_label.end());
-    refused(serialize_model(world.model), "inconsistent");
+    refused(serialize_model(world.model), "invalid model: representative_labels: not a label of the model");
 }
 
 TEST_CASE("generated headers carry the banner, the checksum and exact literals") {

@@ -109,6 +109,18 @@ constexpr CharacterWeights character_weights(const ModelView& m) noexcept {
     return CharacterWeights{m.character_distances, m.character_count};
 }
 
+/// Smallest string period a model may have (a 1 kHz string rate; the paper's is 12 Hz).
+constexpr std::uint32_t min_string_period_us = 1000;
+/// Largest magnitude of any value in the projection, GMM means and factors,
+/// tree centroids and W: far above anything training produces, low enough
+/// that sums over a model's dimensions stay far inside float range.
+constexpr float max_table_value = 1.0e6f;
+/// Bounds of the GMM's log-normalisers and log-weights: a log-weight is the
+/// log of a probability (≤ 0), and neither may be so large that one
+/// component wins whatever the pose.
+constexpr float max_log_normalizer = 1.0e4f;
+constexpr float min_log_weight = -1.0e4f;
+
 namespace detail {
 
 inline bool all_finite(const float* values, std::size_t count) noexcept {
@@ -118,98 +130,133 @@ inline bool all_finite(const float* values, std::size_t count) noexcept {
     return true;
 }
 
+/// All finite and within [low, high].
+inline bool all_within(const float* values, std::size_t count, float low, float high) noexcept {
+    if (values == nullptr) return false;
+    for (std::size_t i = 0; i < count; ++i)
+        if (!(values[i] >= low && values[i] <= high)) return false;  // NaN fails too
+    return true;
+}
+
+/// Records which check failed (a static string naming the field) and returns invalid_model.
+inline Status refuse(const char** problem, const char* what) noexcept {
+    if (problem != nullptr) *problem = what;
+    return Status::invalid_model;
+}
+
 }  // namespace detail
 
 /// Checks the tables that turn frames into characters (skeleton, projection,
 /// GMM, tree, string rate) so the per-frame code can trust them. O(table
-/// size); call once, before streaming. Returns ok or invalid_model.
-inline Status validate_feature_tables(const ModelView& m) noexcept {
-    using detail::all_finite;
-    const auto bad = Status::invalid_model;
+/// size); call once, before streaming. Returns ok or invalid_model; then
+/// `problem`, when given, names the field and what is wrong (static storage).
+inline Status validate_feature_tables(const ModelView& m, const char** problem = nullptr) noexcept {
+    using detail::all_within;
+    using detail::refuse;
+    const float big = max_table_value;
     // Skeleton.
-    if (m.joint_count == 0 || m.up_axis > 2) return bad;
-    if (m.scale_mode > ScaleMode::hip_width || m.covariance > Covariance::diagonal) return bad;
-    if (m.root_joint >= m.joint_count || m.left_hip_joint >= m.joint_count || m.right_hip_joint >= m.joint_count ||
-        m.left_hip_joint == m.right_hip_joint)
-        return bad;
-    if (m.scale_mode == ScaleMode::hip_width && !(detail::is_finite(m.reference_scale) && m.reference_scale > 0.0f))
-        return bad;
-    if (m.pose_joint_count == 0 || m.pose_joints == nullptr) return bad;
+    if (m.joint_count == 0) return refuse(problem, "joint_count: no joints");
+    if (m.up_axis > 2) return refuse(problem, "up_axis: not 0, 1 or 2");
+    if (m.scale_mode > ScaleMode::hip_width) return refuse(problem, "scale_mode: unknown mode");
+    if (m.covariance > Covariance::diagonal) return refuse(problem, "covariance: unknown kind");
+    if (m.root_joint >= m.joint_count) return refuse(problem, "root_joint: not a joint of the skeleton");
+    if (m.left_hip_joint >= m.joint_count) return refuse(problem, "left_hip_joint: not a joint of the skeleton");
+    if (m.right_hip_joint >= m.joint_count) return refuse(problem, "right_hip_joint: not a joint of the skeleton");
+    if (m.left_hip_joint == m.right_hip_joint) return refuse(problem, "right_hip_joint: the same joint as the left hip");
+    if (m.scale_mode == ScaleMode::hip_width && !(m.reference_scale > 0.0f && m.reference_scale <= big))
+        return refuse(problem, "reference_scale: not a positive finite length");
+    if (m.pose_joint_count == 0 || m.pose_joints == nullptr) return refuse(problem, "pose_joints: empty");
     for (std::size_t i = 0; i < m.pose_joint_count; ++i)
-        if (m.pose_joints[i] >= m.joint_count) return bad;
+        if (m.pose_joints[i] >= m.joint_count) return refuse(problem, "pose_joints: not a joint of the skeleton");
     // Projection.
     const std::size_t pose_dim = m.pose_dim();
-    if (m.feature_dim == 0) return bad;
+    if (m.feature_dim == 0) return refuse(problem, "feature_dim: zero");
     if (m.has_projection()) {
-        if (m.feature_dim > pose_dim) return bad;
-        if (!all_finite(m.projection_mean, pose_dim)) return bad;
-        if (!all_finite(m.projection_matrix, pose_dim * m.feature_dim)) return bad;
+        if (m.feature_dim > pose_dim) return refuse(problem, "feature_dim: larger than the pose");
+        if (!all_within(m.projection_mean, pose_dim, -big, big))
+            return refuse(problem, "projection_mean: missing, non-finite or beyond 1e6");
+        if (!all_within(m.projection_matrix, pose_dim * m.feature_dim, -big, big))
+            return refuse(problem, "projection_matrix: non-finite or beyond 1e6");
     } else if (m.feature_dim != pose_dim) {
-        return bad;
+        return refuse(problem, "feature_dim: not the pose's length, and there is no projection");
     }
     // GMM.
     const std::size_t J = m.component_count;
     if (J > 0) {
-        if (!all_finite(m.gmm_means, J * m.feature_dim)) return bad;
-        if (!all_finite(m.gmm_factors, J * m.factor_size())) return bad;
-        if (!all_finite(m.gmm_log_normalizers, J)) return bad;
-        if (!all_finite(m.gmm_log_weights, J)) return bad;
+        if (!all_within(m.gmm_means, J * m.feature_dim, -big, big))
+            return refuse(problem, "gmm_means: missing, non-finite or beyond 1e6");
+        if (!all_within(m.gmm_factors, J * m.factor_size(), -big, big))
+            return refuse(problem, "gmm_factors: missing, non-finite or beyond 1e6");
+        if (!all_within(m.gmm_log_normalizers, J, -max_log_normalizer, max_log_normalizer))
+            return refuse(problem, "gmm_log_normalizers: missing, non-finite or beyond 1e4");
+        if (!all_within(m.gmm_log_weights, J, min_log_weight, 0.0f))
+            return refuse(problem, "gmm_log_weights: missing, or not the log of a probability (in [-1e4, 0])");
     }
     // Tree: children point forward and leaves carry a character.
-    if (m.node_count == 0 || m.node_children == nullptr || m.node_characters == nullptr) return bad;
-    if (!all_finite(m.node_centroids, static_cast<std::size_t>(m.node_count) * m.tree_dim())) return bad;
+    if (m.node_count == 0 || m.node_children == nullptr || m.node_characters == nullptr)
+        return refuse(problem, "node_characters: no tree");
+    if (!all_within(m.node_centroids, static_cast<std::size_t>(m.node_count) * m.tree_dim(), -big, big))
+        return refuse(problem, "node_centroids: missing, non-finite or beyond 1e6");
     const std::size_t K = m.character_count;
-    if (K == 0) return bad;
+    if (K == 0) return refuse(problem, "character_count: zero");
     for (std::size_t n = 0; n < m.node_count; ++n) {
         const int left = m.node_children[2 * n], right = m.node_children[2 * n + 1];
         const bool leaf = left < 0 && right < 0;
         if (leaf) {
-            if (m.node_characters[n] >= K) return bad;
+            if (m.node_characters[n] >= K) return refuse(problem, "node_characters: a leaf's character is not below K");
             continue;
         }
-        if (left <= static_cast<int>(n) || right <= static_cast<int>(n) || left == right) return bad;
-        if (left >= m.node_count || right >= m.node_count) return bad;
+        if (left <= static_cast<int>(n) || right <= static_cast<int>(n) || left == right)
+            return refuse(problem, "node_children: a child that does not point forward");
+        if (left >= m.node_count || right >= m.node_count) return refuse(problem, "node_children: past the last node");
     }
-    if (m.string_period_us == 0) return bad;
+    if (m.string_period_us < min_string_period_us)
+        return refuse(problem, "string_period_us: below 1000 (a string rate above 1 kHz)");
     return Status::ok;
 }
 
 /// Checks the tables that turn characters into labels (W, representatives,
 /// labels, window and kNN settings) so the matcher can trust them.
-inline Status validate_matching_tables(const ModelView& m) noexcept {
-    const auto bad = Status::invalid_model;
+inline Status validate_matching_tables(const ModelView& m, const char** problem = nullptr) noexcept {
+    using detail::refuse;
     const std::size_t K = m.character_count;
-    if (K == 0 || !detail::all_finite(m.character_distances, K * K)) return bad;
-    for (std::size_t i = 0; i < K * K; ++i)
-        if (m.character_distances[i] < 0.0f) return bad;  // a distance: costs stay ≥ 0 or +inf
+    if (K == 0) return refuse(problem, "character_count: zero");
+    // A distance: costs stay ≥ 0 and below float range.
+    if (!detail::all_within(m.character_distances, K * K, 0.0f, max_table_value))
+        return refuse(problem, "character_distances: missing, negative, non-finite or beyond 1e6");
     // Strings and representatives.
-    if (m.label_count == 0 || m.label_names == nullptr) return bad;
+    if (m.label_count == 0 || m.label_names == nullptr) return refuse(problem, "label_names: none");
     for (std::size_t l = 0; l < m.label_count; ++l)
-        if (m.label_names[l] == nullptr) return bad;
+        if (m.label_names[l] == nullptr) return refuse(problem, "label_names: a null name");
     const std::size_t R = m.representative_count;
     if (R == 0 || m.representative_offsets == nullptr || m.representative_chars == nullptr ||
         m.representative_labels == nullptr)
-        return bad;
-    if (m.representative_offsets[0] != 0) return bad;
+        return refuse(problem, "representative_labels: no representatives");
+    if (m.representative_offsets[0] != 0) return refuse(problem, "representative_offsets: not starting at 0");
     for (std::size_t r = 0; r < R; ++r) {
-        if (m.representative_offsets[r + 1] <= m.representative_offsets[r]) return bad;
-        if (m.representative_labels[r] >= m.label_count) return bad;
+        if (m.representative_offsets[r + 1] <= m.representative_offsets[r])
+            return refuse(problem, "representative_offsets: an empty or backward string");
+        if (m.representative_labels[r] >= m.label_count)
+            return refuse(problem, "representative_labels: not a label of the model");
     }
     for (std::size_t c = 0; c < m.total_representative_chars(); ++c)
-        if (m.representative_chars[c] >= K) return bad;
+        if (m.representative_chars[c] >= K) return refuse(problem, "representative_chars: not below K");
     // Matching.
-    if (m.variant > MatchVariant::subsequence) return bad;
-    if (m.normalization > LengthNormalization::query) return bad;
-    if (m.window_chars == 0 || m.step_chars == 0) return bad;
-    if (m.neighbours == 0 || m.neighbours > R) return bad;
-    if (detail::is_nan(m.unknown_distance) || m.unknown_distance < 0.0f) return bad;
+    if (m.variant > MatchVariant::subsequence) return refuse(problem, "variant: unknown");
+    if (m.normalization > LengthNormalization::query) return refuse(problem, "normalization: unknown");
+    if (m.window_chars == 0) return refuse(problem, "window_chars: zero");
+    if (m.step_chars == 0) return refuse(problem, "step_chars: zero");
+    if (m.neighbours == 0 || m.neighbours > R) return refuse(problem, "neighbours: zero or more than the representatives");
+    if (detail::is_nan(m.unknown_distance) || m.unknown_distance < 0.0f)
+        return refuse(problem, "unknown_distance: negative or NaN");
     return Status::ok;
 }
 
-/// Checks every index, size and value of a complete model.
-inline Status validate_model(const ModelView& m) noexcept {
-    const Status status = validate_feature_tables(m);
-    return status != Status::ok ? status : validate_matching_tables(m);
+/// Checks every index, size and value of a complete model; see
+/// validate_feature_tables() for `problem`.
+inline Status validate_model(const ModelView& m, const char** problem = nullptr) noexcept {
+    const Status status = validate_feature_tables(m, problem);
+    return status != Status::ok ? status : validate_matching_tables(m, problem);
 }
 
 }  // namespace actionstring

@@ -236,13 +236,7 @@ ModelData parse_model(const std::string& name, std::string_view text) {
     FieldReader f(scanner);
     ModelData m = read_fields(f);
 
-    // Sizes the view cannot check by itself, then the runtime's own validation.
-    if (const char* table = mismatched_table(m))
-        throw ReadError(name, 0,
-                        std::string("the size of table '") + table + "' does not agree with the fields it depends on");
-    if (m.node_characters.size() > 32767) throw ReadError(name, 0, "more than 32767 tree nodes");
-    if (validate_model(m.view()) != Status::ok)
-        throw ReadError(name, 0, "the tables are inconsistent (index out of range or non-finite value)");
+    check_model(m, name);
     return m;
 }
 

@@ -57,7 +57,7 @@ void put_table(std::ostringstream& out, const char* type, const char* field, con
 std::string generate_header(const ModelData& m, const std::string& checksum, const std::string& ns,
                             const std::string& source_name) {
     const ModelView v = m.view();
-    if (validate_model(v) != Status::ok) throw std::invalid_argument("cannot generate a header for an invalid model");
+    check_model(m, "the model");
     if (!is_cpp_namespace(ns))
         throw std::invalid_argument("'" + comment_text(ns) +
                                     "' is not a C++ namespace name (identifiers joined by ::)");

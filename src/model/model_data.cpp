@@ -1,5 +1,9 @@
 #include "model/model_data.hpp"
 
+#include "actionstring/gmm.hpp"
+#include "actionstring/normalize.hpp"
+#include "io/clip.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -49,6 +53,17 @@ const char* mismatched_table(const ModelData& model) {
 #undef ACTIONSTRING_CHECK_TABLE
 #undef ACTIONSTRING_CHECK_NAMES
     return nullptr;
+}
+
+void check_model(const ModelData& model, const std::string& name) {
+    if (const char* table = mismatched_table(model))
+        throw ReadError(name, 0, std::string("the size of table '") + table + "' does not agree with the fields it depends on");
+    if (model.node_characters.size() > 32767) throw ReadError(name, 0, "node_characters: more than 32767 tree nodes");
+    const ModelView view = model.view();
+    const char* problem = "";
+    if (validate_model(view, &problem) != Status::ok) throw ReadError(name, 0, std::string("invalid model: ") + problem);
+    if (view.has_gmm() && !gmm_is_overflow_safe(view, max_pose_coordinate))
+        throw ReadError(name, 0, "invalid model: gmm_factors: a pose the runtime accepts could overflow the GMM in float");
 }
 
 std::size_t table_bytes(const ModelView& m) {

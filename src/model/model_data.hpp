@@ -97,6 +97,12 @@ struct ModelData {
 /// every size agrees. A view of a model that passes may be validated.
 const char* mismatched_table(const ModelData& model);
 
+/// Refuses, with a ReadError naming `name` and the field, any model the
+/// runtime's init() would refuse for its tables: sizes that disagree,
+/// indices out of range, values out of bounds, a GMM that an accepted pose
+/// could overflow. The artifact reader and the header generator both call it.
+void check_model(const ModelData& model, const std::string& name);
+
 /// Bytes of the model's tables as a generated header stores them (label names excluded).
 std::size_t table_bytes(const ModelView& model);
 
