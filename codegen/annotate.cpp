@@ -7,6 +7,7 @@
 #include "io/formats.hpp"
 #include "model/artifact.hpp"
 #include "options.hpp"
+#include "run/skeleton.hpp"
 #include "run/stream_labels.hpp"
 
 namespace actionstring {
@@ -48,7 +49,8 @@ int run_annotate(int argc, char** argv) {
     return run_reporting_errors("annotate", [&] {
         const host::ModelData model = host::load_model(model_path);
         const ModelView view = model.view();
-        const host::Clip clip = host::read_clip(file, read, skeleton);
+        host::Clip clip = host::read_clip(file, read, skeleton);
+        host::conform_to_model(view, clip);
         const auto spans = host::annotate_clip(view, clip, config);
         auto name = [&](int label) {
             return label < 0 ? std::string("unknown") : model.label_names[static_cast<std::size_t>(label)];

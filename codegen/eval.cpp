@@ -16,6 +16,7 @@
 #include "io/recordings.hpp"
 #include "io/text.hpp"
 #include "model/artifact.hpp"
+#include "run/skeleton.hpp"
 #include "options.hpp"
 
 namespace actionstring {
@@ -77,18 +78,24 @@ Evaluation evaluate(const ModelView& view, const std::string& clips_path, const 
     const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
     e.recordings = host::has_intervals(entries);
     e.clips = host::load_labelled_clips(entries, read);
+    host::conform_to_model(view, e.clips);
     e.results.push_back(host::evaluate_model(view, e.clips));
     if (!train_path.empty()) {
-        const auto train = host::load_labelled_clips(train_path, read);
+        auto train = host::load_labelled_clips(train_path, read);
+        host::conform_to_model(view, train);
         e.results.push_back(host::evaluate_all_strings(view, train, e.clips));
         e.results.push_back(host::evaluate_pca_characters(view, train, e.clips));
         e.results.push_back(host::evaluate_pose_dtw(view, train, e.clips));
     }
     e.frame_ns = host::annotator_frame_times(view, e.clips);
     e.online = online;
-    if (online)
-        e.online_report = e.recordings ? host::evaluate_recordings(view, host::read_recordings(entries, read), config)
-                                       : host::evaluate_online(view, e.clips, seed, config);
+    if (online && e.recordings) {
+        std::vector<host::LabelledRecording> recordings = host::read_recordings(entries, read);
+        for (host::LabelledRecording& recording : recordings) host::conform_to_model(view, recording.clip);
+        e.online_report = host::evaluate_recordings(view, recordings, config);
+    } else if (online) {
+        e.online_report = host::evaluate_online(view, e.clips, seed, config);
+    }
     return e;
 }
 

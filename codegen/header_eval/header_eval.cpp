@@ -8,6 +8,7 @@
 #include "eval/clip_eval.hpp"
 #include "eval/online.hpp"
 #include "io/clip_list.hpp"
+#include "run/skeleton.hpp"
 #include ACTIONSTRING_MODEL_HEADER
 
 int main(int argc, char** argv) {
@@ -17,8 +18,9 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        const std::vector<host::LabelledClip> clips = host::load_labelled_clips(argv[1]);
         const actionstring::ModelView& model = ACTIONSTRING_MODEL_NAMESPACE::kModel;
+        std::vector<host::LabelledClip> clips = host::load_labelled_clips(argv[1]);
+        host::conform_to_model(model, clips);
         const auto clip_results = host::evaluate_model(model, clips);
         const auto online = host::evaluate_online(model, clips, 1);
         host::JsonWriter out;

@@ -156,6 +156,9 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
     const float big = max_table_value;
     // Skeleton.
     if (m.joint_count == 0) return refuse(problem, "joint_count: no joints");
+    if (m.joint_names != nullptr)  // optional in a hand-built view; trained models name every joint
+        for (std::size_t j = 0; j < m.joint_count; ++j)
+            if (m.joint_names[j] == nullptr) return refuse(problem, "joint_names: a null name");
     if (m.up_axis > 2) return refuse(problem, "up_axis: not 0, 1 or 2");
     if (m.scale_mode > ScaleMode::hip_width) return refuse(problem, "scale_mode: unknown mode");
     if (m.covariance > Covariance::diagonal) return refuse(problem, "covariance: unknown kind");

@@ -20,8 +20,8 @@
 //       (0 for an absent optional table); it may use the fields listed before
 //       it. [low, high] bounds integer elements as for SCALAR.
 //   NAMES(name, count)
-//       NUL-terminated label names: `const char* const*` in the view, one
-//       line each in the artifact.
+//       NUL-terminated names (joints, labels): `const char* const*` in the
+//       view, one line each in the artifact.
 //
 // Enum types, Character and LabelId are those of namespace actionstring; an
 // expansion outside that namespace must qualify them itself (see model.hpp).
@@ -31,6 +31,7 @@
 #define ACTIONSTRING_MODEL_FIELDS(SCALAR, COUNT, TABLE, NAMES)                                            \
     /* --- skeleton and pose normalisation (design §1.1) --- */                                           \
     SCALAR(std::uint16_t, joint_count, 0, 1, 65535)        /* joints per input frame (xyz each) */        \
+    NAMES(joint_names, m.joint_count)                      /* the input skeleton, in frame order */       \
     SCALAR(std::uint16_t, root_joint, 0, 0, 65535)         /* the pose is made relative to it */          \
     SCALAR(std::uint16_t, left_hip_joint, 0, 0, 65535)     /* with the right hip: the facing direction */ \
     SCALAR(std::uint16_t, right_hip_joint, 0, 0, 65535)                                                   \

@@ -10,6 +10,7 @@
 #include "common/time.hpp"
 #include "run/classify.hpp"
 #include "run/encode.hpp"
+#include "run/skeleton.hpp"
 #include "run/stream_labels.hpp"
 
 namespace actionstring {
@@ -64,6 +65,7 @@ ClipResults evaluate_model(const ModelView& model, const std::vector<LabelledCli
 }
 
 std::vector<double> annotator_frame_times(const ModelView& model, const std::vector<LabelledClip>& clips) {
+    for (const LabelledClip& c : clips) require_joint_count(model, c.clip.joint_count(), c.clip.source);
     auto annotator = std::make_unique<Annotator<HostCapacity>>();
     std::vector<double> times;
     if (annotator->init(model) != Status::ok) return times;

@@ -115,7 +115,7 @@ void put_table(std::ostringstream& out, const char* name, const std::vector<T>& 
     out << '\n';
 }
 
-void put_names(std::ostringstream& out, const char* name, const LabelNames& names) {
+void put_names(std::ostringstream& out, const char* name, const NameList& names) {
     out << name << ' ' << names.size() << '\n';
     for (const std::string& label : names) out << label << '\n';
 }
@@ -132,7 +132,7 @@ std::vector<T> read_table(FieldReader& f, const char* name, long low, long high)
     else return f.ints<T>(name, low, high);
 }
 
-void read_names(FieldReader& f, const char* name, LabelNames& names) {
+void read_names(FieldReader& f, const char* name, NameList& names) {
     const long count = f.integer(name, 1, 65535);
     for (long l = 0; l < count; ++l) names.push_back(f.rest_of_line());
 }

@@ -17,7 +17,8 @@ namespace actionstring {
 namespace host {
 
 /// Artifact format version written and read by this build.
-constexpr int artifact_version = 1;
+/// Version 2 added the input skeleton's joint names.
+constexpr int artifact_version = 2;
 
 /// 64-bit FNV-1a of the bytes.
 std::uint64_t fnv1a64(std::string_view bytes);

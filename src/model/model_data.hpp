@@ -13,20 +13,20 @@
 namespace actionstring {
 namespace host {
 
-/// Label names with the table of C-string pointers a ModelView hands out,
-/// kept in step with the names on every change.
-class LabelNames {
+/// Names (of joints, of labels) with the table of C-string pointers a
+/// ModelView hands out, kept in step with the names on every change.
+class NameList {
 public:
-    LabelNames() = default;
-    LabelNames(const LabelNames& other) : names_(other.names_) { refresh(); }
-    LabelNames& operator=(const LabelNames& other) {
+    NameList() = default;
+    NameList(const NameList& other) : names_(other.names_) { refresh(); }
+    NameList& operator=(const NameList& other) {
         names_ = other.names_;
         refresh();
         return *this;
     }
     // A moved vector keeps its buffer, so the pointers stay valid.
-    LabelNames(LabelNames&&) noexcept = default;
-    LabelNames& operator=(LabelNames&&) noexcept = default;
+    NameList(NameList&&) noexcept = default;
+    NameList& operator=(NameList&&) noexcept = default;
 
     template <class Iterator>
     void assign(Iterator first, Iterator last) {
@@ -44,8 +44,8 @@ public:
     std::size_t size() const noexcept { return names_.size(); }
     bool empty() const noexcept { return names_.empty(); }
     const std::string& operator[](std::size_t i) const { return names_[i]; }
-    bool operator==(const LabelNames& other) const { return names_ == other.names_; }
-    bool operator!=(const LabelNames& other) const { return names_ != other.names_; }
+    bool operator==(const NameList& other) const { return names_ == other.names_; }
+    bool operator!=(const NameList& other) const { return names_ != other.names_; }
     std::vector<std::string>::const_iterator begin() const noexcept { return names_.begin(); }
     std::vector<std::string>::const_iterator end() const noexcept { return names_.end(); }
     const std::vector<std::string>& strings() const noexcept { return names_; }
@@ -77,7 +77,7 @@ struct ModelData {
 #define ACTIONSTRING_DATA_SCALAR(T, FIELD, INITIAL, LOW, HIGH) T FIELD = INITIAL;
 #define ACTIONSTRING_DATA_COUNT(T, FIELD, TABLE)
 #define ACTIONSTRING_DATA_TABLE(T, FIELD, SIZE, LOW, HIGH) std::vector<T> FIELD;
-#define ACTIONSTRING_DATA_NAMES(FIELD, COUNT) LabelNames FIELD;
+#define ACTIONSTRING_DATA_NAMES(FIELD, COUNT) NameList FIELD;
     ACTIONSTRING_MODEL_FIELDS(ACTIONSTRING_DATA_SCALAR, ACTIONSTRING_DATA_COUNT, ACTIONSTRING_DATA_TABLE,
                               ACTIONSTRING_DATA_NAMES)
 #undef ACTIONSTRING_DATA_SCALAR

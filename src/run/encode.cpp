@@ -12,6 +12,7 @@
 #include "actionstring/normalize.hpp"
 #include "actionstring/sampler.hpp"
 #include "common/time.hpp"
+#include "run/skeleton.hpp"
 
 namespace actionstring {
 namespace host {
@@ -26,6 +27,7 @@ constexpr AnnotatorConfig kDeviceTiming{};
 }  // namespace
 
 std::vector<Character> clip_string(const ModelView& model, const Clip& clip) {
+    require_joint_count(model, clip.joint_count(), clip.source);
     auto encoder = std::make_unique<StringEncoder<HostCapacity>>();
     const Status status = encoder->init(model, kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us);
     if (status == Status::invalid_argument)
@@ -45,6 +47,7 @@ std::vector<Character> clip_string(const ModelView& model, const Clip& clip) {
 }
 
 std::size_t sample_poses(const ModelView& model, const Clip& clip, double rate_hz, std::vector<float>& poses) {
+    require_joint_count(model, clip.joint_count(), clip.source);
     const auto period_us = static_cast<std::uint32_t>(std::lround(1e6 / rate_hz));
     if (!StringSampler::settings_ok(period_us, kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us))
         throw std::invalid_argument("cannot sample poses at " + std::to_string(rate_hz) + " Hz");

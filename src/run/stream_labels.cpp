@@ -7,6 +7,7 @@
 
 #include "actionstring/capacity.hpp"
 #include "common/time.hpp"
+#include "run/skeleton.hpp"
 
 namespace actionstring {
 namespace host {
@@ -19,6 +20,7 @@ constexpr int not_settled = -3;
 
 StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config, const std::vector<double>& times_s,
                           const float* positions, std::size_t joints) {
+    require_joint_count(model, joints, "the stream");
     auto annotator = std::make_unique<Annotator<HostCapacity>>();
     if (annotator->init(model, config) != Status::ok)
         throw std::invalid_argument("the model or the segmenter settings do not fit the host annotator");

@@ -65,6 +65,8 @@ std::vector<float> action_pose(const ToyWorld& world, const ToyAction& action, d
 
 }  // namespace
 
+std::vector<std::string> toy_joint_names() { return {"root", "lhipjoint", "rhipjoint", "lhand", "rhand"}; }
+
 ToyWorld make_toy_world(const ToyOptions& options) {
     ToyWorld world;
     world.key_poses = {
@@ -84,6 +86,8 @@ ToyWorld make_toy_world(const ToyOptions& options) {
 
     ModelData& m = world.model;
     m.joint_count = ToyWorld::joint_count;
+    const std::vector<std::string> joints = toy_joint_names();
+    m.joint_names.assign(joints.begin(), joints.end());
     m.root_joint = 0;
     m.left_hip_joint = 1;
     m.right_hip_joint = 2;
@@ -187,7 +191,7 @@ std::vector<ToyFrame> toy_stream(const ToyWorld& world, const std::vector<int>& 
 Clip toy_clip(const std::vector<ToyFrame>& frames, const std::string& source) {
     Clip clip;
     clip.source = source;
-    clip.joint_names = {"root", "lhipjoint", "rhipjoint", "lhand", "rhand"};
+    clip.joint_names = toy_joint_names();
     clip.parents = {-1, 0, 0, 0, 0};
     for (const ToyFrame& frame : frames) {
         clip.times.push_back(static_cast<double>(frame.time_us) * 1e-6);

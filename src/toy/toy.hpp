@@ -66,6 +66,9 @@ struct ToyWorld {
     ModelData model;
 };
 
+/// The toy skeleton's joints: root, lhipjoint, rhipjoint, lhand, rhand.
+std::vector<std::string> toy_joint_names();
+
 /// Builds the world; deterministic.
 ToyWorld make_toy_world(const ToyOptions& options = {});
 

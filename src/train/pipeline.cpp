@@ -92,6 +92,7 @@ ModelData start_model(const std::vector<LabelledClip>& clips, const TrainingOpti
                                     ": root and hip joints unknown; name them (--roles ROOT,LEFT_HIP,RIGHT_HIP)");
     ModelData m;
     m.joint_count = static_cast<std::uint16_t>(first.joint_count());
+    m.joint_names.assign(first.joint_names.begin(), first.joint_names.end());
     m.root_joint = static_cast<std::uint16_t>(first.roles.root);
     m.left_hip_joint = static_cast<std::uint16_t>(first.roles.left_hip);
     m.right_hip_joint = static_cast<std::uint16_t>(first.roles.right_hip);
