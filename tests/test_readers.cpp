@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -315,4 +316,44 @@ TEST_CASE("joint roles can be overridden and must exist") {
     CHECK(clip.roles.right_hip == 2);
     options.roles.left_hip = "nope";
     check_error([&] { parse_joint_csv("k.csv", text, options); }, 0, "left hip joint 'nope'");
+}
+
+TEST_CASE("reliability: an ASF length unit that would make positions infinite is refused") {
+    // Before: ':units length 1e-300' gave a clip of ±inf positions.
+    std::string asf = kAsf;
+    asf.replace(asf.find("length 0.45"), 11, "length 1e-300");
+    check_error([&] { parse_asf("tiny.asf", asf); }, 6, "expected a length unit between");
+    std::string huge = kAsf;
+    huge.replace(huge.find("length 0.45"), 11, "length 9e+6");
+    check_error([&] { parse_asf("huge.asf", huge); }, 6, "expected a length unit between");
+}
+
+TEST_CASE("reliability: no reader returns a position that is not finite") {
+    Clip clip;
+    clip.source = "made.csv";
+    clip.joint_names = {"a", "b"};
+    clip.times = {0.0, 0.1};
+    clip.positions = {0, 0, 0, 1, 1, 1, 0, 0, 0, 1, std::numeric_limits<float>::infinity(), 1};
+    CHECK_THROWS_WITH_AS(require_finite_positions(clip), doctest::Contains("frame 2, joint 'b'"), ReadError);
+    clip.positions[10] = 2e6f;  // beyond a kilometre in every unit a body comes in
+    CHECK_THROWS_AS(require_finite_positions(clip), ReadError);
+    clip.positions[10] = 1.0f;
+    CHECK_NOTHROW(require_finite_positions(clip));
+}
+
+TEST_CASE("reliability: files are read whole or refused with the reason") {
+    const std::string dir = "reliability_files";
+    std::filesystem::create_directories(dir);
+    // A directory was reported as an "empty file".
+    CHECK_THROWS_WITH_AS(read_file(dir), doctest::Contains("is a directory"), ReadError);
+    // "cannot open the file" gave no reason.
+    CHECK_THROWS_WITH_AS(read_file(dir + "/absent.csv"), doctest::Contains("No such file or directory"), ReadError);
+    // Over the size limit: refused before a byte is allocated, with the sizes.
+    const std::string big = dir + "/big.txt";
+    write_file(big, std::string(4096, 'x'));
+    CHECK(read_file(big).size() == 4096);
+    CHECK_THROWS_WITH_AS(read_file(big, 1000), doctest::Contains("4096 bytes; files over 1000 bytes are refused"), ReadError);
+    // Through read_clip, the same reasons reach the user.
+    CHECK_THROWS_WITH_AS(read_clip(dir + "/absent.bvh"), doctest::Contains("No such file or directory"), ReadError);
+    std::filesystem::remove_all(dir);
 }

@@ -94,7 +94,10 @@ AsfSkeleton parse_asf(const std::string& name, std::string_view text) {
             if (words.size() < 2) scanner.fail("expected 'mass|length|angle <value>' in :units");
             if (words[0] == "length") {
                 length_unit = parse_number(scanner, words[1], "a length unit");
-                if (!(length_unit > 0)) scanner.fail("expected a positive length unit");
+                // Metres per file unit = 0.0254 / length: keep it between a micrometre and a kilometre.
+                if (!(length_unit >= 0.0254e-3 && length_unit <= 0.0254e6))
+                    scanner.fail("expected a length unit between 2.54e-05 and 25400 (0.0254 / metres per unit), got " +
+                                 quoted(words[1]));
             } else if (words[0] == "angle") {
                 if (iequals(words[1], "deg")) skeleton.degrees = true;
                 else if (iequals(words[1], "rad")) skeleton.degrees = false;
@@ -378,6 +381,7 @@ Clip parse_amc(const std::string& name, std::string_view text, const AsfSkeleton
     finish_frame();
     flag_lost_frames(clip);
     assign_roles(clip, options.roles);
+    require_finite_positions(clip);
     return clip;
 }
 

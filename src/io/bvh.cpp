@@ -272,6 +272,7 @@ Clip parse_bvh(const std::string& name, std::string_view text, const ReadOptions
     }
     for (float& v : clip.positions) v = static_cast<float>(static_cast<double>(v) * scale);
     flag_lost_frames(clip);
+    require_finite_positions(clip);
     return clip;
 }
 

@@ -1,6 +1,7 @@
 // Clip helpers: joint roles and lost frames.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <string>
 
 #include "io/clip.hpp"
@@ -55,6 +56,19 @@ void assign_roles(Clip& clip, const RoleNames& names) {
         }
     }
     clip.roles = JointRoles{};
+}
+
+void require_finite_positions(const Clip& clip, double max_abs_metres) {
+    const std::size_t joints = clip.joint_count();
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        const float* p = clip.frame(f);
+        for (std::size_t k = 0; k < joints * 3; ++k)
+            if (!(std::fabs(static_cast<double>(p[k])) <= max_abs_metres))  // NaN fails too
+                throw ReadError(clip.source, 0,
+                                "frame " + std::to_string(f + 1) + ", joint " + quoted(clip.joint_names[k / 3]) +
+                                    ": position " + std::to_string(p[k]) +
+                                    " m is not finite or beyond 1e6 m (check the file's units and angles)");
+    }
 }
 
 void flag_lost_frames(Clip& clip) {

@@ -78,6 +78,11 @@ struct ReadOptions {
 /// named joint does not exist.
 void assign_roles(Clip& clip, const RoleNames& names);
 
+/// Throws ReadError naming the file, the frame and the joint when a position
+/// is not finite or beyond `max_abs_metres` (every reader's last step: no
+/// reader returns a position a pose could not be made from).
+void require_finite_positions(const Clip& clip, double max_abs_metres = 1.0e6);
+
 /// Marks frames whose joints are all exactly at the origin (lost tracking).
 void flag_lost_frames(Clip& clip);
 

@@ -99,6 +99,7 @@ Clip parse_msr_skeleton(const std::string& name, std::string_view text, const Re
                         "the last frame has " + std::to_string(rows % 20) + " of 20 joint lines (truncated file?)");
     for (std::size_t f = 0; f < rows / 20; ++f) clip.times.push_back(static_cast<double>(f) / rate);
     finish_kinect_clip(clip, options);
+    require_finite_positions(clip);
     return clip;
 }
 
@@ -125,6 +126,7 @@ Clip parse_utkinect(const std::string& name, std::string_view text, const ReadOp
     }
     if (clip.times.empty()) scanner.fail_at(0, "empty file: expected frame lines");
     finish_kinect_clip(clip, options);
+    require_finite_positions(clip);
     return clip;
 }
 
@@ -175,6 +177,7 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
     }
     if (clip.times.empty()) scanner.fail("no data rows after the header");
     finish_kinect_clip(clip, options);
+    require_finite_positions(clip);
     return clip;
 }
 

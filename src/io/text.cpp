@@ -1,10 +1,14 @@
 #include "io/text.hpp"
 
 #include <charconv>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+
+#include <sys/stat.h>
 
 namespace actionstring {
 namespace host {
@@ -14,13 +18,28 @@ ReadError::ReadError(std::string file, std::size_t line, const std::string& what
       file_(std::move(file)),
       line_(line) {}
 
-std::string read_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw ReadError(path, 0, "cannot open the file");
-    std::ostringstream content;
-    content << in.rdbuf();
-    if (in.bad()) throw ReadError(path, 0, "cannot read the file");
-    return content.str();
+std::string read_file(const std::string& path, std::uint64_t max_bytes) {
+    auto reason = [] { return std::string(std::strerror(errno)); };
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) throw ReadError(path, 0, "cannot open the file: " + reason());
+    if (S_ISDIR(info.st_mode)) throw ReadError(path, 0, "is a directory, not a file");
+    if (!S_ISREG(info.st_mode)) throw ReadError(path, 0, "is not a regular file");
+    const auto size = static_cast<std::uint64_t>(info.st_size);
+    if (size > max_bytes)
+        throw ReadError(path, 0, "the file has " + std::to_string(size) + " bytes; files over " + std::to_string(max_bytes) +
+                                     " bytes are refused (no motion file, list or model is that large)");
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if (file == nullptr) throw ReadError(path, 0, "cannot open the file: " + reason());
+    std::string content(static_cast<std::size_t>(size), '\0');
+    const std::size_t got = size == 0 ? 0 : std::fread(content.data(), 1, content.size(), file);
+    const bool failed = std::ferror(file) != 0;
+    const int read_errno = errno;
+    std::fclose(file);
+    if (failed) throw ReadError(path, 0, "cannot read the file: " + std::string(std::strerror(read_errno)));
+    if (got != content.size())
+        throw ReadError(path, 0, "read " + std::to_string(got) + " of its " + std::to_string(size) +
+                                     " bytes (the file changed while it was read?)");
+    return content;
 }
 
 void write_file(const std::string& path, const std::string& text) {

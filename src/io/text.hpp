@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,8 +38,14 @@ private:
     std::size_t line_ = 0;
 };
 
-/// Reads a whole file. Throws ReadError when it cannot be opened or read.
-std::string read_file(const std::string& path);
+/// Largest file read_file() accepts by default (256 MiB): no motion file,
+/// clip list or model comes near it, and a larger one is a wrong path.
+constexpr std::uint64_t default_max_file_bytes = 256ull << 20;
+
+/// Reads a whole regular file, exactly: a directory, a file over `max_bytes`,
+/// one that cannot be opened (with the system's reason) or read in full is
+/// refused with a ReadError. Memory used: the file's size, once.
+std::string read_file(const std::string& path, std::uint64_t max_bytes = default_max_file_bytes);
 
 /// Writes `text` to a file, replacing it. Throws ReadError (naming the file)
 /// when it cannot be opened or written.
