@@ -13,12 +13,18 @@ namespace {
 namespace model = ACTIONSTRING_C_MODEL_NAMESPACE;
 using Annotator = actionstring::Annotator<model::ModelCapacity>;
 
-// Distinguishes a state set up by actionstring_init() from stray memory.
-constexpr std::uint32_t kMagic = 0x41535452u;  // "ASTR"
+// Distinguish a state set up by actionstring_init() from stray memory: a
+// magic word, the state's own address (memory filled with the magic, or a
+// state copied or overwritten after init, does not hold it) and a closing
+// magic word after the annotator (an overrun from the memory before it).
+constexpr std::uint32_t kMagic = 0x41535452u;      // "ASTR"
+constexpr std::uint32_t kEndMagic = 0x52545341u;   // "RTSA"
 
 struct State {
     std::uint32_t magic = kMagic;
+    const void* self = nullptr;
     Annotator annotator;
+    std::uint32_t end_magic = kEndMagic;
 };
 
 static_assert(ACTIONSTRING_OK == static_cast<int>(actionstring::Status::ok), "status values match");
@@ -29,14 +35,16 @@ static_assert(ACTIONSTRING_NOT_INITIALIZED == static_cast<int>(actionstring::Sta
 
 actionstring_status code(actionstring::Status status) { return static_cast<actionstring_status>(status); }
 
-State* live(actionstring_state* handle) {
-    auto* state = reinterpret_cast<State*>(handle);
-    return state != nullptr && state->magic == kMagic ? state : nullptr;
+// The state behind a handle, or null when the handle is not one
+// actionstring_init() returned (misaligned, never initialised, overwritten).
+const State* checked(const void* handle) {
+    if (handle == nullptr || reinterpret_cast<std::uintptr_t>(handle) % alignof(State) != 0) return nullptr;
+    const auto* state = static_cast<const State*>(handle);
+    if (state->magic != kMagic || state->self != state || state->end_magic != kEndMagic) return nullptr;
+    return state;
 }
-const State* live(const actionstring_state* handle) {
-    const auto* state = reinterpret_cast<const State*>(handle);
-    return state != nullptr && state->magic == kMagic ? state : nullptr;
-}
+State* live(actionstring_state* handle) { return const_cast<State*>(checked(handle)); }
+const State* live(const actionstring_state* handle) { return checked(handle); }
 
 }  // namespace
 
@@ -56,6 +64,7 @@ actionstring_status actionstring_init(void* memory, size_t size, actionstring_st
         state->magic = 0;
         return code(status);
     }
+    state->self = state;
     *handle = reinterpret_cast<actionstring_state*>(state);
     return ACTIONSTRING_OK;
 }

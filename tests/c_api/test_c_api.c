@@ -68,6 +68,31 @@ static void contract_checks(void) {
     CHECK(actionstring_label(NULL) == -1);
     CHECK(strcmp(actionstring_label_name(NULL), "unknown") == 0);
 
+    /* Memory that starts with the magic word, or is full of it, is not a state
+     * (before: SIGSEGV in push_frame). */
+    for (size_t i = 0; i + 4 <= sizeof state_memory; i += 4) {
+        const uint32_t magic = 0x41535452u; /* the head magic, in this machine's byte order */
+        memcpy(state_memory + i, &magic, 4);
+    }
+    CHECK(actionstring_push_frame((actionstring_state*)(void*)state_memory, 0, frame, 3 * joints, &result) ==
+          ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_reset((actionstring_state*)(void*)state_memory) == ACTIONSTRING_NOT_INITIALIZED);
+
+    /* A real state copied elsewhere, overwritten after init, or reached through
+     * a misaligned handle is refused too. */
+    static alignas(max_align_t) unsigned char copy_memory[sizeof state_memory];
+    CHECK(actionstring_init(state_memory, size, &state) == ACTIONSTRING_OK && state != NULL);
+    memcpy(copy_memory, state_memory, size);
+    CHECK(actionstring_push_frame((actionstring_state*)(void*)copy_memory, 0, frame, 3 * joints, NULL) ==
+          ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_push_frame((actionstring_state*)(void*)(state_memory + 1), 0, frame, 3 * joints, NULL) ==
+          ACTIONSTRING_NOT_INITIALIZED);
+    memset(state_memory + 4, 0x5A, size - 4); /* everything after the head magic */
+    CHECK(actionstring_push_frame(state, 0, frame, 3 * joints, NULL) == ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_init(state_memory, size, &state) == ACTIONSTRING_OK && state != NULL);
+    memset(state_memory + size - 16, 0, 16); /* an overrun into the end of a state */
+    CHECK(actionstring_push_frame(state, 0, frame, 3 * joints, NULL) == ACTIONSTRING_NOT_INITIALIZED);
+
     CHECK(actionstring_init(state_memory, size, &state) == ACTIONSTRING_OK && state != NULL);
     CHECK(actionstring_label(state) == -1);
     CHECK(strcmp(actionstring_label_name(state), "unknown") == 0);
