@@ -86,7 +86,8 @@ struct Capacity {
 };
 
 /// Bounds for host tools: Kinect v2 and ASF skeletons, J ≤ 64, up to 512
-/// representatives of 64 characters on average, windows up to 8 steps long.
+/// representatives of 64 characters on average, windows up to 8 steps long,
+/// settle delays up to 1024 characters (60 s at 12 Hz, the CLI's limit).
 struct HostLimits : DefaultLimits {
     static constexpr std::size_t joints = 32;
     static constexpr std::size_t pose_joints = 32;
@@ -95,6 +96,7 @@ struct HostLimits : DefaultLimits {
     static constexpr std::size_t representatives = 512;
     static constexpr std::size_t representative_chars = 32768;
     static constexpr std::size_t windows = 8;
+    static constexpr std::size_t settle_chars = 1024;
 };
 using HostCapacity = Capacity<HostLimits>;
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "actionstring/annotator.hpp"
@@ -32,6 +33,10 @@ struct StreamLabels {
     std::vector<int> settled;          ///< The segmenter's final label of the frame's character.
     std::vector<double> settled_at_s;  ///< When that final label was output.
 };
+
+/// Why Annotator<HostCapacity>::init() refused a model and settings with
+/// `status`, in words a user can act on (which field, which setting, which limit).
+std::string annotator_refusal(const ModelView& model, const AnnotatorConfig& config, Status status);
 
 /// Streams frames (times in seconds, joints × 3 floats each) through one
 /// annotator exactly as a device would, and collects every rule's labels. The

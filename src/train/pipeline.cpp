@@ -90,6 +90,10 @@ ModelData start_model(const std::vector<LabelledClip>& clips, const TrainingOpti
     if (!first.roles.complete())
         throw std::invalid_argument(first.source +
                                     ": root and hip joints unknown; name them (--roles ROOT,LEFT_HIP,RIGHT_HIP)");
+    if (first.roles.left_hip == first.roles.right_hip)
+        throw std::invalid_argument(first.source + ": the left and right hip are the same joint (" +
+                                    first.joint_names[static_cast<std::size_t>(first.roles.left_hip)] +
+                                    "), so no frame has a facing direction; name two hips with --roles");
     ModelData m;
     m.joint_count = static_cast<std::uint16_t>(first.joint_count());
     m.joint_names.assign(first.joint_names.begin(), first.joint_names.end());
