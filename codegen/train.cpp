@@ -109,7 +109,13 @@ const char* normalization_name(LengthNormalization n) {
 // A config file: 'setting value' lines with the option names without dashes; # comments.
 bool read_config(ArgumentReader& args, const std::string& path, host::TrainingOptions& options,
                  host::ReadOptions& read) {
-    const std::string text = host::read_file(path);
+    std::string text;
+    try {
+        text = host::read_file(path);
+    } catch (const host::ReadError& error) {
+        args.error(std::string("--config: ") + error.what());
+        return false;
+    }
     host::LineScanner scanner(path, text);
     std::string_view line;
     while (scanner.next_content(line, '#')) {
