@@ -1,0 +1,76 @@
+// libFuzzer entry point for the model artifact. An input that does not start
+// like an artifact is taken as an artifact's body and given a valid checksum,
+// so the fuzzer reaches the fields and validation rather than stopping at the
+// checksum. Any input must end in a ReadError or a model that the runtime's
+// init() accepts (or that exceeds the host capacity) and streams with labels
+// in range: anything else (crash, sanitizer report, hang, other exception,
+// an out-of-range label, NaN) is a bug.
+#include <cinttypes>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "actionstring/annotator.hpp"
+#include "actionstring/capacity.hpp"
+#include "model/artifact.hpp"
+#include "io/clip.hpp"
+#include "model/header.hpp"
+
+using namespace actionstring;
+using namespace actionstring::host;
+
+namespace {
+
+std::string with_checksum(const std::string& body) {
+    char line[64];
+    std::snprintf(line, sizeof line, "checksum fnv1a64 %016" PRIx64 "\n", fnv1a64(body));
+    return "actionstring-model " + std::to_string(artifact_version) + "\n" + line + body;
+}
+
+// A standing body of `joints` joints whose hips (the model's roles) are apart.
+std::vector<float> frame_for(const ModelView& model, int step) {
+    std::vector<float> frame(3u * model.joint_count);
+    for (std::size_t j = 0; j < model.joint_count; ++j) {
+        frame[3 * j + 0] = 0.05f * static_cast<float>(j % 7) + 0.01f * static_cast<float>(step % 13);
+        frame[3 * j + 1] = 0.8f + 0.03f * static_cast<float>(j % 11);
+        frame[3 * j + 2] = 0.02f * static_cast<float>(j % 5);
+    }
+    frame[3u * model.left_hip_joint] = 0.15f;
+    frame[3u * model.right_hip_joint] = -0.15f;
+    return frame;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    std::string text(reinterpret_cast<const char*>(data), size);
+    if (text.rfind("actionstring-model", 0) != 0) text = with_checksum(text);
+    ModelData model;
+    try {
+        model = parse_model("fuzz.model", text);
+    } catch (const ReadError&) {
+        return 0;  // the expected outcome for malformed input
+    }
+    // A model that loads has passed the same checks as codegen and init().
+    const std::string header = generate_header(model, "0", "fuzz", "fuzz.model");
+    if (header.empty()) std::abort();
+    static auto annotator = std::make_unique<Annotator<HostCapacity>>();
+    const ModelView view = model.view();
+    const Status status = annotator->init(view);
+    if (status == Status::model_exceeds_capacity) return 0;
+    if (status != Status::ok) std::abort();
+    for (int step = 0; step < 40; ++step) {
+        const std::vector<float> frame = frame_for(view, step);
+        annotator->push_frame(static_cast<std::int64_t>(step) * 40000, frame.data());
+        const LabelId label = annotator->label(), live = annotator->live_label();
+        if (label != unknown_label && label >= view.label_count) std::abort();
+        if (live != unknown_label && live >= view.label_count) std::abort();
+        if (!std::isfinite(annotator->confidence())) std::abort();
+    }
+    return 0;
+}
