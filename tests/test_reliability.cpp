@@ -86,10 +86,10 @@ TEST_CASE("defect 8: models that load but misbehave are refused at load, naming 
             {"a hip beyond the skeleton", [](ModelData& m) { m.left_hip_joint = 9; }},
             {"k above R", [](ModelData& m) { m.neighbours = 99; }},
         };
-        for (const auto& [what, mutate] : mutations) {
-            CAPTURE(what);
+        for (const auto& mutation : mutations) {
+            CAPTURE(mutation.first);
             ToyWorld world = make_toy_world();
-            mutate(world.model);
+            mutation.second(world.model);
             auto annotator = std::make_unique<Annotator<ToyCapacity>>();
             CHECK(annotator->init(world.model.view()) != Status::ok);
             CHECK_THROWS_AS(generate_header(world.model, "0", "toy", "toy.model"), ReadError);

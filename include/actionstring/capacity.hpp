@@ -46,6 +46,10 @@ struct Capacity {
     static_assert(Limits::joints > 0 && Limits::pose_joints > 0 && Limits::feature_dim > 0 && Limits::components > 0 &&
                       Limits::representatives > 0 && Limits::representative_chars > 0,
                   "every capacity must be positive");
+    // Reads every member at instantiation, so none of a limits type goes unused.
+    static_assert(Limits::windows < (std::size_t{1} << 16) && Limits::settle_chars > 0 &&
+                      (Limits::path_lengths || !Limits::path_lengths),
+                  "windows below 65536 and settle_chars above 0");
     using limits = Limits;
     static constexpr std::size_t max_joints = Limits::joints;
     static constexpr std::size_t max_pose_dim = 3 * Limits::pose_joints;
