@@ -68,11 +68,17 @@ SoakResult soak(const host::ConcatenatedStream& stream, double hours, bool wrap3
     const std::int64_t loop_us = stream.times_us.back() - stream.times_us.front() + period_us;
     const auto total_frames = static_cast<std::uint64_t>(hours * 3600.0 * 120.0);
     const std::uint64_t frames_per_hour = 3600u * 120u;
+    // Every measurement buffer is allocated and touched before the first frame,
+    // so resident memory measures the annotator, not the bookkeeping.
+    const std::size_t hour_count = static_cast<std::size_t>((total_frames + frames_per_hour - 1) / frames_per_hour);
+    result.hours.resize(hour_count);
+    for (HourFigures& h : result.hours) h.frame_ns.assign(frames_per_hour / 64 + 1, 0.0);
+    std::vector<std::size_t> samples(hour_count, 0);
     actionstring::LabelId last_settled = actionstring::unknown_label;
     const auto start = Clock::now();
     for (std::uint64_t f = 0; f < total_frames; ++f) {
-        if (f % frames_per_hour == 0) result.hours.emplace_back();
-        HourFigures& hour = result.hours.back();
+        const std::size_t hour_index = static_cast<std::size_t>(f / frames_per_hour);
+        HourFigures& hour = result.hours[hour_index];
         const std::size_t i = f % stream.frame_count();
         const std::int64_t loops = static_cast<std::int64_t>(f / stream.frame_count());
         const std::int64_t true_us = loops * loop_us + (stream.times_us[i] - stream.times_us.front());
@@ -80,7 +86,8 @@ SoakResult soak(const host::ConcatenatedStream& stream, double hours, bool wrap3
         const bool timed = f % 64 == 0;
         const auto before = timed ? Clock::now() : Clock::time_point{};
         const actionstring::FrameResult r = annotator->push_frame(stamp, stream.frame(i));
-        if (timed) hour.frame_ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - before).count());
+        if (timed)
+            hour.frame_ns[samples[hour_index]++] = std::chrono::duration<double, std::nano>(Clock::now() - before).count();
         ++hour.frames;
         const bool accepted = r.status == actionstring::Status::ok || r.status == actionstring::Status::stream_restarted;
         hour.accepted += accepted;
@@ -91,6 +98,7 @@ SoakResult soak(const host::ConcatenatedStream& stream, double hours, bool wrap3
             ++hour.settled_changes;
         }
         if (f % frames_per_hour == frames_per_hour - 1 || f + 1 == total_frames) {
+            hour.frame_ns.resize(samples[hour_index]);
             std::sort(hour.frame_ns.begin(), hour.frame_ns.end());
             hour.rss = resident_bytes();
         }
