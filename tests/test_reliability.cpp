@@ -15,6 +15,7 @@
 #include "io/stream.hpp"
 #include "model/artifact.hpp"
 #include "model/header.hpp"
+#include "run/encode.hpp"
 #include "run/stream_labels.hpp"
 #include "toy/toy.hpp"
 #include "train/pipeline.hpp"
@@ -43,6 +44,27 @@ TEST_CASE("defect 2: an annotator cannot be set up to emit unbounded characters 
     world.model.string_period_us = 1;
     CHECK_THROWS_WITH_AS(parse_model("fast.model", artifact_of(world.model)), doctest::Contains("string_period_us"),
                          ReadError);
+}
+
+TEST_CASE("defect 2: a gap in a file restarts its string instead of padding it") {
+    // Before: the host padded every gap with repeated ticks, so a UTKinect file whose
+    // frame ids jumped by 2e9 made train die of bad_alloc, and a 55-minute gap
+    // trained silently at 755 MB.
+    ToyWorld world = make_toy_world();
+    const ModelView view = world.model.view();
+    LabelledClip clip = toy_clips(world, 1, 9).front();
+    const std::size_t plain = clip_string(view, clip.clip).size();
+    std::vector<float> poses;
+    sample_poses(view, clip.clip, 30.0, poses);
+    const std::size_t plain_poses = poses.size();
+    const std::size_t half = clip.clip.frame_count() / 2;
+    for (std::size_t f = half; f < clip.clip.frame_count(); ++f) clip.clip.times[f] += 6.7e7;  // 2e9 ids at 30 Hz
+    const std::size_t gapped = clip_string(view, clip.clip).size();
+    CHECK(gapped <= plain + 1);  // one tick more at most: the restart's tick 0
+    CHECK(gapped + 2 >= plain);
+    poses.clear();
+    sample_poses(view, clip.clip, 30.0, poses);
+    CHECK(poses.size() <= plain_poses + 4 * view.pose_dim());
 }
 
 TEST_CASE("defect 7: a settle delay that would overflow is refused, not undefined behaviour") {
