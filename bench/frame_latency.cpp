@@ -179,10 +179,12 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     // Stages, each called alone on every frame of the stream.
     std::vector<std::int64_t> normalise_ns, project_ns, posterior_ns, descent_ns;
     float pose[Cap::max_pose_dim], feature[Cap::max_feature_dim], posterior[Cap::max_components];
+    float skeleton_buffer[3 * Cap::max_joints];
+    float* const skeleton_data = skeleton_buffer;
     for (int pass = 0; pass <= passes; ++pass)
         for (std::size_t f = 0; f < frames; ++f) {
             Status status = Status::ok;
-            const std::int64_t a = timed([&] { status = normalize_pose(model, stream.frame(f), pose); });
+            const std::int64_t a = timed([&] { status = normalize_pose(model, stream.frame(f), pose, skeleton_data); });
             if (status != Status::ok) continue;
             const float* input = pose;
             std::int64_t b = 0;

@@ -12,6 +12,7 @@
 #include "model/artifact.hpp"
 #include "options.hpp"
 #include "run/classify.hpp"
+#include "train/cross_validation.hpp"
 #include "train/pipeline.hpp"
 
 namespace actionstring {
@@ -35,7 +36,8 @@ void print_train_usage(std::FILE* out) {
                  "  --em-iterations N       [%d]     --em-tolerance X  relative [%g]\n"
                  "  --em-restarts N         EM runs from seeds seed..seed+N-1; the highest training\n"
                  "                          likelihood is kept [%d]\n"
-                 "  --scale none|hip-width  size normalisation of poses [none]\n"
+                 "  --scale none|hip-width|bones  size normalisation of poses: none, by hip\n"
+                 "                          width, or every bone at its mean training length [none]\n"
                  "  --epsilon E             split clusters whose L1 diameter is >= E [%g]\n"
                  "  --max-characters K      cap on tree leaves [%d]\n"
                  "  --string-rate HZ        characters per second [%g]\n"
@@ -52,6 +54,8 @@ void print_train_usage(std::FILE* out) {
                  "  --config FILE           'option value' lines, same names without dashes\n"
                  "  --validate LIST         report clip accuracy on LIST after training\n"
                  "  --json FILE             write the training report (sizes, stage times) as JSON\n"
+                 "  --cv                    leave-one-subject-out cross-validation over the list's\n"
+                 "                          subject column: a fold table and the mean (no model written)\n"
                  "  --sweep                 with --validate: vary one setting at a time around the\n"
                  "                          given ones and print a table (choose on validation data)\n",
                  d.components, d.covariance_floor, d.pca_dim, d.feature_rate_hz, d.em_max_iterations, d.em_tolerance,
@@ -79,7 +83,7 @@ bool apply(ArgumentReader& args, const std::string& name, const std::string& val
     else if (name == "em-iterations") o.em_max_iterations = static_cast<int>(number(1, 100000));
     else if (name == "em-tolerance") o.em_tolerance = number(0, 1);
     else if (name == "em-restarts") o.em_restarts = static_cast<int>(number(1, 64));
-    else if (name == "scale") o.scale_mode = static_cast<ScaleMode>(choice({"none", "hip-width"}));
+    else if (name == "scale") o.scale_mode = static_cast<ScaleMode>(choice({"none", "hip-width", "bones"}));
     else if (name == "epsilon") o.epsilon = number(1e-9, 1e9);
     else if (name == "max-characters") o.max_characters = static_cast<int>(number(1, 4096));
     else if (name == "string-rate") o.string_rate_hz = number(0.1, 10000);
@@ -156,6 +160,19 @@ std::string training_json(const std::string& model_path, const ModelView& view, 
     return out.end_object().str();
 }
 
+// Leave-one-subject-out over the list's subjects: a fold table, then the mean.
+int run_cross_validation(const std::vector<host::LabelledClip>& clips, const host::TrainingOptions& options) {
+    std::fprintf(stderr, "train: leave-one-subject-out cross-validation\n");
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<host::FoldResult> folds = host::cross_validate(clips, options);
+    std::printf("%-12s %6s %6s %9s\n", "held out", "clips", "reps", "accuracy");
+    for (const host::FoldResult& f : folds)
+        std::printf("%-12s %6zu %6d %9.3f\n", f.subject.c_str(), f.clips, f.representatives, f.clip_accuracy);
+    std::printf("%-12s %6s %6s %9.3f   (%.1f s)\n", "mean", "", "", host::mean_accuracy(folds),
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    return 0;
+}
+
 int run_sweep(const std::vector<host::LabelledClip>& train, const std::vector<host::LabelledClip>& validation,
               const host::TrainingOptions& base) {
     struct Variation {
@@ -211,7 +228,7 @@ int run_train(int argc, char** argv) {
     host::TrainingOptions options;
     host::ReadOptions read;
     std::string clips_path, out_path, validate_path, json_path;
-    bool sweep = false;
+    bool sweep = false, cv = false;
     ArgumentReader args("train", argc, argv);
     while (args.more()) {
         const std::string arg = args.next();
@@ -224,6 +241,7 @@ int run_train(int argc, char** argv) {
         else if (arg == "--validate") validate_path = args.value(arg);
         else if (arg == "--json") json_path = args.value(arg);
         else if (arg == "--sweep") sweep = true;
+        else if (arg == "--cv") cv = true;
         else if (arg == "--keep-singletons") options.keep_singletons = true;
         else if (arg == "--config") {
             if (!read_config(args, args.value(arg), options, read)) return 2;
@@ -237,7 +255,7 @@ int run_train(int argc, char** argv) {
         if (!args.ok()) return 2;
     }
     if (!args.ok()) return 2;
-    if (clips_path.empty() || (out_path.empty() && !sweep)) {
+    if (clips_path.empty() || (out_path.empty() && !sweep && !cv)) {
         print_train_usage(stderr);
         return 2;
     }
@@ -248,6 +266,7 @@ int run_train(int argc, char** argv) {
         std::vector<host::LabelledClip> validation;
         if (!validate_path.empty()) validation = host::load_labelled_clips(validate_path, read);
         if (sweep) return run_sweep(train, validation, options);
+        if (cv) return run_cross_validation(train, options);
         auto stage_start = std::chrono::steady_clock::now();
         options.progress = [&](const char* stage) {
             std::fprintf(stderr, "train: %s\n", stage);

@@ -5,11 +5,15 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "actionstring/gmm.hpp"
 #include "actionstring/normalize.hpp"
+#include "model/artifact.hpp"
 #include "toy/toy.hpp"
+#include "train/pipeline.hpp"
 
 using namespace actionstring;
 
@@ -136,4 +140,48 @@ TEST_CASE("frames that are not poses are rejected with a reason") {
     vertical[7] = 1.2f;
     normalized(view, vertical, Status::degenerate_pose);
     CHECK(normalize_pose(view, nullptr, pose.data()) == Status::invalid_argument);
+}
+
+TEST_CASE("bone-length scaling: a bigger or differently built body gives the same pose") {
+    host::ToyWorld world = host::make_toy_world();
+    host::TrainingOptions options;
+    options.scale_mode = ScaleMode::bone_lengths;
+    options.components = 0;
+    options.pca_dim = 6;
+    const std::vector<host::LabelledClip> clips = host::toy_clips(world, 2, 4);
+    const host::ModelData model = host::train_model(clips, options);
+    const ModelView view = model.view();
+    REQUIRE(uses_bones(view.scale_mode));
+    REQUIRE(view.bone_lengths != nullptr);
+    CHECK(view.bone_lengths[0] == 0.0f);  // the root has no bone
+    CHECK(view.bone_lengths[3] > 0.1f);   // root → left hand
+
+    const host::Clip& clip = clips.front().clip;
+    const std::size_t J = clip.joint_count(), D = view.pose_dim();
+    std::vector<float> skeleton(3 * J), pose(D), other(D);
+    for (std::size_t f = 0; f < clip.frame_count(); f += 7) {
+        const float* p = clip.frame(f);
+        REQUIRE(normalize_pose(view, p, pose.data(), skeleton.data()) == Status::ok);
+        // An adult 1.3× the size, and a child whose arms are half as long: every
+        // bone keeps its direction, so the normalised pose is the same.
+        for (const auto& [body, arms] : {std::pair<float, float>{1.3f, 1.3f}, {0.8f, 0.5f}}) {
+            std::vector<float> q(p, p + 3 * J);
+            for (std::size_t j = 1; j < J; ++j) {
+                const float scale = j >= 3 ? arms : body;  // joints 3, 4 are the hands
+                for (std::size_t a = 0; a < 3; ++a) q[3 * j + a] = p[a] + scale * (p[3 * j + a] - p[a]);
+            }
+            REQUIRE(normalize_pose(view, q.data(), other.data(), skeleton.data()) == Status::ok);
+            for (std::size_t k = 0; k < D; ++k) CHECK(other[k] == doctest::Approx(pose[k]).epsilon(1e-5));
+        }
+    }
+    // Without its scratch the bone-length model refuses rather than guess.
+    CHECK(normalize_pose(view, clip.frame(0), pose.data()) == Status::invalid_argument);
+    // The tree and lengths round-trip through the artifact, and a broken order is refused.
+    const host::ModelData loaded = host::parse_model("bones.model", host::serialize_model(model));
+    CHECK(loaded.bone_lengths == model.bone_lengths);
+    host::ModelData broken = host::parse_model("bones.model", host::serialize_model(model));
+    std::swap(broken.bone_order[0], broken.bone_order[1]);  // a child before the root
+    const char* problem = nullptr;
+    CHECK(validate_model(broken.view(), &problem) == Status::invalid_model);
+    CHECK(std::string(problem).rfind("bone_order", 0) == 0);
 }

@@ -82,7 +82,7 @@ public:
             return out;
         }
         const std::size_t current = has_previous_ ? 1u - previous_ : 0u;
-        out.status = normalize_pose(*model_, positions, poses_[current]);
+        out.status = normalize_pose(*model_, positions, poses_[current], skeleton_);
         if (out.status != Status::ok) return out;
         const SamplePlan plan = sampler_.advance(time_us);
         out.status = plan.status;
@@ -131,6 +131,7 @@ private:
     const ModelView* model_ = nullptr;
     StringSampler sampler_;
     float poses_[2][Cap::max_pose_dim] = {};
+    float skeleton_[3 * Cap::max_joints] = {};  // the rebuilt skeleton (bone-length scaling)
     Character characters_[2] = {};
     bool ready_[2] = {};
     std::size_t previous_ = 0;

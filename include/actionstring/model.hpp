@@ -50,7 +50,20 @@ enum class ScaleMode : std::uint8_t {
     /// Divide by the 3-D hip width and multiply by `reference_scale`, so poses
     /// of actors of different size map to the same units.
     hip_width = 1,
+    /// Rebuild the skeleton with the model's reference bone lengths: every
+    /// bone keeps its direction and takes the training mean length, walking
+    /// the kinematic tree from its roots, so a child and an adult doing the
+    /// same thing give the same pose.
+    bone_lengths = 2,
 };
+
+/// Most joints a model scaled by bone lengths may have (its validation is
+/// quadratic in them); larger rigs train on a body subset.
+constexpr std::size_t max_bone_joints = 256;
+
+/// Whether a model's scale mode needs its kinematic tree (joint_parents,
+/// bone_order, bone_lengths).
+constexpr bool uses_bones(ScaleMode mode) noexcept { return mode == ScaleMode::bone_lengths; }
 
 /// Non-owning view of a trained model. All pointers refer to storage that must
 /// outlive every state object initialised from this view (a generated header's
@@ -160,14 +173,37 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
         for (std::size_t j = 0; j < m.joint_count; ++j)
             if (m.joint_names[j] == nullptr) return refuse(problem, "joint_names: a null name");
     if (m.up_axis > 2) return refuse(problem, "up_axis: not 0, 1 or 2");
-    if (m.scale_mode > ScaleMode::hip_width) return refuse(problem, "scale_mode: unknown mode");
+    if (m.scale_mode > ScaleMode::bone_lengths) return refuse(problem, "scale_mode: unknown mode");
     if (m.covariance > Covariance::diagonal) return refuse(problem, "covariance: unknown kind");
     if (m.root_joint >= m.joint_count) return refuse(problem, "root_joint: not a joint of the skeleton");
     if (m.left_hip_joint >= m.joint_count) return refuse(problem, "left_hip_joint: not a joint of the skeleton");
     if (m.right_hip_joint >= m.joint_count) return refuse(problem, "right_hip_joint: not a joint of the skeleton");
-    if (m.left_hip_joint == m.right_hip_joint) return refuse(problem, "right_hip_joint: the same joint as the left hip");
+    if (m.left_hip_joint == m.right_hip_joint)
+        return refuse(problem, "right_hip_joint: the same joint as the left hip");
     if (m.scale_mode == ScaleMode::hip_width && !(m.reference_scale > 0.0f && m.reference_scale <= big))
         return refuse(problem, "reference_scale: not a positive finite length");
+    if (uses_bones(m.scale_mode)) {
+        if (m.joint_parents == nullptr || m.bone_order == nullptr || m.bone_lengths == nullptr)
+            return refuse(problem, "joint_parents: bone-length scaling needs the kinematic tree");
+        if (m.joint_count > max_bone_joints) return refuse(problem, "joint_count: over 256 joints to scale by bones");
+        // bone_order lists every joint once, each after its parent.
+        for (std::size_t k = 0; k < m.joint_count; ++k) {
+            const std::size_t j = m.bone_order[k];
+            if (j >= m.joint_count) return refuse(problem, "bone_order: not a joint of the skeleton");
+            const int parent = m.joint_parents[j];
+            if (parent >= static_cast<int>(m.joint_count) || parent < -1)
+                return refuse(problem, "joint_parents: not a joint of the skeleton");
+            if (parent >= 0) {
+                bool earlier = false;
+                for (std::size_t e = 0; e < k && !earlier; ++e) earlier = m.bone_order[e] == parent;
+                if (!earlier) return refuse(problem, "bone_order: a joint before its parent, or twice");
+            }
+            for (std::size_t e = 0; e < k; ++e)
+                if (m.bone_order[e] == j) return refuse(problem, "bone_order: a joint listed twice");
+        }
+        if (!detail::all_within(m.bone_lengths, m.joint_count, 0.0f, 1000.0f))
+            return refuse(problem, "bone_lengths: missing, negative, non-finite or beyond 1 km");
+    }
     if (m.pose_joint_count == 0 || m.pose_joints == nullptr) return refuse(problem, "pose_joints: empty");
     for (std::size_t i = 0; i < m.pose_joint_count; ++i)
         if (m.pose_joints[i] >= m.joint_count) return refuse(problem, "pose_joints: not a joint of the skeleton");
@@ -249,7 +285,8 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     if (m.normalization > LengthNormalization::query) return refuse(problem, "normalization: unknown");
     if (m.window_chars == 0) return refuse(problem, "window_chars: zero");
     if (m.step_chars == 0) return refuse(problem, "step_chars: zero");
-    if (m.neighbours == 0 || m.neighbours > R) return refuse(problem, "neighbours: zero or more than the representatives");
+    if (m.neighbours == 0 || m.neighbours > R)
+        return refuse(problem, "neighbours: zero or more than the representatives");
     if (detail::is_nan(m.unknown_distance) || m.unknown_distance < 0.0f)
         return refuse(problem, "unknown_distance: negative or NaN");
     return Status::ok;

@@ -2,8 +2,9 @@
 //
 // Joint positions become a pose vector that does not depend on where the
 // actor stands or which way they face: positions relative to the root joint,
-// rotated about the up axis so the hips face a canonical direction, optionally
-// scaled by hip width.
+// rotated about the up axis so the hips face a canonical direction. Optionally
+// the body's size is taken out too: scaled by hip width, or rebuilt with the
+// model's reference bone lengths (each bone keeps its direction).
 #pragma once
 
 #include <cmath>
@@ -31,18 +32,25 @@ constexpr float max_pose_coordinate = 1.0e4f;
 ///                  during the call
 /// @param pose_out  receives pose_dim() floats (caller-owned); its contents
 ///                  are meaningful only when the call returns Status::ok
+/// @param skeleton  scratch of joint_count × 3 floats (caller-owned), needed
+///                  only when the model scales by bone lengths; may be null otherwise
 /// @return ok, non_finite_input, tracking_lost (every joint the model reads is
 ///         exactly at the origin, as Kinect reports lost tracking),
-///         degenerate_pose (no facing direction) or pose_out_of_range
-inline Status normalize_pose(const ModelView& model, const float* positions, float* pose_out) noexcept {
-    if (positions == nullptr || pose_out == nullptr || model.up_axis > 2) return Status::invalid_argument;
+///         degenerate_pose (no facing direction), pose_out_of_range, or
+///         invalid_argument (a null pointer the model needs)
+inline Status normalize_pose(const ModelView& model, const float* input, float* pose_out,
+                             float* skeleton = nullptr) noexcept {
+    if (input == nullptr || pose_out == nullptr || model.up_axis > 2) return Status::invalid_argument;
+    const bool bones = uses_bones(model.scale_mode);
+    if (bones && skeleton == nullptr) return Status::invalid_argument;
     using Vec3 = Eigen::Vector3f;
-    auto joint = [positions](std::size_t index) { return Eigen::Map<const Vec3>(positions + 3 * index); };
+    auto raw = [input](std::size_t index) { return Eigen::Map<const Vec3>(input + 3 * index); };
 
-    // Validate only the joints the model reads: engine rigs carry many more.
+    // Validate only the joints the model reads: engine rigs carry many more
+    // (with bone lengths, every joint: each one places its children).
     bool any_non_zero = false;
     auto check = [&](std::size_t index) {
-        const Vec3 p = joint(index);
+        const Vec3 p = raw(index);
         for (int a = 0; a < 3; ++a) {
             if (!detail::is_finite(p[a])) return false;
             any_non_zero = any_non_zero || p[a] != 0.0f;
@@ -53,7 +61,32 @@ inline Status normalize_pose(const ModelView& model, const float* positions, flo
         return Status::non_finite_input;
     for (std::size_t k = 0; k < model.pose_joint_count; ++k)
         if (!check(model.pose_joints[k])) return Status::non_finite_input;
+    if (bones)
+        for (std::size_t j = 0; j < model.joint_count; ++j)
+            if (!check(j)) return Status::non_finite_input;
     if (!any_non_zero) return Status::tracking_lost;
+
+    // Bone lengths: rebuild the skeleton root first, each joint its parent's
+    // rebuilt position plus its bone's direction times the reference length.
+    // A bone of (almost) no length keeps no direction and adds nothing.
+    if (bones) {
+        for (std::size_t k = 0; k < model.joint_count; ++k) {
+            const std::size_t j = model.bone_order[k];
+            Eigen::Map<Vec3> out(skeleton + 3 * j);
+            const int parent = model.joint_parents[j];
+            if (parent < 0) {
+                out = raw(j);
+                continue;
+            }
+            const auto p = static_cast<std::size_t>(parent);
+            const Vec3 bone = raw(j) - raw(p);
+            const float length = bone.norm();
+            out = Eigen::Map<const Vec3>(skeleton + 3 * p);
+            if (length > 1.0e-6f) out += bone * (model.bone_lengths[j] / length);
+        }
+    }
+    const float* positions = bones ? skeleton : input;
+    auto joint = [positions](std::size_t index) { return Eigen::Map<const Vec3>(positions + 3 * index); };
 
     const int up = model.up_axis;
     const int h1 = (up + 1) % 3;

@@ -54,11 +54,11 @@ std::size_t sample_poses(const ModelView& model, const Clip& clip, double rate_h
     StringSampler sampler;
     sampler.configure(period_us, kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us);
     const std::size_t D = model.pose_dim();
-    std::vector<float> previous(D), current(D);
+    std::vector<float> previous(D), current(D), skeleton(3u * model.joint_count);
     bool has_previous = false;
     std::size_t rejected = 0;
     for (std::size_t f = 0; f < clip.frame_count(); ++f) {
-        if (normalize_pose(model, clip.frame(f), current.data()) != Status::ok) {
+        if (normalize_pose(model, clip.frame(f), current.data(), skeleton.data()) != Status::ok) {
             ++rejected;
             continue;
         }

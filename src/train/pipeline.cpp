@@ -77,6 +77,55 @@ double median_hip_width(const Clip& clip) {
     return median(widths);
 }
 
+// The kinematic tree of the clips' skeleton, joints ordered parents first,
+// and each bone's reference length: its mean over every training frame.
+void set_bones(ModelData& m, const std::vector<LabelledClip>& clips) {
+    const Clip& first = clips.front().clip;
+    const std::size_t J = first.joint_count();
+    if (first.parents.size() != J)
+        throw std::invalid_argument(first.source +
+                                    ": bone-length scaling needs the skeleton's parents, which this "
+                                    "format does not give; use --scale none");
+    if (J > max_bone_joints)
+        throw std::invalid_argument(first.source + ": " + std::to_string(J) +
+                                    " joints; bone-length scaling takes at most " + std::to_string(max_bone_joints));
+    m.joint_parents.clear();
+    for (int parent : first.parents) m.joint_parents.push_back(static_cast<std::int16_t>(parent));
+    // Parents first: roots, then each joint whose parent is placed, in index order.
+    std::vector<bool> placed(J, false);
+    m.bone_order.clear();
+    while (m.bone_order.size() < J) {
+        const std::size_t before = m.bone_order.size();
+        for (std::size_t j = 0; j < J; ++j) {
+            const int parent = first.parents[j];
+            if (!placed[j] && (parent < 0 || placed[static_cast<std::size_t>(parent)])) {
+                placed[j] = true;
+                m.bone_order.push_back(static_cast<std::uint16_t>(j));
+            }
+        }
+        if (m.bone_order.size() == before)
+            throw std::invalid_argument(first.source + ": the joints' parents form a cycle");
+    }
+    std::vector<double> sum(J, 0.0);
+    std::size_t frames = 0;
+    for (const LabelledClip& c : clips)
+        for (std::size_t f = 0; f < c.clip.frame_count(); ++f) {
+            if (!c.clip.lost.empty() && c.clip.lost[f]) continue;
+            const float* p = c.clip.frame(f);
+            for (std::size_t j = 0; j < J; ++j) {
+                if (first.parents[j] < 0) continue;
+                const std::size_t a = 3 * j, b = 3 * static_cast<std::size_t>(first.parents[j]);
+                sum[j] += std::sqrt(std::pow(double(p[a]) - p[b], 2.0) + std::pow(double(p[a + 1]) - p[b + 1], 2.0) +
+                                    std::pow(double(p[a + 2]) - p[b + 2], 2.0));
+            }
+            ++frames;
+        }
+    if (frames == 0) throw std::invalid_argument("no tracked frame to measure bone lengths on");
+    m.bone_lengths.clear();
+    for (std::size_t j = 0; j < J; ++j)
+        m.bone_lengths.push_back(static_cast<float>(sum[j] / static_cast<double>(frames)));
+}
+
 // Stage 0: the skeleton tables, from the first clip (all clips share its joints).
 ModelData start_model(const std::vector<LabelledClip>& clips, const TrainingOptions& options, TrainingReport& r) {
     if (clips.empty()) throw std::invalid_argument("no training clips");
@@ -108,6 +157,7 @@ ModelData start_model(const std::vector<LabelledClip>& clips, const TrainingOpti
                                     " joints besides the root; at most " +
                                     std::to_string(HostCapacity::max_pose_dim / 3) + " are supported");
     m.scale_mode = options.scale_mode;
+    if (uses_bones(options.scale_mode)) set_bones(m, clips);
     if (options.scale_mode == ScaleMode::hip_width) {
         m.reference_scale = static_cast<float>(median_hip_width(first));
         if (!(m.reference_scale > 0)) throw std::invalid_argument("hip width is zero: cannot scale by it");
