@@ -69,10 +69,14 @@ std::vector<double> annotator_frame_times(const ModelView& model, const std::vec
     auto annotator = std::make_unique<Annotator<HostCapacity>>();
     std::vector<double> times;
     if (annotator->init(model) != Status::ok) return times;
+    // Clips back to back on one clock: each starts 1 µs after the previous
+    // ends, whatever its own time axis (an interval of a recording starts late).
     std::int64_t offset = 0;
     for (const LabelledClip& c : clips) {
+        if (c.clip.frame_count() == 0) continue;
+        const double first = c.clip.times.front();
         for (std::size_t f = 0; f < c.clip.frame_count(); ++f) {
-            const std::int64_t t = offset + seconds_to_us(c.clip.times[f]);
+            const std::int64_t t = offset + seconds_to_us(c.clip.times[f] - first);
             const auto begin = std::chrono::steady_clock::now();
             annotator->push_frame(t, c.clip.frame(f));
             times.push_back(std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - begin).count());

@@ -36,7 +36,8 @@ void summarise(ClipResults& results, const std::vector<LabelledClip>& clips);
 /// representatives (runtime batch distance, kNN).
 ClipResults evaluate_model(const ModelView& model, const std::vector<LabelledClip>& clips);
 
-/// Per-frame cost of the annotator over the clips' frames, in nanoseconds (sorted).
+/// Per-frame cost of the annotator over the clips' frames, joined back to back
+/// as one stream, in nanoseconds (sorted).
 std::vector<double> annotator_frame_times(const ModelView& model, const std::vector<LabelledClip>& clips);
 
 }  // namespace host
