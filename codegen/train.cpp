@@ -38,6 +38,8 @@ void print_train_usage(std::FILE* out) {
                  "                          likelihood is kept [%d]\n"
                  "  --scale none|hip-width|bones  size normalisation of poses: none, by hip\n"
                  "                          width, or every bone at its mean training length [none]\n"
+                 "  --velocity W            weight of the pose's velocity beside the pose, 0 = none [%g]\n"
+                 "  --velocity-span S       seconds the velocity is taken over [%g]\n"
                  "  --epsilon E             split clusters whose L1 diameter is >= E [%g]\n"
                  "  --max-characters K      cap on tree leaves [%d]\n"
                  "  --string-rate HZ        characters per second [%g]\n"
@@ -59,8 +61,8 @@ void print_train_usage(std::FILE* out) {
                  "  --sweep                 with --validate: vary one setting at a time around the\n"
                  "                          given ones and print a table (choose on validation data)\n",
                  d.components, d.covariance_floor, d.pca_dim, d.feature_rate_hz, d.em_max_iterations, d.em_tolerance,
-                 d.em_restarts, d.epsilon, d.max_characters, d.string_rate_hz, d.sigma, d.neighbours, d.window_seconds,
-                 d.step_seconds, d.seed);
+                 d.em_restarts, d.velocity_weight, d.velocity_span_s, d.epsilon, d.max_characters, d.string_rate_hz,
+                 d.sigma, d.neighbours, d.window_seconds, d.step_seconds, d.seed);
 }
 
 bool apply(ArgumentReader& args, const std::string& name, const std::string& value, host::TrainingOptions& o,
@@ -84,6 +86,8 @@ bool apply(ArgumentReader& args, const std::string& name, const std::string& val
     else if (name == "em-tolerance") o.em_tolerance = number(0, 1);
     else if (name == "em-restarts") o.em_restarts = static_cast<int>(number(1, 64));
     else if (name == "scale") o.scale_mode = static_cast<ScaleMode>(choice({"none", "hip-width", "bones"}));
+    else if (name == "velocity") o.velocity_weight = number(0, 1000);
+    else if (name == "velocity-span") o.velocity_span_s = number(0.01, 2);
     else if (name == "epsilon") o.epsilon = number(1e-9, 1e9);
     else if (name == "max-characters") o.max_characters = static_cast<int>(number(1, 4096));
     else if (name == "string-rate") o.string_rate_hz = number(0.1, 10000);

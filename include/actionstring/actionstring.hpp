@@ -9,6 +9,7 @@
 #include "actionstring/model.hpp"
 #include "actionstring/capacity.hpp"
 #include "actionstring/normalize.hpp"
+#include "actionstring/motion.hpp"
 #include "actionstring/projection.hpp"
 #include "actionstring/gmm.hpp"
 #include "actionstring/tree.hpp"

@@ -36,6 +36,9 @@ struct DefaultLimits {
     static constexpr bool path_lengths = true;
     /// Longest settle delay of the segmenter, in characters.
     static constexpr std::size_t settle_chars = 48;
+    /// Whether the state can hold models with motion (velocity) input: a ring
+    /// of recent poses and inputs twice the pose's length.
+    static constexpr bool motion = false;
 };
 
 /// Upper bounds on model sizes, fixed at compile time, read from the named
@@ -48,7 +51,7 @@ struct Capacity {
                   "every capacity must be positive");
     // Reads every member at instantiation, so none of a limits type goes unused.
     static_assert(Limits::windows < (std::size_t{1} << 16) && Limits::settle_chars > 0 &&
-                      (Limits::path_lengths || !Limits::path_lengths),
+                      (Limits::path_lengths || !Limits::path_lengths) && (Limits::motion || !Limits::motion),
                   "windows below 65536 and settle_chars above 0");
     using limits = Limits;
     static constexpr std::size_t max_joints = Limits::joints;
@@ -60,6 +63,11 @@ struct Capacity {
     static constexpr std::size_t max_windows = Limits::windows;
     static constexpr bool path_lengths = Limits::path_lengths;
     static constexpr std::size_t max_settle_chars = Limits::settle_chars;
+    static constexpr bool has_motion = Limits::motion;
+    /// Poses the velocity ring keeps (motion.hpp); one, unused, without motion.
+    static constexpr std::size_t motion_ring = has_motion ? 6 : 1;
+    /// What the projection reads: the pose, and with motion its velocity.
+    static constexpr std::size_t max_input_dim = has_motion ? 2 * max_pose_dim : max_pose_dim;
     /// Whether the Annotator runs the paper's sliding-window rule.
     static constexpr bool has_windows = max_windows > 0;
     /// The same bounds without the window rule: the segmenter alone labels the
@@ -73,7 +81,8 @@ struct Capacity {
 
     /// True when the feature tables fit (what a StringEncoder needs).
     static constexpr bool fits_features(const ModelView& m) noexcept {
-        return m.joint_count <= max_joints && m.pose_dim() <= max_pose_dim && m.feature_dim <= max_feature_dim &&
+        return m.joint_count <= max_joints && m.pose_dim() <= max_pose_dim && m.input_dim() <= max_input_dim &&
+               (has_motion || !m.has_motion()) && m.feature_dim <= max_feature_dim &&
                m.component_count <= max_components;
     }
 
@@ -101,6 +110,7 @@ struct HostLimits : DefaultLimits {
     static constexpr std::size_t representative_chars = 32768;
     static constexpr std::size_t windows = 8;
     static constexpr std::size_t settle_chars = 1024;
+    static constexpr bool motion = true;
 };
 using HostCapacity = Capacity<HostLimits>;
 

@@ -12,6 +12,7 @@
 
 #include "actionstring/gmm.hpp"
 #include "actionstring/model.hpp"
+#include "actionstring/motion.hpp"
 #include "actionstring/normalize.hpp"
 #include "actionstring/projection.hpp"
 #include "actionstring/sampler.hpp"
@@ -66,6 +67,7 @@ public:
     /// Starts another stream from scratch.
     void reset() noexcept {
         sampler_.reset();
+        motion_.reset();
         has_previous_ = false;
         last_ = 0;
     }
@@ -87,6 +89,10 @@ public:
         const SamplePlan plan = sampler_.advance(time_us);
         out.status = plan.status;
         if (plan.status == Status::time_went_backwards) return out;
+        if (model_->has_motion()) {
+            if (plan.status == Status::stream_restarted) motion_.reset();
+            motion_.update(*model_, time_us, poses_[current]);
+        }
         ready_[current] = false;
         if (plan.from_previous > 0) {
             out.previous = character(previous_);
@@ -130,7 +136,8 @@ private:
 
     const ModelView* model_ = nullptr;
     StringSampler sampler_;
-    float poses_[2][Cap::max_pose_dim] = {};
+    float poses_[2][Cap::max_input_dim] = {};  // pose, then with motion its velocity
+    MotionRing<Cap> motion_;
     float skeleton_[3 * Cap::max_joints] = {};  // the rebuilt skeleton (bone-length scaling)
     Character characters_[2] = {};
     bool ready_[2] = {};

@@ -49,7 +49,7 @@ inline float gmm_mahalanobis_sq(const ModelView& model, std::size_t component, c
 /// component's squared distance past float range, so gmm_posterior() cannot
 /// fail on a pose that normalize_pose() accepted. Bounds every term in double.
 inline bool gmm_is_overflow_safe(const ModelView& model, float max_coordinate) noexcept {
-    const std::size_t pose_dim = model.pose_dim();
+    const std::size_t pose_dim = model.input_dim();  // velocities are bounded like coordinates
     const std::size_t d = model.feature_dim;
     const double coordinate_bound = static_cast<double>(max_coordinate);
     double feature_bound = coordinate_bound;

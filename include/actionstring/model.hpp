@@ -86,6 +86,11 @@ struct ModelView {
 
     /// D, the length of the normalised pose vector.
     constexpr std::size_t pose_dim() const noexcept { return 3u * pose_joint_count; }
+    /// Whether the pose's velocity is part of the input (motion.hpp).
+    constexpr bool has_motion() const noexcept { return velocity_weight > 0.0f; }
+    /// Length of what the projection reads: the pose, then with motion its
+    /// weighted velocity (2 D).
+    constexpr std::size_t input_dim() const noexcept { return has_motion() ? 2u * pose_dim() : pose_dim(); }
     constexpr bool has_projection() const noexcept { return projection_matrix != nullptr; }
     constexpr bool has_gmm() const noexcept { return component_count > 0; }
     /// Length of the vectors the tree is built on and descends with: the GMM
@@ -207,8 +212,13 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
     if (m.pose_joint_count == 0 || m.pose_joints == nullptr) return refuse(problem, "pose_joints: empty");
     for (std::size_t i = 0; i < m.pose_joint_count; ++i)
         if (m.pose_joints[i] >= m.joint_count) return refuse(problem, "pose_joints: not a joint of the skeleton");
+    // Motion.
+    if (!(m.velocity_weight >= 0.0f && m.velocity_weight <= 1000.0f))
+        return refuse(problem, "velocity_weight: negative, non-finite or beyond 1000");
+    if (m.has_motion() && !(m.velocity_span_us >= 10000 && m.velocity_span_us <= 2000000))
+        return refuse(problem, "velocity_span_us: not between 10 ms and 2 s");
     // Projection.
-    const std::size_t pose_dim = m.pose_dim();
+    const std::size_t pose_dim = m.input_dim();
     if (m.feature_dim == 0) return refuse(problem, "feature_dim: zero");
     if (m.has_projection()) {
         if (m.feature_dim > pose_dim) return refuse(problem, "feature_dim: larger than the pose");
@@ -217,7 +227,7 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
         if (!all_within(m.projection_matrix, pose_dim * m.feature_dim, -big, big))
             return refuse(problem, "projection_matrix: non-finite or beyond 1e6");
     } else if (m.feature_dim != pose_dim) {
-        return refuse(problem, "feature_dim: not the pose's length, and there is no projection");
+        return refuse(problem, "feature_dim: not the input's length, and there is no projection");
     }
     // GMM.
     const std::size_t J = m.component_count;

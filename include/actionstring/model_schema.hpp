@@ -44,11 +44,14 @@
     TABLE(float, bone_lengths, (uses_bones(m.scale_mode) ? m.joint_count : 0u), 0, 0) /* to the parent */ \
     COUNT(std::uint16_t, pose_joint_count, pose_joints)                                                   \
     TABLE(std::uint16_t, pose_joints, m.pose_joint_count, 0, 65535) /* joints of the pose vector */       \
+    /* --- motion (design §1.1): the pose's velocity beside it, weighted; 0 = none --- */                 \
+    SCALAR(float, velocity_weight, 0.0f, 0, 0)                                                            \
+    SCALAR(std::uint32_t, velocity_span_us, 0, 0, 10000000) /* the velocity is taken over about this */   \
     /* --- optional projection z = P (x - m) (design §1.2) --- */                                         \
-    SCALAR(std::uint16_t, feature_dim, 0, 0, 65535)        /* d; 3 * pose_joint_count without PCA */      \
-    TABLE(float, projection_mean, (m.has_projection() ? m.pose_dim() : 0u), 0, 0)                         \
+    SCALAR(std::uint16_t, feature_dim, 0, 0, 65535)        /* d; input_dim() without PCA */               \
+    TABLE(float, projection_mean, (m.has_projection() ? m.input_dim() : 0u), 0, 0)                        \
     /* P column by column: row c holds the weights of pose coordinate c in every feature */               \
-    TABLE(float, projection_matrix, (m.has_projection() ? m.pose_dim() * m.feature_dim : 0u), 0, 0)       \
+    TABLE(float, projection_matrix, (m.has_projection() ? m.input_dim() * m.feature_dim : 0u), 0, 0)      \
     /* --- GMM of key-poses (design §1.3); J = 0: no GMM, the tree descends on z --- */                   \
     SCALAR(std::uint16_t, component_count, 0, 0, 65535)    /* J */                                        \
     SCALAR(Covariance, covariance, Covariance::full, 0, 1)                                                \

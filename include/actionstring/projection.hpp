@@ -15,11 +15,12 @@ namespace actionstring {
 /// that peels by pointer alignment would make a generated-table build and a
 /// host-loaded artifact differ in the last bit.
 ///
-/// @param pose     pose_dim() floats from normalize_pose(); read only during the call
+/// @param pose     input_dim() floats: the pose from normalize_pose(), then with
+///                 motion its velocity (motion.hpp); read only during the call
 /// @param feature  receives feature_dim floats (caller-owned); may not alias pose
 inline Status project_pose(const ModelView& model, const float* pose, float* feature) noexcept {
     if (pose == nullptr || feature == nullptr) return Status::invalid_argument;
-    const std::size_t pose_dim = model.pose_dim();
+    const std::size_t pose_dim = model.input_dim();
     if (!model.has_projection()) {
         for (std::size_t i = 0; i < pose_dim; ++i) feature[i] = pose[i];
         return Status::ok;

@@ -81,7 +81,7 @@ ClipResults evaluate_pca_characters(const ModelView& model, const std::vector<La
     auto features_of = [&](const Clip& clip) {
         std::vector<float> poses;
         sample_poses(model, clip, rate_hz, poses);
-        const std::size_t D = model.pose_dim();
+        const std::size_t D = model.input_dim();
         std::vector<float> out(poses.size() / D * d);
         for (std::size_t i = 0; i < poses.size() / D; ++i)
             project_pose(model, poses.data() + i * D, out.data() + i * d);
@@ -135,7 +135,7 @@ ClipResults evaluate_pca_characters(const ModelView& model, const std::vector<La
 ClipResults evaluate_pose_dtw(const ModelView& model, const std::vector<LabelledClip>& train,
                               const std::vector<LabelledClip>& clips, double rate_hz) {
     ClipResults r = start_results("DTW 1-NN on normalised poses", model, clips);
-    const std::size_t D = model.pose_dim();
+    const std::size_t D = model.input_dim();
     auto poses_of = [&](const Clip& clip) {
         std::vector<float> poses;
         sample_poses(model, clip, rate_hz, poses);

@@ -110,7 +110,7 @@ std::string generate_header(const ModelData& m, const std::string& checksum, con
         << "    static constexpr std::size_t windows = " << v.max_open_windows() << ";\n"
         << "    static constexpr bool path_lengths = "
         << (v.normalization == LengthNormalization::path ? "true" : "false") << ";\n"
-        << "};\n"
+        << (v.has_motion() ? "    static constexpr bool motion = true;\n" : "") << "};\n"
         << "/// Capacity that fits this model exactly.\n"
         << "using ModelCapacity = ::actionstring::Capacity<ModelLimits>;\n\n"
         << "}  // namespace " << ns << "\n";

@@ -9,6 +9,7 @@
 #include "actionstring/annotator.hpp"
 #include "actionstring/capacity.hpp"
 #include "actionstring/encoder.hpp"
+#include "actionstring/motion.hpp"
 #include "actionstring/normalize.hpp"
 #include "actionstring/sampler.hpp"
 #include "common/time.hpp"
@@ -53,8 +54,9 @@ std::size_t sample_poses(const ModelView& model, const Clip& clip, double rate_h
         throw std::invalid_argument("cannot sample poses at " + std::to_string(rate_hz) + " Hz");
     StringSampler sampler;
     sampler.configure(period_us, kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us);
-    const std::size_t D = model.pose_dim();
+    const std::size_t D = model.input_dim();  // the pose, and with motion its velocity
     std::vector<float> previous(D), current(D), skeleton(3u * model.joint_count);
+    auto motion = std::make_unique<MotionRing<HostCapacity>>();
     bool has_previous = false;
     std::size_t rejected = 0;
     for (std::size_t f = 0; f < clip.frame_count(); ++f) {
@@ -62,8 +64,13 @@ std::size_t sample_poses(const ModelView& model, const Clip& clip, double rate_h
             ++rejected;
             continue;
         }
-        const SamplePlan plan = sampler.advance(seconds_to_us(clip.times[f]));
+        const std::int64_t time_us = seconds_to_us(clip.times[f]);
+        const SamplePlan plan = sampler.advance(time_us);
         if (plan.status == Status::time_went_backwards) continue;
+        if (model.has_motion()) {  // as the encoder does, frame by frame
+            if (plan.status == Status::stream_restarted) motion->reset();
+            motion->update(model, time_us, current.data());
+        }
         for (std::uint32_t i = 0; i < plan.from_previous && has_previous; ++i)
             poses.insert(poses.end(), previous.begin(), previous.end());
         for (std::uint32_t i = 0; i < plan.from_current; ++i) poses.insert(poses.end(), current.begin(), current.end());

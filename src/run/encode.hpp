@@ -16,9 +16,10 @@ namespace host {
 /// when the encoder refuses the model.
 std::vector<Character> clip_string(const ModelView& model, const Clip& clip);
 
-/// Appends to `poses` the clip's normalised poses (model.pose_dim() floats
-/// each) nearest to every tick of a clock at `rate_hz`, picked by the runtime's
-/// own sampler. Returns the number of frames normalisation rejected.
+/// Appends to `poses` the clip's normalised poses nearest to every tick of a
+/// clock at `rate_hz`, picked by the runtime's own sampler: model.input_dim()
+/// floats each (with motion, the pose then its velocity, from the runtime's
+/// own MotionRing run over every frame). Returns the frames normalisation rejected.
 std::size_t sample_poses(const ModelView& model, const Clip& clip, double rate_hz, std::vector<float>& poses);
 
 }  // namespace host

@@ -34,6 +34,10 @@ struct TrainingOptions {
     int em_restarts = 1;
     double em_tolerance = 1e-6;  ///< Stop when the objective's relative change is below this.
     ScaleMode scale_mode = ScaleMode::none;
+    /// Weight of the pose's velocity beside the pose (motion.hpp); 0 = none.
+    double velocity_weight = 0.0;
+    /// Time the velocity is taken over, in seconds (10 ms to 2 s).
+    double velocity_span_s = 0.2;
     // Characters.
     double epsilon = 1.0;  ///< Split a cluster whose L1 diameter is ≥ ε.
     int max_characters = 4096;

@@ -62,6 +62,8 @@ void check_options(const TrainingOptions& o) {
     require(o.em_max_iterations >= 1, "EM needs at least one iteration");
     require(o.em_restarts >= 1 && o.em_restarts <= 64, "EM restarts must be between 1 and 64");
     require(o.max_characters >= 1 && o.max_characters <= 4096, "the character limit must be between 1 and 4096");
+    require(o.velocity_weight >= 0 && o.velocity_weight <= 1000, "the velocity weight must be between 0 and 1000");
+    require(o.velocity_span_s >= 0.01 && o.velocity_span_s <= 2, "the velocity span must be between 0.01 and 2 s");
 }
 
 // Median 3-D hip width over a clip's frames.
@@ -158,6 +160,9 @@ ModelData start_model(const std::vector<LabelledClip>& clips, const TrainingOpti
                                     std::to_string(HostCapacity::max_pose_dim / 3) + " are supported");
     m.scale_mode = options.scale_mode;
     if (uses_bones(options.scale_mode)) set_bones(m, clips);
+    m.velocity_weight = static_cast<float>(options.velocity_weight);
+    m.velocity_span_us =
+        options.velocity_weight > 0 ? static_cast<std::uint32_t>(std::lround(options.velocity_span_s * 1e6)) : 0u;
     if (options.scale_mode == ScaleMode::hip_width) {
         m.reference_scale = static_cast<float>(median_hip_width(first));
         if (!(m.reference_scale > 0)) throw std::invalid_argument("hip width is zero: cannot scale by it");
@@ -171,7 +176,7 @@ std::vector<float> sample_training_poses(const ModelData& m, const std::vector<L
     const ModelView view = m.view();
     std::vector<float> poses;
     for (const LabelledClip& c : clips) r.frames_rejected += sample_poses(view, c.clip, options.feature_rate_hz, poses);
-    r.feature_samples = poses.size() / view.pose_dim();
+    r.feature_samples = poses.size() / view.input_dim();
     r.frames_used = r.frames_read - r.frames_rejected;
     if (r.feature_samples == 0)
         throw std::invalid_argument("no usable frames: every frame was rejected by pose normalisation");
@@ -181,7 +186,7 @@ std::vector<float> sample_training_poses(const ModelData& m, const std::vector<L
 // Stage 2: the optional PCA, then every pose projected with the runtime's
 // projection; returns the projected poses as the columns of a d × n matrix.
 Eigen::MatrixXd fit_projection(ModelData& m, const std::vector<float>& poses, const TrainingOptions& options) {
-    const std::size_t D = m.view().pose_dim(), n = poses.size() / D;
+    const std::size_t D = m.view().input_dim(), n = poses.size() / D;
     std::size_t d = D;
     if (options.pca_dim > 0) {
         Eigen::MatrixXd x(static_cast<Eigen::Index>(D), static_cast<Eigen::Index>(n));
@@ -232,7 +237,7 @@ TreeFeatures projected_features(ModelData& m, const std::vector<float>& poses, c
     if (!(largest > 0.0)) throw std::invalid_argument("every training pose projects to the same point");
     for (float& value : m.projection_matrix) value = static_cast<float>(static_cast<double>(value) / largest);
     const ModelView view = m.view();
-    const std::size_t D = view.pose_dim(), d = view.feature_dim, n = poses.size() / D;
+    const std::size_t D = view.input_dim(), d = view.feature_dim, n = poses.size() / D;
     TreeFeatures features{std::vector<float>(n * d), d};
     for (std::size_t i = 0; i < n; ++i) project_pose(view, poses.data() + i * D, features.values.data() + i * d);
     return features;
@@ -262,7 +267,7 @@ void fit_gmm_tables(ModelData& m, const Eigen::MatrixXd& samples, const Training
 // Every training pose's GMM posterior, through the runtime.
 TreeFeatures posterior_features(const ModelData& m, const std::vector<float>& poses) {
     const ModelView view = m.view();
-    const std::size_t D = view.pose_dim(), J = view.component_count, n = poses.size() / D;
+    const std::size_t D = view.input_dim(), J = view.component_count, n = poses.size() / D;
     TreeFeatures features{std::vector<float>(n * J), J};
     std::vector<float> feature(view.feature_dim);
     for (std::size_t i = 0; i < n; ++i) {

@@ -32,8 +32,13 @@ int main(int argc, char** argv) {
         options.normalization = actionstring::LengthNormalization::path;
         options.sigma = 0.3;
         options.neighbours = 3;
-        if (without_gmm) {  // the paper's "PCA only" characters: the tree on projected poses
+        if (without_gmm) {  // the paper's "PCA only" characters: the tree on projected poses,
+            // here with bone-length scaling and the velocity too, so the header and the
+            // artifact are compared on every input stage
             options.components = 0;
+            options.scale_mode = actionstring::ScaleMode::bone_lengths;
+            options.velocity_weight = 1.0;
+            options.velocity_span_s = 0.3;
             options.epsilon = 0.5;
             options.sigma = 0.05;
         }

@@ -1,0 +1,121 @@
+// The velocity beside the pose (motion.hpp): measured over time, so frame
+// rate, jitter and dropped frames leave it unchanged; zero until the ring
+// holds a pose old enough; forgotten at a restart; bounded.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "actionstring/capacity.hpp"
+#include "actionstring/motion.hpp"
+#include "actionstring/encoder.hpp"
+#include "toy/toy.hpp"
+#include "train/pipeline.hpp"
+
+using namespace actionstring;
+
+namespace {
+
+struct MotionLimits : DefaultLimits {
+    static constexpr std::size_t joints = 2;
+    static constexpr std::size_t pose_joints = 1;
+    static constexpr std::size_t feature_dim = 6;
+    static constexpr std::size_t components = 1;
+    static constexpr std::size_t representatives = 1;
+    static constexpr std::size_t representative_chars = 1;
+    static constexpr bool motion = true;
+};
+using MotionCap = Capacity<MotionLimits>;
+
+// A view with one pose joint (D = 3) and motion: all the ring reads.
+ModelView motion_view(float weight, std::uint32_t span_us) {
+    ModelView m;
+    m.pose_joint_count = 1;
+    m.velocity_weight = weight;
+    m.velocity_span_us = span_us;
+    return m;
+}
+
+// Streams x(t) = (a t, b t², c) at the given times; returns each frame's velocity.
+std::vector<std::vector<float>> run(const ModelView& view, const std::vector<double>& times) {
+    auto ring = std::make_unique<MotionRing<MotionCap>>();
+    std::vector<std::vector<float>> out;
+    for (double t : times) {
+        float input[6] = {static_cast<float>(0.8 * t), static_cast<float>(0.3 * t * t), 1.0f, 0, 0, 0};
+        ring->update(view, static_cast<std::int64_t>(std::llround(t * 1e6)), input);
+        out.push_back({input[3], input[4], input[5]});
+    }
+    return out;
+}
+
+std::vector<double> clock(double rate_hz, double seconds, double jitter, double drop, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0), chance(0.0, 1.0);
+    std::vector<double> times;
+    for (double t = 0; t < seconds; t += 1.0 / rate_hz) {
+        if (t > 0 && chance(rng) < drop) continue;
+        times.push_back(std::max(0.0, t + jitter * uniform(rng) / rate_hz));
+    }
+    return times;
+}
+
+}  // namespace
+
+TEST_CASE("the velocity of a steady motion is its speed, weighted, at any frame rate, jitter or drops") {
+    const ModelView view = motion_view(2.0f, 200000);
+    for (const auto& times :
+         {clock(30, 3, 0, 0, 1), clock(120, 3, 0, 0, 2), clock(60, 3, 0.3, 0.2, 3), clock(15, 3, 0.1, 0.1, 4)}) {
+        const auto v = run(view, times);
+        for (std::size_t f = 0; f < times.size(); ++f) {
+            if (times[f] < 0.0999) {  // before half a span: no pose old enough
+                CHECK(v[f][0] == 0.0f);
+                continue;
+            }
+            if (times[f] < 0.1001) continue;  // the boundary itself, either way
+            CAPTURE(times[f]);
+            CHECK(v[f][0] == doctest::Approx(2.0 * 0.8).epsilon(1e-3));  // x moves at 0.8 m/s
+            CHECK(v[f][2] == 0.0f);                                      // z stands still
+            // y accelerates: its velocity is 2 · 0.3 · (the middle of the interval), within a span.
+            CHECK(v[f][1] >= 2.0f * 0.6f * static_cast<float>(times[f] - 0.3) - 1e-3f);
+            CHECK(v[f][1] <= 2.0f * 0.6f * static_cast<float>(times[f]) + 1e-3f);
+        }
+    }
+}
+
+TEST_CASE("a restart forgets the ring, and a velocity beyond the coordinate bound is clamped") {
+    const ModelView view = motion_view(1.0f, 100000);
+    auto ring = std::make_unique<MotionRing<MotionCap>>();
+    float input[6] = {0, 0, 0, 0, 0, 0};
+    for (int f = 0; f <= 10; ++f) {
+        input[0] = 0.01f * static_cast<float>(f);
+        ring->update(view, f * 20000, input);
+    }
+    CHECK(input[3] == doctest::Approx(0.5f).epsilon(1e-4));
+    ring->reset();
+    ring->update(view, 220000, input);
+    CHECK(input[3] == 0.0f);  // nothing old enough after the restart
+    input[0] = 1.0e4f;        // 10 km in 60 ms
+    ring->update(view, 280000, input);
+    CHECK(input[3] == max_pose_coordinate);
+}
+
+TEST_CASE("a model with motion needs limits with motion, and trains and round-trips") {
+    host::ToyWorld world = host::make_toy_world();
+    host::TrainingOptions options;
+    options.components = 0;
+    options.pca_dim = 8;
+    options.velocity_weight = 1.0;
+    options.velocity_span_s = 0.3;
+    const host::ModelData model = host::train_model(host::toy_clips(world, 2, 6), options);
+    const ModelView view = model.view();
+    CHECK(view.has_motion());
+    CHECK(view.input_dim() == 2 * view.pose_dim());
+    CHECK_FALSE(host::ToyCapacity::fits_features(view));  // the toy limits have no motion
+    CHECK(HostCapacity::fits_features(view));
+    auto encoder = std::make_unique<StringEncoder<host::ToyCapacity>>();
+    CHECK(encoder->init(view, 1000000, 0) == Status::model_exceeds_capacity);
+}
