@@ -1,5 +1,6 @@
 // `actionstring train`: a model from a clip list (settings, config files, sweeps).
 #include <chrono>
+#include <set>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -14,6 +15,7 @@
 #include "run/classify.hpp"
 #include "train/cross_validation.hpp"
 #include "train/pipeline.hpp"
+#include "train/tuning.hpp"
 
 namespace actionstring {
 namespace cli {
@@ -56,6 +58,9 @@ void print_train_usage(std::FILE* out) {
                  "  --config FILE           'option value' lines, same names without dashes\n"
                  "  --validate LIST         report clip accuracy on LIST after training\n"
                  "  --json FILE             write the training report (sizes, stage times) as JSON\n"
+                 "  --no-tune               with no settings given, train with the defaults instead of\n"
+                 "                          choosing ε, σ, the string rate, velocity, size scaling and\n"
+                 "                          PCA by leave-one-subject-out cross-validation (the default)\n"
                  "  --cv                    leave-one-subject-out cross-validation over the list's\n"
                  "                          subject column: a fold table and the mean (no model written)\n"
                  "  --sweep                 with --validate: vary one setting at a time around the\n"
@@ -139,10 +144,12 @@ bool read_config(ArgumentReader& args, const std::string& path, host::TrainingOp
 }
 
 // The training run as JSON: the model's sizes, what each stage saw and took.
-std::string training_json(const std::string& model_path, const ModelView& view, const host::TrainingReport& report) {
+std::string training_json(const std::string& model_path, const ModelView& view, const host::TrainingReport& report,
+                          const host::TrainingOptions& options) {
     host::JsonWriter out;
     out.begin_object()
         .field("model", model_path)
+        .field("settings", host::options_as_config(options))
         .field("frames_read", report.frames_read)
         .field("frames_rejected", report.frames_rejected)
         .field("feature_samples", report.feature_samples)
@@ -162,6 +169,35 @@ std::string training_json(const std::string& model_path, const ModelView& view, 
     }
     out.field("total", total).end_object();
     return out.end_object().str();
+}
+
+// With no settings given: tune them by cross-validation over the list's
+// subjects (one subject only: the starting settings), showing each step.
+host::TuningResult tune(const std::vector<host::LabelledClip>& clips) {
+    std::set<std::string> subjects;
+    for (const host::LabelledClip& c : clips) subjects.insert(c.subject);
+    if (subjects.size() < 2) {
+        std::fprintf(stderr, "train: one subject in the list, so no cross-validation: the default settings\n");
+        host::TuningResult fixed;
+        fixed.options = host::tuning_start();
+        return fixed;
+    }
+    std::fprintf(stderr,
+                 "train: no settings given: choosing them by leave-one-subject-out cross-validation over "
+                 "%zu subjects (--no-tune to skip)\n",
+                 subjects.size());
+    const host::TuningResult tuned = host::tune_training(clips, host::tuning_start(), [](const host::TuningStep& step) {
+        std::fprintf(stderr, "train:   %-28s fold mean %.3f%s\n", step.setting.c_str(), step.mean_accuracy,
+                     step.kept ? "  <- kept" : "");
+    });
+    std::printf(
+        "tuning:           %zu settings tried in %.0f s; folds of the choice (chosen on them, so optimistic):\n",
+        tuned.steps.size(), tuned.seconds);
+    for (const host::FoldResult& f : tuned.folds)
+        std::printf("  held out %-12s %4zu clips  accuracy %.3f\n", f.subject.c_str(), f.clips, f.clip_accuracy);
+    std::printf("  mean %.3f\nthe chosen settings (keep them with --config):\n%s", host::mean_accuracy(tuned.folds),
+                host::options_as_config(tuned.options).c_str());
+    return tuned;
 }
 
 // Leave-one-subject-out over the list's subjects: a fold table, then the mean.
@@ -232,7 +268,7 @@ int run_train(int argc, char** argv) {
     host::TrainingOptions options;
     host::ReadOptions read;
     std::string clips_path, out_path, validate_path, json_path;
-    bool sweep = false, cv = false;
+    bool sweep = false, cv = false, settings_given = false, no_tune = false;
     ArgumentReader args("train", argc, argv);
     while (args.more()) {
         const std::string arg = args.next();
@@ -246,13 +282,18 @@ int run_train(int argc, char** argv) {
         else if (arg == "--json") json_path = args.value(arg);
         else if (arg == "--sweep") sweep = true;
         else if (arg == "--cv") cv = true;
-        else if (arg == "--keep-singletons") options.keep_singletons = true;
-        else if (arg == "--config") {
+        else if (arg == "--no-tune") no_tune = true;
+        else if (arg == "--keep-singletons") {
+            options.keep_singletons = true;
+            settings_given = true;
+        } else if (arg == "--config") {
             if (!read_config(args, args.value(arg), options, read)) return 2;
+            settings_given = true;
         } else if (arg.rfind("--", 0) == 0 && arg != "--") {
             const std::string name = arg.substr(2);
             const std::string value = args.value(arg);
             if (args.ok() && !apply(args, name, value, options, read)) return args.unknown(arg);
+            if (name != "rate" && name != "roles") settings_given = true;
         } else {
             return args.unknown(arg);
         }
@@ -271,6 +312,7 @@ int run_train(int argc, char** argv) {
         if (!validate_path.empty()) validation = host::load_labelled_clips(validate_path, read);
         if (sweep) return run_sweep(train, validation, options);
         if (cv) return run_cross_validation(train, options);
+        if (!settings_given && !no_tune) options = tune(train).options;
         auto stage_start = std::chrono::steady_clock::now();
         options.progress = [&](const char* stage) {
             std::fprintf(stderr, "train: %s\n", stage);
@@ -318,7 +360,7 @@ int run_train(int argc, char** argv) {
         if (!validation.empty())
             std::printf("validation:       clip accuracy %.3f on %zu clips (%s)\n",
                         host::clip_accuracy(view, validation), validation.size(), validate_path.c_str());
-        if (!json_path.empty()) host::write_file(json_path, training_json(out_path, view, report));
+        if (!json_path.empty()) host::write_file(json_path, training_json(out_path, view, report, options));
         return 0;
     });
 }

@@ -1,0 +1,135 @@
+// Training that tunes itself by cross-validation.
+#include "train/tuning.hpp"
+
+#include <chrono>
+#include <cstdint>
+#include <utility>
+#include <cstdio>
+#include <sstream>
+
+namespace actionstring {
+namespace host {
+namespace {
+
+std::string number(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", v);
+    return buffer;
+}
+
+// One setting and the values tried for it.
+struct Axis {
+    const char* name;
+    std::vector<double> values;
+    std::function<void(TrainingOptions&, double)> set;
+    std::function<bool(const TrainingOptions&)> applies = [](const TrainingOptions&) { return true; };
+};
+
+}  // namespace
+
+TrainingOptions tuning_start() {
+    TrainingOptions o;
+    o.components = 0;
+    o.pca_dim = 24;
+    o.epsilon = 0.7;
+    o.sigma = 0.75;
+    o.keep_singletons = true;
+    return o;
+}
+
+TuningResult tune_training(const std::vector<LabelledClip>& clips, const TrainingOptions& start,
+                           const std::function<void(const TuningStep&)>& progress) {
+    const auto began = std::chrono::steady_clock::now();
+    TuningResult result;
+    result.options = start;
+    const bool has_parents = !clips.empty() && clips.front().clip.parents.size() == clips.front().clip.joint_count();
+    std::vector<Axis> axes{
+        {"velocity", {0.0, 0.5, 1.0, 2.0}, [](TrainingOptions& o, double v) { o.velocity_weight = v; }},
+        {"velocity-span",
+         {0.2, 0.4, 0.6},
+         [](TrainingOptions& o, double v) { o.velocity_span_s = v; },
+         [](const TrainingOptions& o) { return o.velocity_weight > 0; }},
+        {"scale",
+         {0.0, 2.0},
+         [](TrainingOptions& o, double v) { o.scale_mode = static_cast<ScaleMode>(static_cast<int>(v)); },
+         [has_parents](const TrainingOptions&) { return has_parents; }},
+        {"string-rate", {8.0, 12.0, 15.0, 20.0}, [](TrainingOptions& o, double v) { o.string_rate_hz = v; }},
+        {"epsilon", {0.5, 0.7, 1.0}, [](TrainingOptions& o, double v) { o.epsilon = v; }},
+        {"sigma", {0.3, 0.75, 1.5}, [](TrainingOptions& o, double v) { o.sigma = v; }},
+        {"pca", {16.0, 24.0, 32.0}, [](TrainingOptions& o, double v) { o.pca_dim = static_cast<int>(v); }},
+    };
+    auto describe = [](const Axis& axis, double v) {
+        if (std::string(axis.name) == "scale") return std::string("scale ") + (v > 0 ? "bones" : "none");
+        return std::string(axis.name) + " " + number(v);
+    };
+    // The PCA dimension never exceeds the input's (a small skeleton, no velocity).
+    const std::size_t pose_dim = clips.empty() ? 0 : 3 * (clips.front().clip.joint_count() - 1);
+    auto fitted = [pose_dim](TrainingOptions o) {
+        const std::size_t input_dim = o.velocity_weight > 0 ? 2 * pose_dim : pose_dim;
+        if (static_cast<std::size_t>(o.pca_dim) > input_dim) o.pca_dim = static_cast<int>(input_dim);
+        return o;
+    };
+    result.options = fitted(result.options);
+    // A setting's score: the fold mean averaged over three seeds of the tree's
+    // k-means (one seed's luck moves a fold mean by several points).
+    auto score = [&clips](const TrainingOptions& o, std::vector<FoldResult>& first_folds) {
+        double sum = 0;
+        for (std::uint32_t k = 0; k < 3; ++k) {
+            TrainingOptions seeded = o;
+            seeded.seed = o.seed + k;
+            std::vector<FoldResult> folds = cross_validate(clips, seeded);
+            sum += mean_accuracy(folds);
+            if (k == 0) first_folds = std::move(folds);
+        }
+        return sum / 3.0;
+    };
+    double best = score(result.options, result.folds);
+    TuningStep first{"(the starting settings)", best, true};
+    result.steps.push_back(first);
+    if (progress) progress(first);
+    for (const Axis& axis : axes) {
+        if (!axis.applies(result.options)) continue;
+        TrainingOptions current = result.options;
+        for (double v : axis.values) {
+            TrainingOptions trial = current;
+            axis.set(trial, v);
+            trial = fitted(trial);
+            TuningStep step{describe(axis, v), 0.0, false};
+            try {
+                std::vector<FoldResult> folds;
+                step.mean_accuracy = score(trial, folds);
+                if (step.mean_accuracy > best) {
+                    best = step.mean_accuracy;
+                    result.options = trial;
+                    result.folds = std::move(folds);
+                    step.kept = true;
+                }
+            } catch (const std::invalid_argument&) {
+                step.setting += " (cannot train)";
+            }
+            result.steps.push_back(step);
+            if (progress) progress(step);
+        }
+    }
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    return result;
+}
+
+std::string options_as_config(const TrainingOptions& o) {
+    static const char* const covariance[] = {"full", "diagonal"};
+    static const char* const scale[] = {"none", "hip-width", "bones"};
+    static const char* const variant[] = {"paper", "whole", "subsequence"};
+    static const char* const normalization[] = {"none", "path", "query"};
+    std::ostringstream out;
+    out << "components " << o.components << "\ncovariance " << covariance[static_cast<int>(o.covariance)] << "\npca "
+        << o.pca_dim << "\nscale " << scale[static_cast<int>(o.scale_mode)] << "\nvelocity "
+        << number(o.velocity_weight) << "\nvelocity-span " << number(o.velocity_span_s) << "\nepsilon "
+        << number(o.epsilon) << "\nstring-rate " << number(o.string_rate_hz) << "\nvariant "
+        << variant[static_cast<int>(o.variant)] << "\nnormalization "
+        << normalization[static_cast<int>(o.normalization)] << "\nsigma " << number(o.sigma) << "\nkeep-singletons "
+        << (o.keep_singletons ? "true" : "false") << "\nneighbours " << o.neighbours << "\nseed " << o.seed << "\n";
+    return out.str();
+}
+
+}  // namespace host
+}  // namespace actionstring

@@ -1,0 +1,51 @@
+// actionstring host library — training that tunes itself: the settings that
+// matter most chosen by leave-one-subject-out cross-validation over the
+// training list, never on a test list.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "io/clip_list.hpp"
+#include "train/cross_validation.hpp"
+#include "train/options.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// One setting tried during tuning, and the fold mean it gave.
+struct TuningStep {
+    std::string setting;  ///< As a config line: "velocity 0.5".
+    double mean_accuracy = 0;
+    bool kept = false;  ///< Whether it became the current choice.
+};
+
+struct TuningResult {
+    TrainingOptions options;        ///< The choice.
+    std::vector<TuningStep> steps;  ///< Every setting tried, in order.
+    std::vector<FoldResult> folds;  ///< The folds of the choice.
+    double seconds = 0;
+};
+
+/// Where tuning starts: the settings cross-validation chose on HDM05, MSR
+/// Action3D and UTKinect alike (characters on projected poses without a GMM,
+/// PCA 24, ε 0.7, σ 0.75, singletons kept; models/README.md).
+TrainingOptions tuning_start();
+
+/// Coordinate search from `start`: the velocity weight and span, the size
+/// normalisation (bone lengths when the skeleton has parents), the string
+/// rate, ε, σ and the PCA dimension, one at a time, each value judged by
+/// cross_validate()'s fold mean averaged over the seeds seed, seed + 1 and
+/// seed + 2, and kept only when strictly higher (so ties keep the earlier,
+/// simpler choice). Deterministic. `folds` are those of the choice at its seed. `progress`, when
+/// set, is told each step. The fold mean of the choice is optimistic: it was
+/// chosen on those folds.
+TuningResult tune_training(const std::vector<LabelledClip>& clips, const TrainingOptions& start,
+                           const std::function<void(const TuningStep&)>& progress = {});
+
+/// The settings as 'option value' lines that `actionstring train --config` reads back.
+std::string options_as_config(const TrainingOptions& options);
+
+}  // namespace host
+}  // namespace actionstring

@@ -1,0 +1,66 @@
+// Training that tunes itself: deterministic, only strict improvements kept,
+// every step a cross-validation over the list's subjects.
+#include <doctest/doctest.h>
+
+#include <string>
+#include <vector>
+
+#include "toy/toy.hpp"
+#include "train/tuning.hpp"
+
+using namespace actionstring::host;
+
+namespace {
+
+// Toy performances noisy enough (15 cm) that settings make a difference.
+std::vector<LabelledClip> noisy_clips(const ToyWorld& world, int performances) {
+    std::vector<LabelledClip> clips;
+    for (int p = 0; p < performances; ++p)
+        for (std::size_t a = 0; a < world.actions.size(); ++a) {
+            ToyStreamOptions options;
+            options.seed = 500 + static_cast<std::uint32_t>(p * 31 + static_cast<int>(a));
+            options.frame_rate_hz = 15.0;
+            options.position_noise_m = 0.15;
+            clips.push_back({toy_clip(toy_stream(world, {static_cast<int>(a)}, options), world.actions[a].name),
+                             world.actions[a].name, "toy" + std::to_string(p)});
+        }
+    return clips;
+}
+
+}  // namespace
+
+TEST_CASE("self-tuning is deterministic and keeps a setting only when its folds improve") {
+    ToyWorld world = make_toy_world();
+    const std::vector<LabelledClip> clips = noisy_clips(world, 2);  // subjects toy0, toy1: two folds
+    const TuningResult a = tune_training(clips, tuning_start());
+    const TuningResult b = tune_training(clips, tuning_start());
+    CHECK(options_as_config(a.options) == options_as_config(b.options));
+    REQUIRE(a.steps.size() == b.steps.size());
+    REQUIRE(a.steps.size() > 10);
+    double best = -1.0;
+    int kept = 0;
+    for (std::size_t i = 0; i < a.steps.size(); ++i) {
+        CAPTURE(a.steps[i].setting);
+        CHECK(a.steps[i].mean_accuracy == b.steps[i].mean_accuracy);
+        CHECK(a.steps[i].kept == b.steps[i].kept);
+        if (a.steps[i].kept) {
+            ++kept;
+            CHECK(a.steps[i].mean_accuracy > best);
+            best = a.steps[i].mean_accuracy;
+        } else {
+            CHECK(a.steps[i].mean_accuracy <= best);
+        }
+    }
+    CHECK(kept >= 2);  // the search moved off its starting point
+    REQUIRE(a.folds.size() == 2);
+    CHECK(a.folds[0].subject == "toy0");
+    const std::string config = options_as_config(a.options);
+    for (const char* line : {"components 0\n", "keep-singletons true\n", "variant whole\n"})
+        CHECK(config.find(line) != std::string::npos);
+}
+
+TEST_CASE("cross-validation needs two subjects") {
+    ToyWorld world = make_toy_world();
+    std::vector<LabelledClip> clips = toy_clips(world, 1, 3, 15.0);
+    CHECK_THROWS_AS(cross_validate(clips, tuning_start()), std::invalid_argument);
+}
