@@ -17,7 +17,7 @@ int run_annotate(int argc, char** argv) {
     std::string model_path, file, skeleton;
     bool json = false;
     host::ReadOptions read;
-    AnnotatorConfig config;
+    SegmenterOverrides overrides;
     ArgumentReader args("annotate", argc, argv);
     while (args.more()) {
         const std::string arg = args.next();
@@ -38,7 +38,7 @@ int run_annotate(int argc, char** argv) {
         else if (arg == "--rate") read.frame_rate_hz = args.number(arg, 0.001, 1e6);
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
         else if (arg == "--json") json = true;
-        else if (parse_segmenter_option(args, arg, config.segmenter)) continue;
+        else if (parse_segmenter_option(args, arg, overrides)) continue;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;
         else return args.error("more than one FILE given");
@@ -51,7 +51,7 @@ int run_annotate(int argc, char** argv) {
         const ModelView view = model.view();
         host::Clip clip = host::read_clip(file, read, skeleton);
         host::conform_to_model(view, clip);
-        const auto spans = host::annotate_clip(view, clip, config);
+        const auto spans = host::annotate_clip(view, clip, overrides.over(view, args));
         auto name = [&](int label) {
             return label < 0 ? std::string("unknown") : model.label_names[static_cast<std::size_t>(label)];
         };

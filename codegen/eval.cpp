@@ -174,7 +174,7 @@ int run_eval(int argc, char** argv) {
     host::ReadOptions read;
     bool online = false;
     std::uint32_t seed = 1;
-    AnnotatorConfig config;
+    SegmenterOverrides overrides;
     std::string report_dir;
     ArgumentReader args("eval", argc, argv);
     while (args.more()) {
@@ -192,7 +192,7 @@ int run_eval(int argc, char** argv) {
         else if (arg == "--seed") seed = static_cast<std::uint32_t>(args.number(arg, 0, 4294967295.0));
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
         else if (arg == "--report") report_dir = args.value(arg);
-        else if (!parse_segmenter_option(args, arg, config.segmenter)) return args.unknown(arg);
+        else if (!parse_segmenter_option(args, arg, overrides)) return args.unknown(arg);
     }
     if (!args.ok()) return 2;
     if (model_path.empty() || clips_path.empty()) {
@@ -202,6 +202,7 @@ int run_eval(int argc, char** argv) {
     return run_reporting_errors("eval", [&] {
         const host::ModelData model = host::load_model(model_path);
         const ModelView view = model.view();
+        const AnnotatorConfig config = overrides.over(view, args);
         const Evaluation e = evaluate(view, clips_path, train_path, read, online, seed, config);
         print_evaluation(e, clips_path, seed);
         if (!report_dir.empty()) {

@@ -9,7 +9,10 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "actionstring/annotator.hpp"
 #include "actionstring/segmenter.hpp"
 #include "io/clip.hpp"
 
@@ -96,17 +99,48 @@ inline host::RoleNames parse_roles(ArgumentReader& args, const std::string& text
     return names;
 }
 
-/// The segmenter's settings shared by eval and annotate. Returns false when
-/// `option` is not one of them (the caller then tries its own).
-inline bool parse_segmenter_option(ArgumentReader& args, const std::string& option, SegmenterConfig& config) {
+/// Applies one of the segmenter's settings by name (without dashes: settle,
+/// segment-penalty, stay-penalty, skip-penalty, unknown-cost), as train, eval
+/// and annotate take them. Returns false when `name` is not one of them.
+inline bool apply_segmenter_setting(ArgumentReader& args, const std::string& name, const std::string& value,
+                                    SegmenterConfig& config) {
     const double unbounded = std::numeric_limits<double>::infinity();
-    if (option == "--settle")
-        config.settle_delay_us = static_cast<std::int64_t>(std::llround(args.number(option, 0, 60) * 1e6));
-    else if (option == "--segment-penalty") config.segment_penalty = static_cast<float>(args.number(option, 0, 1e6));
-    else if (option == "--stay-penalty") config.stay_penalty = static_cast<float>(args.number(option, 0, 1e6));
-    else if (option == "--skip-penalty") config.skip_penalty = static_cast<float>(args.number(option, 0, 1e6));
-    else if (option == "--unknown-cost") config.unknown_cost = static_cast<float>(args.number(option, 0, unbounded));
+    const std::string option = "--" + name;
+    if (name == "settle")
+        config.settle_delay_us = static_cast<std::int64_t>(std::llround(args.number_of(option, value, 0, 60) * 1e6));
+    else if (name == "segment-penalty")
+        config.segment_penalty = static_cast<float>(args.number_of(option, value, 0, 1e6));
+    else if (name == "stay-penalty") config.stay_penalty = static_cast<float>(args.number_of(option, value, 0, 1e6));
+    else if (name == "skip-penalty") config.skip_penalty = static_cast<float>(args.number_of(option, value, 0, 1e6));
+    else if (name == "unknown-cost")
+        config.unknown_cost = static_cast<float>(args.number_of(option, value, 0, unbounded));
     else return false;
+    return true;
+}
+
+/// The segmenter's settings given to eval or annotate: they override the
+/// model's own (annotator_config()) once the model is loaded.
+struct SegmenterOverrides {
+    std::vector<std::pair<std::string, std::string>> settings;  // name, value
+    /// The model's settings with these applied (the values were checked when read).
+    AnnotatorConfig over(const ModelView& model, ArgumentReader& args) const {
+        AnnotatorConfig config = annotator_config(model);
+        for (const auto& [name, value] : settings) apply_segmenter_setting(args, name, value, config.segmenter);
+        return config;
+    }
+};
+
+/// Reads a segmenter option (--settle S and the like) of eval or annotate into
+/// `overrides`, checking its value now. Returns false when `option` is not one.
+inline bool parse_segmenter_option(ArgumentReader& args, const std::string& option, SegmenterOverrides& overrides) {
+    if (option.rfind("--", 0) != 0) return false;
+    const std::string name = option.substr(2);
+    SegmenterConfig check;
+    if (name != "settle" && name != "segment-penalty" && name != "stay-penalty" && name != "skip-penalty" &&
+        name != "unknown-cost")
+        return false;
+    const std::string value = args.value(option);
+    if (args.ok() && apply_segmenter_setting(args, name, value, check)) overrides.settings.emplace_back(name, value);
     return true;
 }
 

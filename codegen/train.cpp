@@ -52,6 +52,9 @@ void print_train_usage(std::FILE* out) {
                  "  --neighbours K          k of the kNN vote [%d]\n"
                  "  --window S, --step S    sliding window and step in seconds [%g, %g]\n"
                  "  --unknown-distance X    label unknown above this distance [never]\n"
+                 "  --settle S, --segment-penalty X, --stay-penalty X, --skip-penalty X, --unknown-cost X\n"
+                 "                          the segmenter's online settings, stored in the model for\n"
+                 "                          devices, eval and annotate [2, 3, 0.3, 0.3, inf]\n"
                  "  --seed N                [%u]\n"
                  "  --rate HZ               frame rate of files without timing (AMC 120, MSR 15)\n"
                  "  --roles R,L,R           root, left hip, right hip joint names\n"
@@ -106,6 +109,7 @@ bool apply(ArgumentReader& args, const std::string& name, const std::string& val
     else if (name == "step") o.step_seconds = number(0.01, 3600);
     else if (name == "unknown-distance") o.unknown_distance = number(0, 1e30);
     else if (name == "seed") o.seed = static_cast<std::uint32_t>(number(0, 4294967295.0));
+    else if (apply_segmenter_setting(args, name, value, o.online)) return true;
     else if (name == "rate") read.frame_rate_hz = number(0.001, 1e6);
     else if (name == "roles") read.roles = parse_roles(args, value);
     else return false;

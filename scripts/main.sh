@@ -76,8 +76,7 @@ header_eval() {
     "$build/actionstring_header_eval" "$list"
 }
 
-run hdm05 "HDM05 val (actor mm), CV-chosen model" "$data/hdm05/train.tsv" "$data/hdm05/val.tsv" "$root/models/hdm05-accurate.config" \
-    --segment-penalty 1
+run hdm05 "HDM05 val (actor mm), CV-chosen model" "$data/hdm05/train.tsv" "$data/hdm05/val.tsv" "$root/models/hdm05-accurate.config"
 run hdm05_firmware "HDM05 val, compact firmware model" "$data/hdm05/train.tsv" "$data/hdm05/val.tsv" "$root/models/hdm05.config"
 if [ -f "$data/msr-action3d/train.tsv" ]; then
     run msr "MSR Action3D test (even subjects), CV-chosen settings" "$data/msr-action3d/train.tsv" "$data/msr-action3d/test.tsv" \
@@ -89,7 +88,7 @@ if [ -f "$data/utkinect/actionLabel.txt" ]; then
     "$cli" interval-list --utkinect "$data/utkinect/actionLabel.txt" --subjects s01,s02,s03 --out "$out/utkinect_train.tsv" >/dev/null
     "$cli" interval-list --utkinect "$data/utkinect/actionLabel.txt" --subjects s04,s05,s06 --out "$out/utkinect_test.tsv" >/dev/null
     run utkinect "UTKinect s04–s06 whole recordings (clips: their intervals)" "$out/utkinect_train.tsv" "$out/utkinect_test.tsv" \
-        "$root/models/utkinect.config" --unknown-cost 0.2
+        "$root/models/utkinect.config"
 fi
 
 echo "| evaluation | clip accuracy | same, generated header | 1-NN all strings | 1-NN PCA-only characters | DTW 1-NN | online frames (settled) | online (paper's window rule) | model table bytes | per frame median | training |"

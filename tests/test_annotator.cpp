@@ -5,11 +5,15 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "actionstring/annotator.hpp"
 #include "actionstring/string_distance.hpp"
+#include "model/artifact.hpp"
+#include "model/header.hpp"
 #include "toy/toy.hpp"
+#include "train/pipeline.hpp"
 
 using namespace actionstring;
 
@@ -197,4 +201,34 @@ TEST_CASE("reset() gives the same results as a fresh annotator") {
         REQUIRE(f.annotator->confidence() == second->confidence());
         REQUIRE(f.annotator->last_character() == second->last_character());
     }
+}
+
+TEST_CASE("the online settings travel in the model: training stores them, init() uses them") {
+    host::ToyWorld world = host::make_toy_world();
+    host::TrainingOptions options;
+    options.pca_dim = 8;
+    options.components = 6;
+    options.string_rate_hz = 10.0;
+    options.online.settle_delay_us = 1000000;
+    options.online.segment_penalty = 1.5f;
+    options.online.unknown_cost = 0.25f;
+    const host::ModelData model = host::train_model(host::toy_clips(world, 2, 8), options);
+    const ModelView view = model.view();
+    CHECK(view.settle_delay_us == 1000000u);
+    CHECK(view.segment_penalty == 1.5f);
+    CHECK(view.unknown_cost == 0.25f);
+    const AnnotatorConfig config = annotator_config(view);
+    CHECK(config.segmenter.unknown_cost == 0.25f);
+    auto annotator = std::make_unique<Annotator<Cap>>();
+    REQUIRE(annotator->init(view) == Status::ok);
+    CHECK(annotator->settle_chars() == 10u);  // 1 s at the toy's 10 Hz string
+    AnnotatorConfig slower = config;
+    slower.segmenter.settle_delay_us = 2000000;
+    REQUIRE(annotator->init(view, slower) == Status::ok);  // an explicit config overrides the model's
+    CHECK(annotator->settle_chars() == 20u);
+    // The artifact and the header carry them.
+    const host::ModelData loaded = host::parse_model("online.model", host::serialize_model(model));
+    CHECK(loaded.unknown_cost == 0.25f);
+    const std::string header = host::generate_header(model, "0", "online", "online.model");
+    CHECK(header.find("m.segment_penalty = 0x1.8p+0f;") != std::string::npos);
 }

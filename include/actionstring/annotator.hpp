@@ -63,6 +63,13 @@ struct AnnotatorConfig {
     SegmenterConfig segmenter;
 };
 
+/// The default timing with the model's own online settings.
+constexpr AnnotatorConfig annotator_config(const ModelView& model) noexcept {
+    AnnotatorConfig c;
+    c.segmenter = segmenter_config(model);
+    return c;
+}
+
 /// What one push_frame() did.
 struct FrameResult {
     /// ok or stream_restarted when the frame was accepted; otherwise the reason
@@ -95,10 +102,14 @@ struct WindowResult {
 template <class Cap>
 class Annotator {
 public:
-    /// Binds a model. Returns invalid_model (inconsistent tables, or precision
-    /// factors that could overflow float), model_exceeds_capacity,
-    /// invalid_argument (config) or ok. Not usable until it returns ok.
-    Status init(const ModelView& model, const AnnotatorConfig& config = {}) noexcept {
+    /// Binds a model with its own online settings (annotator_config()).
+    Status init(const ModelView& model) noexcept { return init(model, annotator_config(model)); }
+
+    /// Binds a model with the given settings. Returns invalid_model
+    /// (inconsistent tables, or precision factors that could overflow float),
+    /// model_exceeds_capacity, invalid_argument (config) or ok. Not usable
+    /// until it returns ok.
+    Status init(const ModelView& model, const AnnotatorConfig& config) noexcept {
         model_ = nullptr;
         Status status = matcher_.init(model);
         if (status == Status::ok) status = segmenter_.init(model, config.segmenter);

@@ -299,6 +299,13 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
         return refuse(problem, "neighbours: zero or more than the representatives");
     if (detail::is_nan(m.unknown_distance) || m.unknown_distance < 0.0f)
         return refuse(problem, "unknown_distance: negative or NaN");
+    // Online settings.
+    if (m.settle_delay_us > 600000000u) return refuse(problem, "settle_delay_us: over 10 minutes");
+    if (!(m.segment_penalty >= 0.0f && m.segment_penalty <= max_table_value) ||
+        !(m.stay_penalty >= 0.0f && m.stay_penalty <= max_table_value) ||
+        !(m.skip_penalty >= 0.0f && m.skip_penalty <= max_table_value))
+        return refuse(problem, "segment_penalty: a penalty negative, non-finite or beyond 1e6");
+    if (!(m.unknown_cost >= 0.0f)) return refuse(problem, "unknown_cost: negative or NaN");
     return Status::ok;
 }
 

@@ -82,5 +82,11 @@
     SCALAR(std::uint16_t, window_chars, 0, 1, 65535)       /* sliding window length in characters */      \
     SCALAR(std::uint16_t, step_chars, 0, 1, 65535)         /* a window opens every step_chars */          \
     SCALAR(std::uint16_t, neighbours, 1, 1, 65535)         /* k of the kNN vote */                        \
-    SCALAR(float, unknown_distance, detail::infinity(), 0, 0) /* best distance above it: unknown */
+    SCALAR(float, unknown_distance, detail::infinity(), 0, 0) /* best distance above it: unknown */     \
+    /* --- online settings of the segmenter (design §1.8), chosen at training --- */                      \
+    SCALAR(std::uint32_t, settle_delay_us, 2000000, 0, 600000000) /* a character's label is final then */ \
+    SCALAR(float, segment_penalty, 3.0f, 0, 0)             /* cost of starting another segment */         \
+    SCALAR(float, stay_penalty, 0.3f, 0, 0)                /* two stream characters on one */             \
+    SCALAR(float, skip_penalty, 0.3f, 0, 0)                /* skipping a representative character */      \
+    SCALAR(float, unknown_cost, detail::infinity(), 0, 0)  /* per character of "no action"; inf: none */
 // clang-format on

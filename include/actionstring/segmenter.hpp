@@ -50,6 +50,18 @@ struct SegmenterConfig {
     float unknown_cost = detail::infinity();
 };
 
+/// The online settings a model carries (chosen at training); a device uses
+/// them unless told otherwise.
+constexpr SegmenterConfig segmenter_config(const ModelView& m) noexcept {
+    SegmenterConfig c;
+    c.settle_delay_us = m.settle_delay_us;
+    c.segment_penalty = m.segment_penalty;
+    c.stay_penalty = m.stay_penalty;
+    c.skip_penalty = m.skip_penalty;
+    c.unknown_cost = m.unknown_cost;
+    return c;
+}
+
 /// Longest settle delay a segmenter accepts (10 minutes); the capacity's
 /// max_settle_chars usually binds first.
 constexpr std::int64_t max_settle_delay_us = 600000000;
@@ -64,8 +76,23 @@ public:
     /// invalid_model, model_exceeds_capacity (more representative characters
     /// than Cap, or a settle delay longer than Cap::max_settle_chars), or
     /// invalid_argument (a negative or NaN setting); ok otherwise.
-    Status init(const ModelView& model, const SegmenterConfig& config = {}) noexcept {
+    /// Binds a model with its own online settings (segmenter_config()).
+    Status init(const ModelView& model) noexcept { return init(model, segmenter_config(model)); }
+
+    Status init(const ModelView& model, const SegmenterConfig& config) noexcept {
         model_ = nullptr;
+        const Status status = check(model, config);
+        if (status != Status::ok) return status;
+        settle_chars_ = settle_chars_for(model, config);
+        config_ = config;
+        model_ = &model;
+        reset();
+        return Status::ok;
+    }
+
+    /// What init() would return for this model and these settings, with no
+    /// state touched (a caller can check new settings before applying them).
+    static Status check(const ModelView& model, const SegmenterConfig& config) noexcept {
         const Status status = validate_matching_tables(model);
         if (status != Status::ok) return status;
         if (!(config.settle_delay_us >= 0) || !(config.segment_penalty >= 0.0f) || !(config.stay_penalty >= 0.0f) ||
@@ -78,13 +105,7 @@ public:
             return Status::model_exceeds_capacity;
         if (model.string_period_us == 0) return Status::invalid_model;
         if (config.settle_delay_us > max_settle_delay_us) return Status::invalid_argument;
-        const std::int64_t period = model.string_period_us;
-        const std::int64_t settle = (config.settle_delay_us + period / 2) / period;
-        if (settle > static_cast<std::int64_t>(Cap::max_settle_chars)) return Status::model_exceeds_capacity;
-        settle_chars_ = static_cast<std::uint32_t>(settle);
-        config_ = config;
-        model_ = &model;
-        reset();
+        if (settle_chars_for(model, config) > Cap::max_settle_chars) return Status::model_exceeds_capacity;
         return Status::ok;
     }
 
@@ -181,6 +202,12 @@ public:
     std::uint64_t characters_pushed() const noexcept { return pushed_; }
 
 private:
+    // The settle delay in characters, rounded (settings already checked).
+    static std::uint32_t settle_chars_for(const ModelView& model, const SegmenterConfig& config) noexcept {
+        const std::int64_t period = model.string_period_us;
+        return static_cast<std::uint32_t>((config.settle_delay_us + period / 2) / period);
+    }
+
     static constexpr std::uint16_t unknown_rep = 0xFFFF;
     // A power of two, so that slot = index mod 2^32 mod ring_size stays
     // consistent when the 32-bit index wraps.

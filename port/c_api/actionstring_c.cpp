@@ -17,8 +17,8 @@ using Annotator = actionstring::Annotator<model::ModelCapacity>;
 // magic word, the state's own address (memory filled with the magic, or a
 // state copied or overwritten after init, does not hold it) and a closing
 // magic word after the annotator (an overrun from the memory before it).
-constexpr std::uint32_t kMagic = 0x41535452u;      // "ASTR"
-constexpr std::uint32_t kEndMagic = 0x52545341u;   // "RTSA"
+constexpr std::uint32_t kMagic = 0x41535452u;     // "ASTR"
+constexpr std::uint32_t kEndMagic = 0x52545341u;  // "RTSA"
 
 struct State {
     std::uint32_t magic = kMagic;
@@ -92,6 +92,30 @@ actionstring_status actionstring_reset(actionstring_state* handle) {
     if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
     state->annotator.reset();
     return ACTIONSTRING_OK;
+}
+
+actionstring_online_settings actionstring_model_online_settings(void) {
+    const actionstring::SegmenterConfig c = actionstring::segmenter_config(model::kModel);
+    return actionstring_online_settings{c.settle_delay_us, c.segment_penalty, c.stay_penalty, c.skip_penalty,
+                                        c.unknown_cost};
+}
+
+actionstring_status actionstring_set_online_settings(actionstring_state* handle,
+                                                     const actionstring_online_settings* settings) {
+    State* state = live(handle);
+    if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    if (settings == nullptr) return ACTIONSTRING_INVALID_ARGUMENT;
+    actionstring::AnnotatorConfig config = actionstring::annotator_config(model::kModel);
+    config.segmenter.settle_delay_us = settings->settle_delay_us;
+    config.segmenter.segment_penalty = settings->segment_penalty;
+    config.segmenter.stay_penalty = settings->stay_penalty;
+    config.segmenter.skip_penalty = settings->skip_penalty;
+    config.segmenter.unknown_cost = settings->unknown_cost;
+    // Checked first, so a refused setting leaves the state as it was.
+    if (actionstring::ActionSegmenter<model::ModelCapacity>::check(model::kModel, config.segmenter) !=
+        actionstring::Status::ok)
+        return ACTIONSTRING_INVALID_ARGUMENT;
+    return code(state->annotator.init(model::kModel, config));
 }
 
 int32_t actionstring_label(const actionstring_state* handle) {

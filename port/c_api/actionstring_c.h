@@ -77,6 +77,25 @@ ACTIONSTRING_C_API actionstring_status actionstring_push_frame(actionstring_stat
 /** Forgets the stream (string, windows, label); the model stays bound. */
 ACTIONSTRING_C_API actionstring_status actionstring_reset(actionstring_state* state);
 
+/** The segmenter's online settings. A model carries its own, chosen at
+ *  training; actionstring_init() uses them. */
+typedef struct actionstring_online_settings {
+    int64_t settle_delay_us; /**< a character's label is final this long after it */
+    float segment_penalty;   /**< cost of starting another segment */
+    float stay_penalty;      /**< cost of two stream characters on one representative character */
+    float skip_penalty;      /**< cost of skipping a representative character */
+    float unknown_cost;      /**< cost per character of "no action"; INFINITY turns it off */
+} actionstring_online_settings;
+
+/** The model's own online settings. */
+ACTIONSTRING_C_API actionstring_online_settings actionstring_model_online_settings(void);
+
+/** Replaces a state's online settings and restarts its stream. INVALID_ARGUMENT
+ *  (and the state unchanged) for a negative, NaN or too long setting, or a
+ *  settle delay longer than the state holds; NOT_INITIALIZED for a bad state. */
+ACTIONSTRING_C_API actionstring_status actionstring_set_online_settings(actionstring_state* state,
+                                                                        const actionstring_online_settings* settings);
+
 /** Current label index (0 .. actionstring_label_count()-1), or -1 for unknown or a bad state. */
 ACTIONSTRING_C_API int32_t actionstring_label(const actionstring_state* state);
 /** Confidence of the current label in [0, 1]; 0 when unknown. */

@@ -202,5 +202,13 @@ OnlineReport evaluate_recordings(const ModelView& model, const std::vector<Label
     return report;
 }
 
+OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed) {
+    return evaluate_online(model, clips, seed, annotator_config(model));
+}
+
+OnlineReport evaluate_recordings(const ModelView& model, const std::vector<LabelledRecording>& recordings) {
+    return evaluate_recordings(model, recordings, annotator_config(model));
+}
+
 }  // namespace host
 }  // namespace actionstring

@@ -60,13 +60,17 @@ struct OnlineReport {
 /// is known by construction), streams every frame with its timestamp through
 /// the annotator as a device would, and scores every rule's labels.
 OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed,
-                             const AnnotatorConfig& config = {});
+                             const AnnotatorConfig& config);
+/// The same with the model's own online settings (annotator_config()).
+OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed);
 
 /// Streams every recording whole, frame by frame with its timestamps, through
 /// the annotator and scores every rule against its timeline; frames outside
 /// every interval count as "no action" (the right output there is unknown).
 OnlineReport evaluate_recordings(const ModelView& model, const std::vector<LabelledRecording>& recordings,
-                                 const AnnotatorConfig& config = {});
+                                 const AnnotatorConfig& config);
+/// The same with the model's own online settings (annotator_config()).
+OnlineReport evaluate_recordings(const ModelView& model, const std::vector<LabelledRecording>& recordings);
 
 }  // namespace host
 }  // namespace actionstring

@@ -126,5 +126,9 @@ std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip, c
     return spans;
 }
 
+std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip) {
+    return annotate_clip(model, clip, annotator_config(model));
+}
+
 }  // namespace host
 }  // namespace actionstring

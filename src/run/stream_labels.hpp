@@ -56,7 +56,9 @@ struct LabelSpan {
 
 /// Streams a clip frame by frame through the annotator and returns the
 /// timeline of settled labels: consecutive frames with the same label form one span.
-std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip, const AnnotatorConfig& config = {});
+std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip, const AnnotatorConfig& config);
+/// The same with the model's own online settings (annotator_config()).
+std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip);
 
 }  // namespace host
 }  // namespace actionstring

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "actionstring/model.hpp"
+#include "actionstring/segmenter.hpp"
 #include "train/gmm_em.hpp"
 
 namespace actionstring {
@@ -52,6 +53,8 @@ struct TrainingOptions {
     double window_seconds = 2.0;
     double step_seconds = 0.5;
     double unknown_distance = -1.0;  ///< < 0: never unknown.
+    /// The segmenter's settings, stored in the model: a device uses them unless told otherwise.
+    SegmenterConfig online;
     std::uint32_t seed = 1;
     /// Called with the name of each stage as it starts (progress reports); may be empty.
     std::function<void(const char*)> progress;

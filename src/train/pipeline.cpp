@@ -64,6 +64,8 @@ void check_options(const TrainingOptions& o) {
     require(o.max_characters >= 1 && o.max_characters <= 4096, "the character limit must be between 1 and 4096");
     require(o.velocity_weight >= 0 && o.velocity_weight <= 1000, "the velocity weight must be between 0 and 1000");
     require(o.velocity_span_s >= 0.01 && o.velocity_span_s <= 2, "the velocity span must be between 0.01 and 2 s");
+    require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
+            "the settle delay must be 0 to 60 s");
 }
 
 // Median 3-D hip width over a clip's frames.
@@ -352,6 +354,12 @@ void set_matching(ModelData& m, const TrainingOptions& options, int representati
     m.neighbours = static_cast<std::uint16_t>(std::min<int>(options.neighbours, representatives));
     m.unknown_distance =
         options.unknown_distance < 0 ? detail::infinity() : static_cast<float>(options.unknown_distance);
+    const SegmenterConfig& online = options.online;
+    m.settle_delay_us = static_cast<std::uint32_t>(online.settle_delay_us);
+    m.segment_penalty = online.segment_penalty;
+    m.stay_penalty = online.stay_penalty;
+    m.skip_penalty = online.skip_penalty;
+    m.unknown_cost = online.unknown_cost;
     if (!HostCapacity::fits(m.view()))
         throw std::invalid_argument(std::to_string(representatives) + " representatives of " +
                                     std::to_string(m.view().total_representative_chars()) +

@@ -127,7 +127,10 @@ std::string options_as_config(const TrainingOptions& o) {
         << number(o.epsilon) << "\nstring-rate " << number(o.string_rate_hz) << "\nvariant "
         << variant[static_cast<int>(o.variant)] << "\nnormalization "
         << normalization[static_cast<int>(o.normalization)] << "\nsigma " << number(o.sigma) << "\nkeep-singletons "
-        << (o.keep_singletons ? "true" : "false") << "\nneighbours " << o.neighbours << "\nseed " << o.seed << "\n";
+        << (o.keep_singletons ? "true" : "false") << "\nneighbours " << o.neighbours << "\nseed " << o.seed
+        << "\nsettle " << number(static_cast<double>(o.online.settle_delay_us) * 1e-6) << "\nsegment-penalty "
+        << number(o.online.segment_penalty) << "\nstay-penalty " << number(o.online.stay_penalty) << "\nskip-penalty "
+        << number(o.online.skip_penalty) << "\nunknown-cost " << number(o.online.unknown_cost) << "\n";
     return out.str();
 }
 

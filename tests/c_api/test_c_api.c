@@ -98,6 +98,23 @@ static void contract_checks(void) {
     CHECK(strcmp(actionstring_label_name(state), "unknown") == 0);
     CHECK(actionstring_confidence(state) == 0.0f);
 
+    /* The model's online settings, and replacing them: a bad one changes nothing. */
+    const actionstring_online_settings own = actionstring_model_online_settings();
+    CHECK(own.settle_delay_us > 0 && own.segment_penalty >= 0.0f);
+    actionstring_online_settings bad = own;
+    bad.segment_penalty = -1.0f;
+    CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
+    bad = own;
+    bad.settle_delay_us = (int64_t)3600 * 1000000; /* an hour: more than the state holds */
+    CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_set_online_settings(state, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_set_online_settings(NULL, &own) == ACTIONSTRING_NOT_INITIALIZED);
+    actionstring_online_settings eager = own;
+    eager.settle_delay_us = 1000000;
+    eager.unknown_cost = 0.5f;
+    CHECK(actionstring_set_online_settings(state, &eager) == ACTIONSTRING_OK);
+    CHECK(actionstring_set_online_settings(state, &own) == ACTIONSTRING_OK);
+
     /* Wrong element count or a null frame: rejected before the runtime sees it. */
     CHECK(actionstring_push_frame(state, 0, frame, 3 * joints - 1, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
     CHECK(actionstring_push_frame(state, 0, NULL, 3 * joints, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
