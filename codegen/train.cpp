@@ -49,6 +49,7 @@ void print_train_usage(std::FILE* out) {
                  "  --normalization none|path|query                [none]\n"
                  "  --sigma S               merge string clusters while their distance <= S [%g]\n"
                  "  --keep-singletons       keep clusters of one string as representatives\n"
+                 "  --mirror                also train on every clip mirrored (left and right swapped)\n"
                  "  --neighbours K          k of the kNN vote [%d]\n"
                  "  --window S, --step S    sliding window and step in seconds [%g, %g]\n"
                  "  --unknown-distance X    label unknown above this distance [never]\n"
@@ -94,6 +95,7 @@ bool apply(ArgumentReader& args, const std::string& name, const std::string& val
     else if (name == "em-tolerance") o.em_tolerance = number(0, 1);
     else if (name == "em-restarts") o.em_restarts = static_cast<int>(number(1, 64));
     else if (name == "scale") o.scale_mode = static_cast<ScaleMode>(choice({"none", "hip-width", "bones"}));
+    else if (name == "mirror") o.mirror = value == "true" || value == "1" || value.empty();
     else if (name == "velocity") o.velocity_weight = number(0, 1000);
     else if (name == "velocity-span") o.velocity_span_s = number(0.01, 2);
     else if (name == "epsilon") o.epsilon = number(1e-9, 1e9);
@@ -286,7 +288,10 @@ int run_train(int argc, char** argv) {
         else if (arg == "--json") json_path = args.value(arg);
         else if (arg == "--sweep") sweep = true;
         else if (arg == "--cv") cv = true;
-        else if (arg == "--no-tune") no_tune = true;
+        else if (arg == "--mirror") {
+            options.mirror = true;
+            settings_given = true;
+        } else if (arg == "--no-tune") no_tune = true;
         else if (arg == "--keep-singletons") {
             options.keep_singletons = true;
             settings_given = true;

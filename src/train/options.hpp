@@ -37,6 +37,9 @@ struct TrainingOptions {
     ScaleMode scale_mode = ScaleMode::none;
     /// Weight of the pose's velocity beside the pose (motion.hpp); 0 = none.
     double velocity_weight = 0.0;
+    /// Also train on every clip mirrored (left and right swapped): for data
+    /// whose classes are not lateral, so left- and right-handed people match.
+    bool mirror = false;
     /// Time the velocity is taken over, in seconds (10 ms to 2 s).
     double velocity_span_s = 0.2;
     // Characters.

@@ -19,6 +19,7 @@
 #include "common/parallel.hpp"
 #include "common/stats.hpp"
 #include "run/encode.hpp"
+#include "train/augment.hpp"
 #include "train/clustering.hpp"
 #include "train/pca.hpp"
 
@@ -371,8 +372,10 @@ void set_matching(ModelData& m, const TrainingOptions& options, int representati
 
 }  // namespace
 
-ModelData train_model(const std::vector<LabelledClip>& clips, const TrainingOptions& options, TrainingReport* report) {
+ModelData train_model(const std::vector<LabelledClip>& given, const TrainingOptions& options, TrainingReport* report) {
     check_options(options);
+    const std::vector<LabelledClip> mirrored = options.mirror ? with_mirrored(given) : std::vector<LabelledClip>{};
+    const std::vector<LabelledClip>& clips = options.mirror ? mirrored : given;
     TrainingReport local;
     TrainingReport& r = report != nullptr ? *report : local;
     r = TrainingReport{};

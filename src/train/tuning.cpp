@@ -53,6 +53,7 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
          {0.0, 2.0},
          [](TrainingOptions& o, double v) { o.scale_mode = static_cast<ScaleMode>(static_cast<int>(v)); },
          [has_parents](const TrainingOptions&) { return has_parents; }},
+        {"mirror", {0.0, 1.0}, [](TrainingOptions& o, double v) { o.mirror = v > 0; }},
         {"string-rate", {8.0, 12.0, 15.0, 20.0}, [](TrainingOptions& o, double v) { o.string_rate_hz = v; }},
         {"epsilon", {0.5, 0.7, 1.0}, [](TrainingOptions& o, double v) { o.epsilon = v; }},
         {"sigma", {0.3, 0.75, 1.5}, [](TrainingOptions& o, double v) { o.sigma = v; }},
@@ -60,6 +61,7 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
     };
     auto describe = [](const Axis& axis, double v) {
         if (std::string(axis.name) == "scale") return std::string("scale ") + (v > 0 ? "bones" : "none");
+        if (std::string(axis.name) == "mirror") return std::string("mirror ") + (v > 0 ? "true" : "false");
         return std::string(axis.name) + " " + number(v);
     };
     // The PCA dimension never exceeds the input's (a small skeleton, no velocity).
@@ -127,8 +129,9 @@ std::string options_as_config(const TrainingOptions& o) {
         << number(o.epsilon) << "\nstring-rate " << number(o.string_rate_hz) << "\nvariant "
         << variant[static_cast<int>(o.variant)] << "\nnormalization "
         << normalization[static_cast<int>(o.normalization)] << "\nsigma " << number(o.sigma) << "\nkeep-singletons "
-        << (o.keep_singletons ? "true" : "false") << "\nneighbours " << o.neighbours << "\nseed " << o.seed
-        << "\nsettle " << number(static_cast<double>(o.online.settle_delay_us) * 1e-6) << "\nsegment-penalty "
+        << (o.keep_singletons ? "true" : "false") << "\nmirror " << (o.mirror ? "true" : "false") << "\nneighbours "
+        << o.neighbours << "\nseed " << o.seed << "\nsettle "
+        << number(static_cast<double>(o.online.settle_delay_us) * 1e-6) << "\nsegment-penalty "
         << number(o.online.segment_penalty) << "\nstay-penalty " << number(o.online.stay_penalty) << "\nskip-penalty "
         << number(o.online.skip_penalty) << "\nunknown-cost " << number(o.online.unknown_cost) << "\n";
     return out.str();
