@@ -91,7 +91,7 @@ public:
     }
 
     /// What init() would return for this model and these settings, with no
-    /// state touched (a caller can check new settings before applying them).
+    /// state touched (a caller can check settings before applying them).
     static Status check(const ModelView& model, const SegmenterConfig& config) noexcept {
         const Status status = validate_matching_tables(model);
         if (status != Status::ok) return status;
