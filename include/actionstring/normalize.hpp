@@ -59,11 +59,13 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     };
     if (!check(model.root_joint) || !check(model.left_hip_joint) || !check(model.right_hip_joint))
         return Status::non_finite_input;
-    for (std::size_t k = 0; k < model.pose_joint_count; ++k)
-        if (!check(model.pose_joints[k])) return Status::non_finite_input;
-    if (bones)
+    if (bones) {
         for (std::size_t j = 0; j < model.joint_count; ++j)
             if (!check(j)) return Status::non_finite_input;
+    } else {
+        for (std::size_t k = 0; k < model.pose_joint_count; ++k)
+            if (!check(model.pose_joints[k])) return Status::non_finite_input;
+    }
     if (!any_non_zero) return Status::tracking_lost;
 
     // Bone lengths: rebuild the skeleton root first, each joint its parent's

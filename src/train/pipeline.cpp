@@ -69,16 +69,21 @@ void check_options(const TrainingOptions& o) {
             "the settle delay must be 0 to 60 s");
 }
 
+// Distance between joints a and b of one frame, in double.
+double joint_distance(const float* frame, std::size_t a, std::size_t b) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < 3; ++k) {
+        const double d = static_cast<double>(frame[3 * a + k]) - static_cast<double>(frame[3 * b + k]);
+        sum += d * d;
+    }
+    return std::sqrt(sum);
+}
+
 // Median 3-D hip width over a clip's frames.
 double median_hip_width(const Clip& clip) {
     std::vector<double> widths;
-    const auto l = static_cast<std::size_t>(clip.roles.left_hip) * 3,
-               r = static_cast<std::size_t>(clip.roles.right_hip) * 3;
-    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
-        const float* p = clip.frame(f);
-        widths.push_back(std::sqrt(std::pow(p[l] - p[r], 2.0) + std::pow(p[l + 1] - p[r + 1], 2.0) +
-                                   std::pow(p[l + 2] - p[r + 2], 2.0)));
-    }
+    const auto l = static_cast<std::size_t>(clip.roles.left_hip), r = static_cast<std::size_t>(clip.roles.right_hip);
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) widths.push_back(joint_distance(clip.frame(f), l, r));
     return median(widths);
 }
 
@@ -117,12 +122,8 @@ void set_bones(ModelData& m, const std::vector<LabelledClip>& clips) {
         for (std::size_t f = 0; f < c.clip.frame_count(); ++f) {
             if (!c.clip.lost.empty() && c.clip.lost[f]) continue;
             const float* p = c.clip.frame(f);
-            for (std::size_t j = 0; j < J; ++j) {
-                if (first.parents[j] < 0) continue;
-                const std::size_t a = 3 * j, b = 3 * static_cast<std::size_t>(first.parents[j]);
-                sum[j] += std::sqrt(std::pow(double(p[a]) - p[b], 2.0) + std::pow(double(p[a + 1]) - p[b + 1], 2.0) +
-                                    std::pow(double(p[a + 2]) - p[b + 2], 2.0));
-            }
+            for (std::size_t j = 0; j < J; ++j)
+                if (first.parents[j] >= 0) sum[j] += joint_distance(p, j, static_cast<std::size_t>(first.parents[j]));
             ++frames;
         }
     if (frames == 0) throw std::invalid_argument("no tracked frame to measure bone lengths on");

@@ -1,6 +1,8 @@
 // Training that tunes itself by cross-validation.
 #include "train/tuning.hpp"
 
+#include "common/time.hpp"
+
 #include <chrono>
 #include <cstdint>
 #include <utility>
@@ -130,10 +132,10 @@ std::string options_as_config(const TrainingOptions& o) {
         << variant[static_cast<int>(o.variant)] << "\nnormalization "
         << normalization[static_cast<int>(o.normalization)] << "\nsigma " << number(o.sigma) << "\nkeep-singletons "
         << (o.keep_singletons ? "true" : "false") << "\nmirror " << (o.mirror ? "true" : "false") << "\nneighbours "
-        << o.neighbours << "\nseed " << o.seed << "\nsettle "
-        << number(static_cast<double>(o.online.settle_delay_us) * 1e-6) << "\nsegment-penalty "
-        << number(o.online.segment_penalty) << "\nstay-penalty " << number(o.online.stay_penalty) << "\nskip-penalty "
-        << number(o.online.skip_penalty) << "\nunknown-cost " << number(o.online.unknown_cost) << "\n";
+        << o.neighbours << "\nseed " << o.seed << "\nsettle " << number(us_to_seconds(o.online.settle_delay_us))
+        << "\nsegment-penalty " << number(o.online.segment_penalty) << "\nstay-penalty "
+        << number(o.online.stay_penalty) << "\nskip-penalty " << number(o.online.skip_penalty) << "\nunknown-cost "
+        << number(o.online.unknown_cost) << "\n";
     return out.str();
 }
 
