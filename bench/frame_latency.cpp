@@ -30,6 +30,7 @@
 #include "eval/clip_eval.hpp"
 #include "eval/json.hpp"
 #include "eval/online.hpp"
+#include "run/state.hpp"
 #include "run/stream_labels.hpp"
 #include "io/clip_list.hpp"
 #include "io/formats.hpp"
@@ -142,13 +143,19 @@ void table_bytes(const ModelView& m, std::ostringstream& json, std::ostringstrea
        << " | " << normalise + pca + gmm + tree + strings << " |\n";
 }
 
+/// Both rules: the window rule's cost is measured too.
+AnnotatorConfig every_rule(const ModelView& model) {
+    AnnotatorConfig config = annotator_config(model);
+    config.window_rule = true;
+    return config;
+}
+
 /// Everything measured on one model over the real stream.
-template <class Cap>
 void measure_model(const std::string& name, const ModelView& model, const host::ConcatenatedStream& stream, int passes,
                    Report& report, std::ostringstream& memory_md, std::ostringstream& tables_md) {
-    auto annotator = std::make_unique<Annotator<Cap>>();
-    if (annotator->init(model) != Status::ok) {
-        std::fprintf(stderr, "%s: the model does not fit the capacity\n", name.c_str());
+    host::Stateful<Annotator> annotator;
+    if (annotator.init(model, every_rule(model)) != Status::ok) {
+        std::fprintf(stderr, "%s: the annotator refused the model\n", name.c_str());
         std::exit(1);
     }
     const std::size_t frames = stream.frame_count();
@@ -178,9 +185,14 @@ void measure_model(const std::string& name, const ModelView& model, const host::
 
     // Stages, each called alone on every frame of the stream.
     std::vector<std::int64_t> normalise_ns, project_ns, posterior_ns, descent_ns;
-    float pose[Cap::max_pose_dim], feature[Cap::max_feature_dim], posterior[Cap::max_components];
-    float skeleton_buffer[3 * Cap::max_joints];
-    float* const skeleton_data = skeleton_buffer;
+    std::vector<float> pose_buffer(model.input_dim()), feature_buffer(model.feature_dim),
+        posterior_buffer(model.component_count), scratch_buffer(model.feature_dim),
+        skeleton_buffer(3u * model.joint_count);
+    float* const pose = pose_buffer.data();
+    float* const feature = feature_buffer.data();
+    float* const posterior = posterior_buffer.data();
+    float* const scratch = scratch_buffer.data();
+    float* const skeleton_data = skeleton_buffer.data();
     for (int pass = 0; pass <= passes; ++pass)
         for (std::size_t f = 0; f < frames; ++f) {
             Status status = Status::ok;
@@ -193,7 +205,7 @@ void measure_model(const std::string& name, const ModelView& model, const host::
                 input = feature;
             }
             const std::int64_t c =
-                timed([&] { status = gmm_posterior<Cap::max_feature_dim>(model, input, posterior); });
+                timed([&] { status = gmm_posterior(model, input, posterior, scratch); });
             if (status != Status::ok) continue;
             Character character = 0;
             const std::int64_t d = timed([&] { character = descend_tree(model, posterior); });
@@ -210,8 +222,8 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     report.latency.push_back({name, "stage: tree descent", summarize(descent_ns)});
 
     // The stream's action string, as the encoder emits it.
-    auto encoder = std::make_unique<StringEncoder<Cap>>();
-    encoder->init(model, AnnotatorConfig{}.max_gap_us, AnnotatorConfig{}.max_backward_us);
+    host::Stateful<StringEncoder> encoder;
+    encoder.init(model, EncoderConfig{});
     std::vector<Character> string;
     for (std::size_t f = 0; f < frames; ++f) {
         const EncodedFrame e = encoder->push_frame(stream.times_us[f], stream.frame(f));
@@ -221,8 +233,8 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     }
 
     // Matcher: incremental per character, against the batch DP over each completed window.
-    auto matcher = std::make_unique<WindowMatcher<Cap>>();
-    matcher->init(model);
+    host::Stateful<WindowMatcher> matcher;
+    matcher.init(model);
     const std::size_t R = model.representative_count;
     std::vector<std::int64_t> push_ns, classify_ns, batch_window_ns;
     std::int64_t incremental_total = 0, batch_total = 0;
@@ -241,7 +253,7 @@ void measure_model(const std::string& name, const ModelView& model, const host::
             if (!completed) continue;
             Classification label;
             const std::int64_t c = timed(
-                [&] { label = classify_distances<Cap::max_representatives>(model, matcher->completed_distances()); });
+                [&] { label = classify_distances(model, matcher->completed_distances()); });
             g_sink = label.label;
             const std::size_t start = static_cast<std::size_t>(matcher->completed_window_start());
             const std::size_t length = i + 1 - start;
@@ -265,9 +277,9 @@ void measure_model(const std::string& name, const ModelView& model, const host::
         }
     }
     // Segmenter: the online rule's update per character on the same string.
-    auto segmenter = std::make_unique<ActionSegmenter<Cap>>();
+    host::Stateful<ActionSegmenter> segmenter;
     std::vector<std::int64_t> segment_ns;
-    if (segmenter->init(model) == Status::ok) {
+    if (segmenter.init(model, segmenter_config(model)) == Status::ok) {
         for (int pass = 0; pass <= passes; ++pass) {
             segmenter->reset();
             for (std::size_t i = 0; i < string.size(); ++i) {
@@ -296,17 +308,23 @@ void measure_model(const std::string& name, const ModelView& model, const host::
                   passes, frames, allocations);
     report.notes.push_back(line);
 
-    memory_md << "| " << name << " | " << sizeof(Annotator<Cap>) << " | " << sizeof(StringEncoder<Cap>) << " | "
-              << sizeof(WindowMatcher<Cap>) << " |\n";
+    const std::size_t annotator_bytes = Annotator::required_bytes(model, every_rule(model));
+    const std::size_t segmenter_only_bytes = Annotator::required_bytes(model, annotator_config(model));
+    memory_md << "| " << name << " | " << annotator_bytes << " | " << segmenter_only_bytes << " | "
+              << StringEncoder::required_bytes(model) << " | " << WindowMatcher::required_bytes(model) << " | "
+              << ActionSegmenter::required_bytes(model, segmenter_config(model)) << " |\n";
     std::ostringstream tables_json;
     table_bytes(model, tables_json, tables_md, name);
     if (report.json_models.tellp() > 0) report.json_models << ", ";
     report.json_models << "{\"name\": \"" << name << "\", \"components\": " << model.component_count
                        << ", \"feature_dim\": " << model.feature_dim << ", \"characters\": " << model.character_count
                        << ", \"representatives\": " << R << ", \"window_chars\": " << model.window_chars
-                       << ", \"state_bytes\": {\"annotator\": " << sizeof(Annotator<Cap>)
-                       << ", \"encoder\": " << sizeof(StringEncoder<Cap>)
-                       << ", \"matcher\": " << sizeof(WindowMatcher<Cap>) << "}, " << tables_json.str()
+                       << ", \"state_bytes\": {\"annotator\": " << annotator_bytes
+                       << ", \"annotator_segmenter_only\": " << segmenter_only_bytes
+                       << ", \"encoder\": " << StringEncoder::required_bytes(model)
+                       << ", \"matcher\": " << WindowMatcher::required_bytes(model)
+                       << ", \"segmenter\": " << ActionSegmenter::required_bytes(model, segmenter_config(model))
+                       << "}, " << tables_json.str()
                        << ", \"incremental_vs_batch\": {\"incremental_ns\": " << incremental_total / passes
                        << ", \"batch_ns\": " << batch_total / passes << ", \"ratio\": " << ratio
                        << ", \"identical\": " << identical << ", \"compared\": " << compared
@@ -314,27 +332,6 @@ void measure_model(const std::string& name, const ModelView& model, const host::
 }
 
 // ---- scaling on synthetic models (cost only) ----------------------------------
-struct ScalingLimits : DefaultLimits {
-    static constexpr std::size_t joints = 31;
-    static constexpr std::size_t pose_joints = 30;
-    static constexpr std::size_t feature_dim = 64;
-    static constexpr std::size_t components = 96;
-    static constexpr std::size_t representatives = 96;
-    static constexpr std::size_t representative_chars = 8192;
-    static constexpr std::size_t windows = 4;
-    static constexpr bool path_lengths = false;
-};
-struct Limits40 : DefaultLimits {
-    static constexpr std::size_t joints = 31;
-    static constexpr std::size_t pose_joints = 30;
-    static constexpr std::size_t feature_dim = 24;
-    static constexpr std::size_t components = 40;
-    static constexpr std::size_t representatives = 64;
-    static constexpr std::size_t representative_chars = 4096;
-    static constexpr std::size_t windows = 4;
-    static constexpr bool path_lengths = false;
-};
-using ScalingCap = Capacity<ScalingLimits>;
 
 struct ScalingPoint {
     std::string varied;
@@ -347,8 +344,8 @@ ScalingPoint measure_scaling(const std::string& varied, const bench::ModelSize& 
     bench::make_random_model(data, size);
     data.normalization = LengthNormalization::none;
     const ModelView model = data.view();
-    auto annotator = std::make_unique<Annotator<ScalingCap>>();
-    if (annotator->init(model) != Status::ok) {
+    host::Stateful<Annotator> annotator;
+    if (annotator.init(model, every_rule(model)) != Status::ok) {
         std::fprintf(stderr, "scaling model rejected\n");
         std::exit(1);
     }
@@ -370,7 +367,7 @@ ScalingPoint measure_scaling(const std::string& varied, const bench::ModelSize& 
 
 /// One pass of the committed model's annotator over the stream: the only code
 /// bench/callgrind_frame.sh counts instructions in (--toggle-collect).
-__attribute__((noinline)) std::uint32_t callgrind_pass(Annotator<actionstring_hdm05::ModelCapacity>& annotator,
+__attribute__((noinline)) std::uint32_t callgrind_pass(Annotator& annotator,
                                                        const host::ConcatenatedStream& stream) {
     std::uint32_t characters = 0;
     for (std::size_t f = 0; f < stream.frame_count(); ++f)
@@ -420,8 +417,10 @@ int main(int argc, char** argv) {
     for (const auto& clip : clips) segments.push_back({&clip, "", 0.0});
     const host::ConcatenatedStream stream = host::concatenate_stream(segments);
     if (callgrind) {
-        auto annotator = std::make_unique<Annotator<actionstring_hdm05::ModelCapacity>>();
-        annotator->init(actionstring_hdm05::kModel);
+        auto storage = std::make_unique<StateBuffer<actionstring_hdm05::kAnnotatorWithWindowsBytes>>();
+        auto annotator = std::make_unique<Annotator>();
+        annotator->init(actionstring_hdm05::kModel, every_rule(actionstring_hdm05::kModel), storage->data(),
+                        storage->size());
         const std::uint32_t characters = callgrind_pass(*annotator, stream);
         std::printf("frames %zu characters %u\n", stream.frame_count(), characters);
         return 0;
@@ -436,10 +435,8 @@ int main(int argc, char** argv) {
     Report report;
     const std::int64_t overhead = clock_overhead_ns();
     std::ostringstream memory_md, tables_md;
-    measure_model<actionstring_hdm05::ModelCapacity>("committed hdm05 (J=20)", actionstring_hdm05::kModel, stream,
-                                                     passes, report, memory_md, tables_md);
-    using Cap40 = Capacity<Limits40>;
-    measure_model<Cap40>("hdm05 J=40", model40.view(), stream, passes, report, memory_md, tables_md);
+    measure_model("committed hdm05 (J=20)", actionstring_hdm05::kModel, stream, passes, report, memory_md, tables_md);
+    measure_model("hdm05 J=40", model40.view(), stream, passes, report, memory_md, tables_md);
 
     std::vector<ScalingPoint> points;
     if (scaling) {
@@ -493,7 +490,8 @@ int main(int argc, char** argv) {
     std::snprintf(cell, sizeof cell, "- training the J=40 model on hdm05/train.tsv (%zu clips): %.1f s\n",
                   training.size(), train_seconds);
     md << cell;
-    md << "\n| state bytes | annotator | encoder | matcher |\n|---|---:|---:|---:|\n" << memory_md.str();
+    md << "\n| state bytes (storage) | annotator, both rules | annotator, segmenter alone | encoder | matcher | segmenter |\n|---|---:|---:|---:|---:|---:|\n"
+       << memory_md.str();
     md << "\n| table bytes | normalise | PCA | GMM | tree + W | strings | total |\n|---|---:|---:|---:|---:|---:|---:|\n"
        << tables_md.str();
     if (!points.empty()) {

@@ -12,22 +12,12 @@
 
 #include "actionstring/actionstring.hpp"
 #include "actionstring_port.hpp"
+#include "run/state.hpp"
 #include "synthetic_model.hpp"
 
 using namespace actionstring;
 
 namespace {
-
-struct RepresentativeLimits : DefaultLimits {
-    static constexpr std::size_t joints = 31;
-    static constexpr std::size_t pose_joints = 30;
-    static constexpr std::size_t feature_dim = 24;
-    static constexpr std::size_t components = 40;
-    static constexpr std::size_t representatives = 30;
-    static constexpr std::size_t representative_chars = 900;
-    static constexpr std::size_t windows = 4;
-};
-using RepresentativeCap = Capacity<RepresentativeLimits>;
 
 std::int64_t percentile(const std::vector<std::int64_t>& sorted, double q) {
     if (sorted.empty()) return 0;
@@ -58,8 +48,10 @@ int main(int argc, char** argv) {
             bench::make_random_model(data, size);
             data.normalization = normalization;
             const ModelView model = data.view();
-            auto annotator = std::make_unique<Annotator<RepresentativeCap>>();
-            const Status status = annotator->init(model);
+            host::Stateful<Annotator> annotator;
+            AnnotatorConfig config = annotator_config(model);
+            config.window_rule = true;
+            const Status status = annotator.init(model, config);
             if (status != Status::ok) {
                 std::fprintf(stderr, "model rejected: %s\n", status_name(status));
                 return 1;
@@ -88,8 +80,15 @@ int main(int argc, char** argv) {
             report("tick frames", ticks);
             report("frames without a tick", plain);
         }
-    std::printf("\nstate bytes: Annotator %zu = StringEncoder %zu + WindowMatcher %zu + bookkeeping\n",
-                sizeof(Annotator<RepresentativeCap>), sizeof(StringEncoder<RepresentativeCap>),
-                sizeof(WindowMatcher<RepresentativeCap>));
+    host::ModelData data;
+    bench::make_random_model(data, bench::ModelSize{});
+    const ModelView model = data.view();
+    AnnotatorConfig config = annotator_config(model);
+    config.window_rule = true;
+    std::printf("\nstate bytes (storage, path-length normalisation): Annotator %zu = StringEncoder %zu + WindowMatcher "
+                "%zu + ActionSegmenter %zu (+ alignment); objects %zu\n",
+                Annotator::required_bytes(model, config), StringEncoder::required_bytes(model),
+                WindowMatcher::required_bytes(model), ActionSegmenter::required_bytes(model, config.segmenter),
+                sizeof(Annotator));
     return 0;
 }

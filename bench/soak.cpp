@@ -56,9 +56,12 @@ struct SoakResult {
 };
 
 SoakResult soak(const host::ConcatenatedStream& stream, double hours, bool wrap32) {
-    using Annotator = actionstring::Annotator<model::ModelCapacity>;
-    auto annotator = std::make_unique<Annotator>();
-    if (annotator->init(model::kModel) != actionstring::Status::ok) {
+    // Both rules, in static-size storage as a device keeps it.
+    actionstring::AnnotatorConfig config = actionstring::annotator_config(model::kModel);
+    config.window_rule = true;
+    auto storage = std::make_unique<actionstring::StateBuffer<model::kAnnotatorWithWindowsBytes>>();
+    auto annotator = std::make_unique<actionstring::Annotator>();
+    if (annotator->init(model::kModel, config, storage->data(), storage->size()) != actionstring::Status::ok) {
         std::fprintf(stderr, "actionstring_soak: the committed model was refused\n");
         std::exit(1);
     }

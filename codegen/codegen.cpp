@@ -21,7 +21,7 @@ int run_codegen(int argc, char** argv) {
             std::printf(
                 "usage: actionstring codegen MODEL --out HEADER [--namespace NS]\n\n"
                 "Writes a C++17 header of constexpr tables for MODEL: NS::kModel (a ModelView),\n"
-                "NS::ModelLimits and NS::ModelCapacity (a Capacity that fits it exactly) and NS::kModelChecksum, under a\n"
+                "NS::kAnnotatorBytes (the Annotator's exact storage for it) and NS::kModelChecksum, under a\n"
                 "DO-NOT-EDIT banner carrying the artifact's checksum. [namespace: actionstring_model]\n");
             return 0;
         }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "actionstring/actionstring.hpp"
+#include "run/state.hpp"
 #include "toy/toy.hpp"
 #include "actionstring_port.hpp"
 #include "commands.hpp"
@@ -15,8 +16,6 @@
 namespace actionstring {
 namespace cli {
 namespace {
-
-using DemoCapacity = host::ToyCapacity;
 
 void print_demo_usage(std::FILE* out) {
     std::fprintf(out,
@@ -66,8 +65,11 @@ int run_demo(int argc, char** argv) {
 
     host::ToyWorld world = host::make_toy_world();
     const ModelView model = world.model.view();
-    static Annotator<DemoCapacity> annotator;  // static: keeps the fixed state off the stack
-    const Status status = annotator.init(model);
+    // The model's settings, with the paper's window rule beside the segmenter.
+    AnnotatorConfig config = annotator_config(model);
+    config.window_rule = true;
+    host::Stateful<Annotator> annotator;
+    const Status status = annotator.init(model, config);
     if (status != Status::ok) {
         std::fprintf(stderr, "actionstring demo: model rejected: %s\n", status_name(status));
         return 1;
@@ -89,7 +91,8 @@ int run_demo(int argc, char** argv) {
         " string rate %.1f Hz\n",
         model.component_count, model.character_count, model.representative_count, model.window_chars, model.step_chars,
         1e6 / model.string_period_us);
-    std::printf("state: %zu bytes (Annotator with capacity for this demo)\n", sizeof(annotator));
+    std::printf("state: %zu bytes of storage (Annotator::required_bytes for this model)\n",
+                annotator.storage_bytes());
     std::printf("stream: %zu frames at %.0f Hz, %d actions\n\n", frames.size(), frame_rate, action_count);
     std::printf("%10s  %-12s  %-12s  %s\n", "time [s]", "true", "predicted", "confidence");
 
@@ -100,14 +103,14 @@ int run_demo(int argc, char** argv) {
     LabelId last_label = 0xFFFE;
     for (const auto& frame : frames) {
         const std::int64_t begin = port::monotonic_ns();
-        annotator.push_frame(frame.time_us, frame.positions.data());
+        annotator->push_frame(frame.time_us, frame.positions.data());
         costs.push_back(port::monotonic_ns() - begin);
-        const LabelId label = annotator.label();
+        const LabelId label = annotator->label();
         if (label == frame.action) ++correct;
         if (label != last_label || frame.action != last_true) {
             std::printf("%10.2f  %-12s  %-12s  %.2f\n", static_cast<double>(frame.time_us) * 1e-6,
-                        world.actions[static_cast<std::size_t>(frame.action)].name.c_str(), annotator.label_name(),
-                        static_cast<double>(annotator.confidence()));
+                        world.actions[static_cast<std::size_t>(frame.action)].name.c_str(), annotator->label_name(),
+                        static_cast<double>(annotator->confidence()));
             last_label = label;
             last_true = frame.action;
         }

@@ -2,9 +2,10 @@
 // (model checksum fnv1a64:dc8d700c12f39c67). Regenerate it from the model artifact instead.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
-#include "actionstring/capacity.hpp"
+#include "actionstring/annotator.hpp"
 #include "actionstring/model.hpp"
 
 namespace actionstring_hdm05 {
@@ -1559,18 +1560,16 @@ constexpr ::actionstring::ModelView make_model() {
 /// The model. Its tables have static storage: any state object may point at it for ever.
 inline constexpr ::actionstring::ModelView kModel = make_model();
 
-/// Limits that fit this model exactly.
-struct ModelLimits : ::actionstring::DefaultLimits {
-    static constexpr std::size_t joints = 31;
-    static constexpr std::size_t pose_joints = 30;
-    static constexpr std::size_t feature_dim = 24;
-    static constexpr std::size_t components = 20;
-    static constexpr std::size_t representatives = 22;
-    static constexpr std::size_t representative_chars = 701;
-    static constexpr std::size_t windows = 4;
-    static constexpr bool path_lengths = false;
-};
-/// Capacity that fits this model exactly.
-using ModelCapacity = ::actionstring::Capacity<ModelLimits>;
+/// Bytes of state an Annotator needs for this model with its own settings
+/// (annotator_config(kModel): the segmenter alone), for a static StateBuffer.
+inline constexpr std::size_t kAnnotatorBytes =
+    ::actionstring::Annotator::required_bytes(kModel, ::actionstring::annotator_config(kModel));
+/// The same with the paper's window rule too (AnnotatorConfig::window_rule).
+inline constexpr std::size_t kAnnotatorWithWindowsBytes = ::actionstring::Annotator::required_bytes(
+    kModel, [] {
+        ::actionstring::AnnotatorConfig config = ::actionstring::annotator_config(kModel);
+        config.window_rule = true;
+        return config;
+    }());
 
 }  // namespace actionstring_hdm05

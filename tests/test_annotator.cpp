@@ -12,6 +12,8 @@
 #include "actionstring/string_distance.hpp"
 #include "model/artifact.hpp"
 #include "model/header.hpp"
+#include "run/state.hpp"
+#include "test_support.hpp"
 #include "toy/toy.hpp"
 #include "train/pipeline.hpp"
 
@@ -19,16 +21,13 @@ using namespace actionstring;
 
 namespace {
 
-using TestLimits = host::ToyLimits;
-using Cap = host::ToyCapacity;
-
 struct Fixture {
     host::ToyWorld world;
     ModelView view;
-    std::unique_ptr<Annotator<Cap>> annotator = std::make_unique<Annotator<Cap>>();
+    host::Stateful<Annotator> annotator;
     explicit Fixture(const host::ToyOptions& options = {}) : world(host::make_toy_world(options)) {
         view = world.model.view();
-        REQUIRE(annotator->init(view) == Status::ok);
+        REQUIRE(annotator.init(view, test::every_rule(view)) == Status::ok);
     }
 };
 
@@ -189,8 +188,8 @@ TEST_CASE("garbage frames never crash, hang or leak NaN into labels") {
 
 TEST_CASE("reset() gives the same results as a fresh annotator") {
     Fixture f;
-    auto second = std::make_unique<Annotator<Cap>>();
-    REQUIRE(second->init(f.view) == Status::ok);
+    host::Stateful<Annotator> second;
+    REQUIRE(second.init(f.view, test::every_rule(f.view)) == Status::ok);
     const auto frames = host::toy_stream(f.world, {2, 0, 1}, {});
     for (const auto& frame : frames) f.annotator->push_frame(frame.time_us + 777, frame.positions.data());
     f.annotator->reset();
@@ -219,12 +218,12 @@ TEST_CASE("the online settings travel in the model: training stores them, init()
     CHECK(view.unknown_cost == 0.25f);
     const AnnotatorConfig config = annotator_config(view);
     CHECK(config.segmenter.unknown_cost == 0.25f);
-    auto annotator = std::make_unique<Annotator<Cap>>();
-    REQUIRE(annotator->init(view) == Status::ok);
+    host::Stateful<Annotator> annotator;
+    REQUIRE(annotator.init(view, config) == Status::ok);
     CHECK(annotator->settle_chars() == 10u);  // 1 s at the toy's 10 Hz string
     AnnotatorConfig slower = config;
     slower.segmenter.settle_delay_us = 2000000;
-    REQUIRE(annotator->init(view, slower) == Status::ok);  // an explicit config overrides the model's
+    REQUIRE(annotator.init(view, slower) == Status::ok);  // an explicit config overrides the model's
     CHECK(annotator->settle_chars() == 20u);
     // The artifact and the header carry them.
     const host::ModelData loaded = host::parse_model("online.model", host::serialize_model(model));

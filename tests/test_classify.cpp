@@ -28,7 +28,7 @@ struct Reps {
 TEST_CASE("1-NN picks the nearest representative") {
     Reps reps({0, 1, 2, 1}, 1);
     const float d[] = {3.0f, 2.0f, 1.0f, 5.0f};
-    const Classification c = classify_distances<8>(reps.view, d);
+    const Classification c = classify_distances(reps.view, d);
     CHECK(c.label == 2);
     CHECK(c.representative == 2);
     CHECK(c.distance == 1.0f);
@@ -38,13 +38,13 @@ TEST_CASE("1-NN picks the nearest representative") {
 TEST_CASE("k-NN votes; ties go to the label of the nearer neighbour") {
     Reps reps({0, 1, 1, 0, 2}, 3);
     const float d[] = {1.0f, 1.5f, 1.6f, 9.0f, 2.0f};
-    Classification c = classify_distances<8>(reps.view, d);
+    Classification c = classify_distances(reps.view, d);
     CHECK(c.label == 1);  // two of the three nearest
     CHECK(c.distance == 1.5f);
     CHECK(c.confidence == 0.0f);  // label 0 is nearer than the winner
     Reps tie({0, 1, 2}, 3);
     const float e[] = {2.0f, 1.0f, 3.0f};
-    c = classify_distances<8>(tie.view, e);
+    c = classify_distances(tie.view, e);
     CHECK(c.label == 1);
     CHECK(c.confidence == doctest::Approx(0.5));
 }
@@ -52,12 +52,12 @@ TEST_CASE("k-NN votes; ties go to the label of the nearer neighbour") {
 TEST_CASE("nothing close enough is unknown") {
     Reps reps({0, 1}, 1, 2.0f);
     const float far[] = {2.5f, 3.0f};
-    Classification c = classify_distances<8>(reps.view, far);
+    Classification c = classify_distances(reps.view, far);
     CHECK(c.label == unknown_label);
     CHECK(c.nearest_label == 0);
     CHECK(c.confidence == 0.0f);
     const float near[] = {2.0f, 3.0f};
-    c = classify_distances<8>(reps.view, near);
+    c = classify_distances(reps.view, near);
     CHECK(c.label == 0);
 }
 
@@ -65,10 +65,10 @@ TEST_CASE("a single label has full confidence; NaN distances are ignored") {
     Reps reps({1, 1}, 2);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float d[] = {nan, 4.0f};
-    const Classification c = classify_distances<8>(reps.view, d);
+    const Classification c = classify_distances(reps.view, d);
     CHECK(c.label == 1);
     CHECK(c.representative == 1);
     CHECK(c.confidence == 1.0f);
     const float all_nan[] = {nan, nan};
-    CHECK(classify_distances<8>(reps.view, all_nan).label == unknown_label);
+    CHECK(classify_distances(reps.view, all_nan).label == unknown_label);
 }

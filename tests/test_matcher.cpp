@@ -6,27 +6,13 @@
 #include <string>
 #include <vector>
 
-#include "actionstring/capacity.hpp"
 #include "actionstring/matcher.hpp"
+#include "run/state.hpp"
 #include "test_support.hpp"
 
 using namespace actionstring;
 
 namespace {
-
-struct MatcherLimits : test::MatchingOnlyLimits {
-    static constexpr std::size_t representatives = 8;
-    static constexpr std::size_t representative_chars = 512;
-    static constexpr std::size_t windows = 64;
-};
-struct NoPathLimits : MatcherLimits {
-    static constexpr bool path_lengths = false;
-};
-struct FewWindowLimits : MatcherLimits {
-    static constexpr std::size_t windows = 32;
-};
-using MatcherCap = Capacity<MatcherLimits>;
-using NoPathCap = Capacity<NoPathLimits>;
 
 // Owns the matching tables of a random model.
 struct RandomMatching {
@@ -70,15 +56,14 @@ void fill(RandomMatching& m, std::mt19937& rng, MatchVariant variant, LengthNorm
     v.neighbours = 1;
 }
 
-template <class Cap>
 void check_against_batch(MatchVariant variant, LengthNormalization normalization, int cases, std::uint32_t seed,
                          long& windows_checked, long& both_orientations) {
     std::mt19937 rng(seed);
-    auto matcher = std::make_unique<WindowMatcher<Cap>>();
+    host::Stateful<WindowMatcher> matcher;
     for (int c = 0; c < cases; ++c) {
         RandomMatching m;
         fill(m, rng, variant, normalization);
-        REQUIRE(matcher->init(m.view) == Status::ok);
+        REQUIRE(matcher.init(m.view) == Status::ok);
         const int K = m.view.character_count;
         const int length = std::uniform_int_distribution<int>(0, 120)(rng);
         std::vector<Character> stream;
@@ -119,15 +104,10 @@ TEST_CASE("completed windows equal the batch distance bit for bit") {
             CAPTURE(static_cast<int>(variant));
             CAPTURE(static_cast<int>(norm));
             long windows = 0, mixed = 0;
-            check_against_batch<MatcherCap>(variant, norm, 400, seed++, windows, mixed);
+            check_against_batch(variant, norm, 400, seed++, windows, mixed);
             // The random cases must exercise many windows and both orientations.
             CHECK(windows > 2000);
             CHECK(mixed > 20);
-            if (norm != LengthNormalization::path) {
-                long windows_np = 0, mixed_np = 0;
-                check_against_batch<NoPathCap>(variant, norm, 100, seed++, windows_np, mixed_np);
-                CHECK(windows_np > 400);
-            }
         }
 }
 
@@ -137,32 +117,44 @@ TEST_CASE("windows start every step and complete after window characters") {
     fill(m, rng, MatchVariant::whole, LengthNormalization::none);
     m.view.window_chars = 6;
     m.view.step_chars = 2;
-    WindowMatcher<MatcherCap> matcher;
+    host::Stateful<WindowMatcher> matcher;
     REQUIRE(matcher.init(m.view) == Status::ok);
     std::vector<std::size_t> completions;
     for (std::size_t i = 0; i < 20; ++i)
-        if (matcher.push(0)) completions.push_back(i);
+        if (matcher->push(0)) completions.push_back(i);
     // Windows start at 0, 2, 4, …, each completes 5 characters later.
     const std::vector<std::size_t> expected = {5, 7, 9, 11, 13, 15, 17, 19};
     CHECK(completions == expected);
-    CHECK(matcher.completed_window_start() == 14);
-    matcher.reset();
-    CHECK(matcher.characters_pushed() == 0);
-    CHECK_FALSE(matcher.has_completed_window());
+    CHECK(matcher->completed_window_start() == 14);
+    matcher->reset();
+    CHECK(matcher->characters_pushed() == 0);
+    CHECK_FALSE(matcher->has_completed_window());
 }
 
-TEST_CASE("matcher refuses models it cannot hold") {
+TEST_CASE("the matcher's storage follows the model: exact size, alignment, refusals") {
     RandomMatching m;
     std::mt19937 rng(4);
     fill(m, rng, MatchVariant::whole, LengthNormalization::path);
-    WindowMatcher<NoPathCap> no_paths;
-    CHECK(no_paths.init(m.view) == Status::model_exceeds_capacity);  // path lengths not tracked
+    const std::size_t with_paths = WindowMatcher::required_bytes(m.view);
+    m.view.normalization = LengthNormalization::none;
+    const std::size_t without_paths = WindowMatcher::required_bytes(m.view);
+    CHECK(without_paths < with_paths);  // path lengths are kept only when the model divides by them
     m.view.window_chars = 64;
-    m.view.step_chars = 1;  // 64 windows open at once
-    WindowMatcher<Capacity<FewWindowLimits>> few_windows;
-    CHECK(few_windows.init(m.view) == Status::model_exceeds_capacity);
-    CHECK_FALSE(few_windows.push(0));  // unusable after a failed init, and says so by doing nothing
+    m.view.step_chars = 1;  // 64 windows open at once: 64 lanes
+    const std::size_t many_lanes = WindowMatcher::required_bytes(m.view);
+    CHECK(many_lanes > 8 * without_paths);
+    CHECK(many_lanes % state_alignment == 0);
+
+    alignas(state_alignment) static unsigned char block[1 << 20];
+    REQUIRE(many_lanes + state_alignment <= sizeof block);
+    WindowMatcher matcher;
+    CHECK(matcher.init(m.view, block, many_lanes - 1) == Status::storage_too_small);
+    CHECK_FALSE(matcher.push(0));  // unusable after a failed init, and says so by doing nothing
+    CHECK(matcher.init(m.view, block + 4, many_lanes) == Status::storage_too_small);  // misaligned
+    CHECK(matcher.init(m.view, nullptr, many_lanes) == Status::storage_too_small);
+    REQUIRE(matcher.init(m.view, block, many_lanes) == Status::ok);
+    for (int i = 0; i < 200; ++i) matcher.push(static_cast<Character>(i % m.view.character_count));
+    CHECK(matcher.has_completed_window());
     m.view.step_chars = 0;
-    WindowMatcher<MatcherCap> matcher;
-    CHECK(matcher.init(m.view) == Status::invalid_model);
+    CHECK(matcher.init(m.view, block, sizeof block) == Status::invalid_model);
 }

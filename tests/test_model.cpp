@@ -1,36 +1,18 @@
 // Model validation: every corrupted table is refused before it reaches the per-frame code.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <functional>
 #include <limits>
 
 #include "actionstring/annotator.hpp"
+#include "run/state.hpp"
 #include "toy/toy.hpp"
 
 using namespace actionstring;
 
 namespace {
-using TestLimits = host::ToyLimits;
-using Cap = host::ToyCapacity;
-// One bound too small each.
-struct FewJoints : TestLimits {
-    static constexpr std::size_t joints = 4;
-};
-struct FewComponents : TestLimits {
-    static constexpr std::size_t components = 4;
-};
-struct FewRepresentatives : TestLimits {
-    static constexpr std::size_t representatives = 2;
-};
-struct FewRepresentativeChars : TestLimits {
-    static constexpr std::size_t representative_chars = 50;
-};
-struct FewWindows : TestLimits {
-    static constexpr std::size_t windows = 2;
-};
-struct EnoughWindows : TestLimits {
-    static constexpr std::size_t windows = 4;
-};
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 }  // namespace
 
@@ -82,29 +64,54 @@ TEST_CASE("each kind of corruption is refused") {
         corrupt(world.model);
         const ModelView view = world.model.view();
         CHECK(validate_model(view) == Status::invalid_model);
-        Annotator<Cap> annotator;
-        CHECK(annotator.init(view) == Status::invalid_model);
+        host::Stateful<Annotator> annotator;
+        CHECK(annotator.init(view, annotator_config(view)) == Status::invalid_model);
         const float frame[15] = {};
-        CHECK(annotator.push_frame(0, frame).status == Status::not_initialized);
-        CHECK(annotator.label() == unknown_label);
+        CHECK(annotator->push_frame(0, frame).status == Status::not_initialized);
+        CHECK(annotator->label() == unknown_label);
+        // A broken model is reported as such, not as a size, whatever the storage.
+        alignas(state_alignment) static unsigned char small[64];
+        CHECK(Annotator{}.init(view, annotator_config(view), small, sizeof small) == Status::invalid_model);
     }
 }
 
-TEST_CASE("a model larger than the capacity is refused") {
+TEST_CASE("the annotator works in exactly the storage the model needs") {
     host::ToyWorld world = host::make_toy_world();
     const ModelView view = world.model.view();
-    CHECK(Annotator<Capacity<FewJoints>>{}.init(view) == Status::model_exceeds_capacity);
-    CHECK(Annotator<Capacity<FewComponents>>{}.init(view) == Status::model_exceeds_capacity);
-    CHECK(Annotator<Capacity<FewRepresentatives>>{}.init(view) == Status::model_exceeds_capacity);
-    CHECK(Annotator<Capacity<FewRepresentativeChars>>{}.init(view) == Status::model_exceeds_capacity);
-    CHECK(Annotator<Capacity<FewWindows>>{}.init(view) == Status::model_exceeds_capacity);
-    CHECK(Annotator<Capacity<EnoughWindows>>{}.init(view) == Status::ok);
+    AnnotatorConfig config = annotator_config(view);
+    const std::size_t segmenter_only = Annotator::required_bytes(view, config);
+    config.window_rule = true;
+    const std::size_t both_rules = Annotator::required_bytes(view, config);
+    CHECK(segmenter_only > 0);
+    CHECK(both_rules > segmenter_only);  // the window matcher's state is paid for only when asked
+    CHECK(both_rules == Annotator::required_bytes(view, config));  // a pure function of model and settings
+    CHECK(both_rules % state_alignment == 0);
+
+    std::vector<unsigned char> bytes(both_rules + 2 * state_alignment);
+    unsigned char* aligned = bytes.data();
+    while (reinterpret_cast<std::uintptr_t>(aligned) % state_alignment != 0) ++aligned;
+    Annotator annotator;
+    CHECK(annotator.init(view, config, aligned, both_rules - 1) == Status::storage_too_small);
+    CHECK(annotator.init(view, config, nullptr, both_rules) == Status::storage_too_small);
+    CHECK(annotator.init(view, config, aligned + 1, both_rules) == Status::storage_too_small);
+    CHECK(!annotator.initialized());
+    REQUIRE(annotator.init(view, config, aligned, both_rules) == Status::ok);
+    // Nothing is written outside the block the annotator was given.
+    std::fill(aligned + both_rules, bytes.data() + bytes.size(), static_cast<unsigned char>(0xA5));
+    for (const auto& frame : host::toy_stream(world, {0, 1, 2, 3}, host::ToyStreamOptions{}))
+        annotator.push_frame(frame.time_us, frame.positions.data());
+    CHECK(annotator.label() != unknown_label);
+    for (const unsigned char* p = aligned + both_rules; p < bytes.data() + bytes.size(); ++p) REQUIRE(*p == 0xA5);
+    // A longer settle delay needs a longer ring.
+    config.segmenter.settle_delay_us *= 8;
+    CHECK(Annotator::required_bytes(view, config) > both_rules);
+    CHECK(annotator.init(view, config, aligned, both_rules) == Status::storage_too_small);
 }
 
 TEST_CASE("the annotator refuses a maximum gap shorter than the string period") {
     host::ToyWorld world = host::make_toy_world();
     const ModelView view = world.model.view();
-    Annotator<Cap> annotator;
+    host::Stateful<Annotator> annotator;
     AnnotatorConfig config;
     config.max_gap_us = view.string_period_us - 1;
     CHECK(annotator.init(view, config) == Status::invalid_argument);

@@ -10,26 +10,15 @@
 #include <random>
 #include <vector>
 
-#include "actionstring/capacity.hpp"
 #include "actionstring/motion.hpp"
 #include "actionstring/encoder.hpp"
+#include "run/state.hpp"
 #include "toy/toy.hpp"
 #include "train/pipeline.hpp"
 
 using namespace actionstring;
 
 namespace {
-
-struct MotionLimits : DefaultLimits {
-    static constexpr std::size_t joints = 2;
-    static constexpr std::size_t pose_joints = 1;
-    static constexpr std::size_t feature_dim = 6;
-    static constexpr std::size_t components = 1;
-    static constexpr std::size_t representatives = 1;
-    static constexpr std::size_t representative_chars = 1;
-    static constexpr bool motion = true;
-};
-using MotionCap = Capacity<MotionLimits>;
 
 // A view with one pose joint (D = 3) and motion: all the ring reads.
 ModelView motion_view(float weight, std::uint32_t span_us) {
@@ -42,7 +31,8 @@ ModelView motion_view(float weight, std::uint32_t span_us) {
 
 // Streams x(t) = (a t, b t², c) at the given times; returns each frame's velocity.
 std::vector<std::vector<float>> run(const ModelView& view, const std::vector<double>& times) {
-    auto ring = std::make_unique<MotionRing<MotionCap>>();
+    host::Stateful<MotionRing> ring;
+    REQUIRE(ring.init(view) == Status::ok);
     std::vector<std::vector<float>> out;
     for (double t : times) {
         float input[6] = {static_cast<float>(0.8 * t), static_cast<float>(0.3 * t * t), 1.0f, 0, 0, 0};
@@ -88,7 +78,8 @@ TEST_CASE("the velocity of a steady motion is its speed, weighted, at any frame 
 
 TEST_CASE("a restart forgets the ring, and a velocity beyond the coordinate bound is clamped") {
     const ModelView view = motion_view(1.0f, 100000);
-    auto ring = std::make_unique<MotionRing<MotionCap>>();
+    host::Stateful<MotionRing> ring;
+    REQUIRE(ring.init(view) == Status::ok);
     float input[6] = {0, 0, 0, 0, 0, 0};
     for (int f = 0; f <= 10; ++f) {
         input[0] = 0.01f * static_cast<float>(f);
@@ -103,7 +94,7 @@ TEST_CASE("a restart forgets the ring, and a velocity beyond the coordinate boun
     CHECK(input[3] == max_pose_coordinate);
 }
 
-TEST_CASE("a model with motion needs limits with motion, and trains and round-trips") {
+TEST_CASE("a model with motion trains, and its encoder's storage holds the ring") {
     host::ToyWorld world = host::make_toy_world();
     host::TrainingOptions options;
     options.components = 0;
@@ -114,8 +105,11 @@ TEST_CASE("a model with motion needs limits with motion, and trains and round-tr
     const ModelView view = model.view();
     CHECK(view.has_motion());
     CHECK(view.input_dim() == 2 * view.pose_dim());
-    CHECK_FALSE(host::ToyCapacity::fits_features(view));  // the toy limits have no motion
-    CHECK(HostCapacity::fits_features(view));
-    auto encoder = std::make_unique<StringEncoder<host::ToyCapacity>>();
-    CHECK(encoder->init(view, 1000000, 0) == Status::model_exceeds_capacity);
+    CHECK(MotionRing::required_bytes(view) >= motion_ring_poses * view.pose_dim() * sizeof(float));
+    ModelView still = view;
+    still.velocity_weight = 0.0f;
+    CHECK(MotionRing::required_bytes(still) == 0);
+    CHECK(StringEncoder::required_bytes(view) > MotionRing::required_bytes(view));
+    host::Stateful<StringEncoder> encoder;
+    CHECK(encoder.init(view, EncoderConfig{1000000, 0}) == Status::ok);
 }

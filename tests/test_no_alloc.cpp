@@ -30,6 +30,7 @@ void note_eigen_violation() { ++g_eigen_violations; }
 #include <vector>
 
 #include "actionstring/actionstring.hpp"
+#include "run/state.hpp"
 #include "toy/toy.hpp"
 
 extern "C" {
@@ -102,15 +103,17 @@ TEST_CASE("the tripwires fire") {
 }
 
 TEST_CASE("streaming thousands of frames through the annotator allocates nothing") {
-    using Cap = actionstring::host::ToyCapacity;
     for (const auto covariance : {actionstring::Covariance::full, actionstring::Covariance::diagonal}) {
         actionstring::host::ToyOptions options;
         options.covariance = covariance;
         options.neighbours = 3;
         actionstring::host::ToyWorld world = actionstring::host::make_toy_world(options);
         const actionstring::ModelView view = world.model.view();
-        auto annotator = std::make_unique<actionstring::Annotator<Cap>>();
-        REQUIRE(annotator->init(view) == actionstring::Status::ok);
+        // Storage allocated once, before the stream, as a host tool does.
+        actionstring::host::Stateful<actionstring::Annotator> annotator;
+        actionstring::AnnotatorConfig config = actionstring::annotator_config(view);
+        config.window_rule = true;
+        REQUIRE(annotator.init(view, config) == actionstring::Status::ok);
         std::vector<int> sequence;
         for (int i = 0; i < 40; ++i) sequence.push_back(i % 4);
         actionstring::host::ToyStreamOptions stream;

@@ -66,16 +66,17 @@ TEST_CASE("translation and rotation about the up axis leave the pose and feature
         for (const auto& key : world.key_poses) {
             const std::vector<float> base = with_up_axis(key, up);
             const std::vector<float> reference = normalized(view, base);
-            std::vector<float> ref_posterior(view.component_count), posterior(view.component_count);
+            std::vector<float> ref_posterior(view.component_count), posterior(view.component_count),
+                scratch(view.feature_dim);
             const bool projected_identity = !view.has_projection();
             REQUIRE(projected_identity);
-            REQUIRE(gmm_posterior<32>(view, reference.data(), ref_posterior.data()) == Status::ok);
+            REQUIRE(gmm_posterior(view, reference.data(), ref_posterior.data(), scratch.data()) == Status::ok);
             for (int trial = 0; trial < 25; ++trial) {
                 const Eigen::Matrix3f rotation = Eigen::AngleAxisf(angle(rng), up_vector).toRotationMatrix();
                 const Eigen::Vector3f shift(offset(rng), offset(rng), offset(rng));
                 const std::vector<float> moved = normalized(view, transform(base, rotation, shift));
                 CHECK(max_difference(moved, reference) < 2e-5);
-                REQUIRE(gmm_posterior<32>(view, moved.data(), posterior.data()) == Status::ok);
+                REQUIRE(gmm_posterior(view, moved.data(), posterior.data(), scratch.data()) == Status::ok);
                 CHECK(max_difference(posterior, ref_posterior) < 1e-4);
             }
             // A tilt about the horizontal axis across the hips' line is not a change

@@ -16,6 +16,7 @@
 #include "model/artifact.hpp"
 #include "model/header.hpp"
 #include "run/encode.hpp"
+#include "run/state.hpp"
 #include "run/stream_labels.hpp"
 #include "toy/toy.hpp"
 #include "train/pipeline.hpp"
@@ -34,12 +35,12 @@ std::string artifact_of(const ModelData& model) { return serialize_model(model);
 TEST_CASE("defect 2: an annotator cannot be set up to emit unbounded characters in one frame") {
     ToyWorld world = make_toy_world();
     ModelView view = world.model.view();
-    auto annotator = std::make_unique<Annotator<ToyCapacity>>();
+    Stateful<Annotator> annotator;
     AnnotatorConfig config;
     config.max_gap_us = 100000000000;  // 1e5 s: one frame across it took 3.2 s
-    CHECK(annotator->init(view, config) == Status::invalid_argument);
+    CHECK(annotator.init(view, config) == Status::invalid_argument);
     config.max_gap_us = 1000000;
-    CHECK(annotator->init(view, config) == Status::ok);
+    CHECK(annotator.init(view, config) == Status::ok);
     // A model whose string period is 1 µs (valid checksum) is refused, not padded to gigabytes.
     world.model.string_period_us = 1;
     CHECK_THROWS_WITH_AS(parse_model("fast.model", artifact_of(world.model)), doctest::Contains("string_period_us"),
@@ -70,12 +71,13 @@ TEST_CASE("defect 2: a gap in a file restarts its string instead of padding it")
 TEST_CASE("defect 7: a settle delay that would overflow is refused, not undefined behaviour") {
     ToyWorld world = make_toy_world();
     const ModelView view = world.model.view();
-    auto segmenter = std::make_unique<ActionSegmenter<ToyCapacity>>();
+    Stateful<ActionSegmenter> segmenter;
     SegmenterConfig config;
     config.settle_delay_us = std::numeric_limits<std::int64_t>::max();
-    CHECK(segmenter->init(view, config) == Status::invalid_argument);
+    CHECK(segmenter.init(view, config) == Status::invalid_argument);
+    CHECK(ActionSegmenter::required_bytes(view, config) == unsatisfiable_bytes);
     config.settle_delay_us = max_settle_delay_us + 1;
-    CHECK(segmenter->init(view, config) == Status::invalid_argument);
+    CHECK(segmenter.init(view, config) == Status::invalid_argument);
 }
 
 TEST_CASE("defect 8: models that load but misbehave are refused at load, naming the field") {
@@ -112,8 +114,9 @@ TEST_CASE("defect 8: models that load but misbehave are refused at load, naming 
             CAPTURE(mutation.first);
             ToyWorld world = make_toy_world();
             mutation.second(world.model);
-            auto annotator = std::make_unique<Annotator<ToyCapacity>>();
-            CHECK(annotator->init(world.model.view()) != Status::ok);
+            Stateful<Annotator> annotator;
+            const ModelView view = world.model.view();
+            CHECK(annotator.init(view, annotator_config(view)) != Status::ok);
             CHECK_THROWS_AS(generate_header(world.model, "0", "toy", "toy.model"), ReadError);
             CHECK_THROWS_AS(parse_model("bad.model", artifact_of(world.model)), ReadError);
         }
@@ -146,9 +149,11 @@ TEST_CASE("defect 10: messages say what was expected; JSON stays valid UTF-8") {
     config.segmenter.settle_delay_us = 4100000;
     const std::vector<float> frame(3 * 5, 0.0f);
     CHECK_NOTHROW(label_stream(view, config, {0.0}, frame.data(), 5));
-    config.segmenter.settle_delay_us = 600000000;  // 10 minutes: more than the host holds
-    CHECK_THROWS_WITH_AS(label_stream(view, config, {0.0}, frame.data(), 5),
-                         doctest::Contains("the host annotator settles at most 1024 characters"), std::invalid_argument);
+    config.segmenter.settle_delay_us = 600000000;  // 10 minutes: the state grows with it, and holds it
+    CHECK_NOTHROW(label_stream(view, config, {0.0}, frame.data(), 5));
+    config.segmenter.settle_delay_us = 600000001;  // beyond the runtime's limit: refused, saying so
+    CHECK_THROWS_WITH_AS(label_stream(view, config, {0.0}, frame.data(), 5), doctest::Contains("is outside 0 to 600"),
+                         std::invalid_argument);
 
     // Left hip equal to right hip was reported as "no usable frames".
     std::vector<LabelledClip> clips = toy_clips(world, 2, 5);

@@ -7,9 +7,9 @@
 #include <tuple>
 #include <vector>
 
-#include "actionstring/capacity.hpp"
 #include "actionstring/encoder.hpp"
 #include "actionstring/sampler.hpp"
+#include "run/state.hpp"
 #include "toy/toy.hpp"
 
 using namespace actionstring;
@@ -159,7 +159,6 @@ TEST_CASE("extreme timestamps do not overflow") {
 TEST_CASE("the same performance gives the same string at any frame rate") {
     host::ToyWorld world = host::make_toy_world();
     const ModelView view = world.model.view();
-    using Cap = host::ToyCapacity;
     auto encode = [&](double rate, double jitter, double drop) {
         host::ToyStreamOptions options;
         options.frame_rate_hz = rate;
@@ -167,12 +166,12 @@ TEST_CASE("the same performance gives the same string at any frame rate") {
         options.drop_probability = drop;
         options.position_noise_m = 0.0;
         options.seed = 9;  // same actions, places and facings for every rate
-        StringEncoder<Cap> encoder;
-        REQUIRE(encoder.init(view, 1000000, 0) == Status::ok);
+        host::Stateful<StringEncoder> encoder;
+        REQUIRE(encoder.init(view, EncoderConfig{1000000, 0}) == Status::ok);
         std::vector<Character> string;
         std::int64_t first = -1, last = 0;
         for (const auto& frame : host::toy_stream(world, {0, 1, 2, 3, 1}, options)) {
-            const EncodedFrame e = encoder.push_frame(frame.time_us, frame.positions.data());
+            const EncodedFrame e = encoder->push_frame(frame.time_us, frame.positions.data());
             REQUIRE(e.accepted());
             if (first < 0) first = frame.time_us;
             last = frame.time_us;

@@ -8,27 +8,14 @@
 #include <random>
 #include <vector>
 
-#include "actionstring/capacity.hpp"
 #include "actionstring/segmenter.hpp"
+#include "run/state.hpp"
 #include "test_support.hpp"
 
 using namespace actionstring;
 
 namespace {
 
-struct SegmenterLimits : test::MatchingOnlyLimits {
-    static constexpr std::size_t representatives = 8;
-    static constexpr std::size_t representative_chars = 512;
-    static constexpr std::size_t windows = 1;
-    static constexpr bool path_lengths = false;
-    static constexpr std::size_t settle_chars = 40;
-};
-struct TinyLimits : SegmenterLimits {
-    static constexpr std::size_t representatives = 1;
-    static constexpr std::size_t representative_chars = 4;
-    static constexpr std::size_t settle_chars = 8;
-};
-using SegmenterCap = Capacity<SegmenterLimits>;
 
 // Matching tables of a small model whose W holds multiples of 1/4, so every
 // sum is exact and the reference and the incremental state agree bit for bit.
@@ -147,7 +134,7 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
 
 TEST_CASE("settled labels equal a full-table reference of the same recurrence") {
     std::mt19937 rng(2024);
-    auto segmenter = std::make_unique<ActionSegmenter<SegmenterCap>>();
+    host::Stateful<ActionSegmenter> segmenter;
     for (int trial = 0; trial < 200; ++trial) {
         Tables t = random_tables(rng);
         SegmenterConfig config;
@@ -157,7 +144,7 @@ TEST_CASE("settled labels equal a full-table reference of the same recurrence") 
         config.skip_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
         if (trial % 3 == 0)
             config.unknown_cost = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
-        REQUIRE(segmenter->init(t.view, config) == Status::ok);
+        REQUIRE(segmenter.init(t.view, config) == Status::ok);
         const std::uint32_t settle = segmenter->settle_chars();
         CHECK(settle == static_cast<std::uint32_t>(config.settle_delay_us / 100000));
         std::vector<Character> stream(static_cast<std::size_t>(std::uniform_int_distribution<int>(1, 150)(rng)));
@@ -175,7 +162,7 @@ TEST_CASE("settled labels equal a full-table reference of the same recurrence") 
         for (std::size_t i = 0; i + settle < stream.size(); ++i) {
             INFO("trial ", trial, " character ", i);
             CHECK(got[i] == expected[i]);
-            if (stream.size() - 1 - i < SegmenterCap::max_settle_chars) CHECK(segmenter->settled_label(i) == got[i]);
+            if (stream.size() - 1 - i < segmenter->settled_history()) CHECK(segmenter->settled_label(i) == got[i]);
         }
     }
 }
@@ -191,10 +178,10 @@ TEST_CASE("a stream made of the representatives is segmented exactly") {
     t.add({6, 7, 8}, 2);
     t.add({9, 10, 11, 10}, 3);
     t.finish(K);
-    auto segmenter = std::make_unique<ActionSegmenter<SegmenterCap>>();
+    host::Stateful<ActionSegmenter> segmenter;
     SegmenterConfig config;
     config.settle_delay_us = 1000000;  // 10 characters
-    REQUIRE(segmenter->init(t.view, config) == Status::ok);
+    REQUIRE(segmenter.init(t.view, config) == Status::ok);
     std::vector<Character> stream;
     std::vector<LabelId> truth;
     std::mt19937 rng(5);
@@ -226,12 +213,12 @@ TEST_CASE("characters unlike every representative are 'no action' when the unkno
         for (int b = 0; b < K; ++b) t.w.push_back(a == b ? 0.0f : (a == 3 || b == 3 ? 2.0f : 1.0f));
     t.add({0, 1, 2}, 1);
     t.finish(K);
-    auto segmenter = std::make_unique<ActionSegmenter<SegmenterCap>>();
+    host::Stateful<ActionSegmenter> segmenter;
     SegmenterConfig config;
     config.settle_delay_us = 500000;
     config.segment_penalty = 0.5f;
     config.unknown_cost = 0.5f;
-    REQUIRE(segmenter->init(t.view, config) == Status::ok);
+    REQUIRE(segmenter.init(t.view, config) == Status::ok);
     std::vector<Character> stream{3, 3, 3, 3, 3, 3, 0, 1, 2, 0, 1, 2, 3, 3, 3, 3, 3, 3, 3, 3};
     std::vector<LabelId> got;
     for (Character c : stream)
@@ -261,7 +248,7 @@ TEST_CASE("characters unlike every representative are 'no action' when the unkno
 
     // Without the unknown cost the same characters must go to the only action.
     config.unknown_cost = std::numeric_limits<float>::infinity();
-    REQUIRE(segmenter->init(t.view, config) == Status::ok);
+    REQUIRE(segmenter.init(t.view, config) == Status::ok);
     for (Character c : stream) segmenter->push(c);
     CHECK(segmenter->live_label() == 1);
 }
@@ -269,12 +256,12 @@ TEST_CASE("characters unlike every representative are 'no action' when the unkno
 TEST_CASE("costs stay bounded on a long stream, and reset forgets it") {
     std::mt19937 rng(11);
     Tables t = random_tables(rng);
-    auto segmenter = std::make_unique<ActionSegmenter<SegmenterCap>>();
-    REQUIRE(segmenter->init(t.view) == Status::ok);
+    host::Stateful<ActionSegmenter> segmenter;
+    REQUIRE(segmenter.init(t.view, segmenter_config(t.view)) == Status::ok);
     // Two copies fed the same characters, one restarted halfway: after a reset
     // it must behave exactly like a fresh segmenter.
-    auto fresh = std::make_unique<ActionSegmenter<SegmenterCap>>();
-    REQUIRE(fresh->init(t.view) == Status::ok);
+    host::Stateful<ActionSegmenter> fresh;
+    REQUIRE(fresh.init(t.view, segmenter_config(t.view)) == Status::ok);
     for (int i = 0; i < 200000; ++i) {
         const auto c = static_cast<Character>(i * 7 % t.view.character_count);
         segmenter->push(c);
@@ -287,33 +274,46 @@ TEST_CASE("costs stay bounded on a long stream, and reset forgets it") {
     CHECK(segmenter->live_label() != unknown_label);
 }
 
-TEST_CASE("segmenter refuses bad settings and models it cannot hold") {
+TEST_CASE("segmenter refuses bad settings and storage too small for them") {
     std::mt19937 rng(3);
     Tables t = random_tables(rng);
-    auto segmenter = std::make_unique<ActionSegmenter<SegmenterCap>>();
+    // The rings grow with the settle delay: 41 characters need a ring of 64.
     SegmenterConfig config;
-    config.settle_delay_us = 4100000;  // 41 characters > 40
-    CHECK(segmenter->init(t.view, config) == Status::model_exceeds_capacity);
-    CHECK(!segmenter->initialized());
-    CHECK(!segmenter->push(0));
-    CHECK(segmenter->live_label() == unknown_label);
+    config.settle_delay_us = 4100000;
+    const std::size_t long_delay = ActionSegmenter::required_bytes(t.view, config);
+    config.settle_delay_us = 1000000;
+    const std::size_t short_delay = ActionSegmenter::required_bytes(t.view, config);
+    CHECK(long_delay > short_delay);
+    alignas(state_alignment) static unsigned char block[1 << 16];
+    REQUIRE(long_delay <= sizeof block);
+    ActionSegmenter segmenter;
+    config.settle_delay_us = 4100000;
+    CHECK(segmenter.init(t.view, config, block, short_delay) == Status::storage_too_small);
+    CHECK(!segmenter.initialized());
+    CHECK(!segmenter.push(0));
+    CHECK(segmenter.live_label() == unknown_label);
+    REQUIRE(segmenter.init(t.view, config, block, long_delay) == Status::ok);
+    CHECK(segmenter.settle_chars() == 41);
+    CHECK(segmenter.settled_history() == 64);
+    // Settings are refused as settings, whatever the storage.
     config = SegmenterConfig{};
     config.segment_penalty = std::nanf("");
-    CHECK(segmenter->init(t.view, config) == Status::invalid_argument);
+    CHECK(segmenter.init(t.view, config, block, sizeof block) == Status::invalid_argument);
+    CHECK(ActionSegmenter::required_bytes(t.view, config) > 0);
     config = SegmenterConfig{};
     config.stay_penalty = -1.0f;
-    CHECK(segmenter->init(t.view, config) == Status::invalid_argument);
+    CHECK(segmenter.init(t.view, config, block, sizeof block) == Status::invalid_argument);
     config = SegmenterConfig{};
     config.settle_delay_us = -1;
-    CHECK(segmenter->init(t.view, config) == Status::invalid_argument);
+    CHECK(segmenter.init(t.view, config, block, sizeof block) == Status::invalid_argument);
+    CHECK(ActionSegmenter::required_bytes(t.view, config) == unsatisfiable_bytes);
+    config.settle_delay_us = max_settle_delay_us + 1;
+    CHECK(segmenter.init(t.view, config, block, sizeof block) == Status::invalid_argument);
     ModelView no_period = t.view;
     no_period.string_period_us = 0;
-    CHECK(segmenter->init(no_period) == Status::invalid_model);
-    using Tiny = Capacity<TinyLimits>;
-    auto tiny = std::make_unique<ActionSegmenter<Tiny>>();
-    CHECK(tiny->init(t.view) != Status::ok);
+    CHECK(segmenter.init(no_period, segmenter_config(no_period), block, sizeof block) == Status::invalid_model);
     // A character the model does not have is ignored.
-    REQUIRE(segmenter->init(t.view) == Status::ok);
-    CHECK(!segmenter->push(static_cast<Character>(t.view.character_count)));
-    CHECK(segmenter->characters_pushed() == 0);
+    REQUIRE(segmenter.init(t.view, segmenter_config(t.view), block, sizeof block) == Status::ok);
+    CHECK(!segmenter.push(static_cast<Character>(t.view.character_count)));
+    CHECK(segmenter.characters_pushed() == 0);
 }

@@ -5,20 +5,18 @@
 #include <string>
 #include <vector>
 
-#include "actionstring/capacity.hpp"
+#include "actionstring/annotator.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/string_distance.hpp"
 
 namespace test {
 
-/// Limits for tests of the matching stages alone: the feature bounds are 1,
-/// and each test names the matching bounds it needs.
-struct MatchingOnlyLimits : actionstring::DefaultLimits {
-    static constexpr std::size_t joints = 1;
-    static constexpr std::size_t pose_joints = 1;
-    static constexpr std::size_t feature_dim = 1;
-    static constexpr std::size_t components = 1;
-};
+/// The model's own settings with the paper's window rule on, for tests that read label().
+inline actionstring::AnnotatorConfig every_rule(const actionstring::ModelView& model) {
+    actionstring::AnnotatorConfig config = actionstring::annotator_config(model);
+    config.window_rule = true;
+    return config;
+}
 
 /// "12345" → {1, 2, 3, 4, 5}.
 inline std::vector<actionstring::Character> chars(const std::string& digits) {

@@ -17,6 +17,7 @@
 #include "toy/toy.hpp"
 #include "run/classify.hpp"
 #include "run/encode.hpp"
+#include "run/state.hpp"
 #include "train/gmm_em.hpp"
 #include "train/pca.hpp"
 #include "train/pipeline.hpp"
@@ -184,9 +185,9 @@ TEST_CASE("a model without a GMM (PCA-only characters) trains, validates, round-
     // The scaled projection keeps every training feature within L1 distance 1 of the mean pose.
     CHECK(*std::max_element(model.character_distances.begin(), model.character_distances.end()) <= 2.0f);
     CHECK(clip_accuracy(view, held_out) >= 0.9);
-    // The annotator runs it with a capacity of one (unused) component.
-    auto annotator = std::make_unique<Annotator<HostCapacity>>();
-    REQUIRE(annotator->init(view) == Status::ok);
+    // The annotator runs it, with no storage for a posterior it does not compute.
+    Stateful<Annotator> annotator;
+    REQUIRE(annotator.init(view, annotator_config(view)) == Status::ok);
     const std::string text = serialize_model(model);
     ModelData loaded = parse_model("m.model", text);
     CHECK(serialize_model(loaded) == text);
@@ -194,7 +195,7 @@ TEST_CASE("a model without a GMM (PCA-only characters) trains, validates, round-
     CHECK(header.find("m.gmm_means = nullptr;") != std::string::npos);
     CHECK(header.find("kGmmMeans") == std::string::npos);
     CHECK(header.find("feature_dim = 6;") != std::string::npos);
-    CHECK(header.find("components = 1;") != std::string::npos);  // a state needs room for one, though unused
+    CHECK(header.find("m.component_count = 0;") != std::string::npos);  // and no state for a posterior
     // Without a projection there is nothing to scale: refused with a reason.
     options.pca_dim = 0;
     CHECK_THROWS_WITH_AS(train_model(train, options), doctest::Contains("needs a projection"), std::invalid_argument);
@@ -256,11 +257,11 @@ TEST_CASE("generated headers carry the banner, the checksum and exact literals")
     CHECK(header.rfind("// DO NOT EDIT.", 0) == 0);
     CHECK(header.find(artifact_checksum(text)) != std::string::npos);
     CHECK(header.find("inline constexpr ::actionstring::ModelView kModel") != std::string::npos);
-    CHECK(header.find("using ModelCapacity = ::actionstring::Capacity<ModelLimits>;") != std::string::npos);
-    CHECK(header.find("static constexpr std::size_t joints = 5;") != std::string::npos);
-    CHECK(header.find("static constexpr std::size_t pose_joints = 4;") != std::string::npos);
-    CHECK(header.find("static constexpr std::size_t feature_dim = 12;") != std::string::npos);
-    CHECK(header.find("static constexpr std::size_t components = 6;") != std::string::npos);
+    CHECK(header.find("inline constexpr std::size_t kAnnotatorBytes =") != std::string::npos);
+    CHECK(header.find("inline constexpr std::size_t kAnnotatorWithWindowsBytes =") != std::string::npos);
+    CHECK(header.find("m.joint_count = 5;") != std::string::npos);
+    CHECK(header.find("m.feature_dim = 12;") != std::string::npos);
+    CHECK(header.find("m.component_count = 6;") != std::string::npos);
     char literal[48];
     std::snprintf(literal, sizeof literal, "%af", static_cast<double>(world.model.gmm_means[0]));
     CHECK(header.find(literal) != std::string::npos);

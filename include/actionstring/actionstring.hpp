@@ -7,7 +7,7 @@
 #include "actionstring/version.hpp"
 #include "actionstring/status.hpp"
 #include "actionstring/model.hpp"
-#include "actionstring/capacity.hpp"
+#include "actionstring/storage.hpp"
 #include "actionstring/normalize.hpp"
 #include "actionstring/motion.hpp"
 #include "actionstring/projection.hpp"

@@ -12,38 +12,16 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <type_traits>
 
-#include "actionstring/capacity.hpp"
 #include "actionstring/classify.hpp"
 #include "actionstring/encoder.hpp"
 #include "actionstring/matcher.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/segmenter.hpp"
 #include "actionstring/status.hpp"
+#include "actionstring/storage.hpp"
 
 namespace actionstring {
-namespace detail {
-
-/// Stands in for the WindowMatcher when the capacity has no windows: counts
-/// characters and never completes a window.
-class NoWindows {
-public:
-    Status init(const ModelView&) noexcept { return Status::ok; }
-    void reset() noexcept { pushed_ = 0; }
-    bool push(Character) noexcept {
-        ++pushed_;
-        return false;
-    }
-    const float* completed_distances() const noexcept { return nullptr; }
-    std::uint64_t completed_window_start() const noexcept { return 0; }
-    std::uint64_t characters_pushed() const noexcept { return pushed_; }
-
-private:
-    std::uint64_t pushed_ = 0;
-};
-
-}  // namespace detail
 
 /// Stream settings that are not part of the model.
 struct AnnotatorConfig {
@@ -59,6 +37,11 @@ struct AnnotatorConfig {
     /// the stream restarts at it instead of waiting for the clock to catch up.
     /// In [0, max_gap_us].
     std::int64_t max_backward_us = 100000;
+    /// Whether to run the paper's sliding-window rule beside the segmenter
+    /// (label(), last_window()). Off, its state (the largest part) is not
+    /// paid for and label() stays unknown; the settled label is the better
+    /// rule on streams (models/README.md).
+    bool window_rule = false;
     /// Settings of the segmenter (settle delay, penalties, unknown cost).
     SegmenterConfig segmenter;
 };
@@ -95,25 +78,43 @@ struct WindowResult {
     Classification classification;
 };
 
-/// The runtime recogniser. All storage is inside the object and fixed by `Cap`;
-/// it never allocates. With `Cap::without_windows` the paper's window rule is
-/// left out (label() stays unknown) and only the segmenter's state is paid for. Keeps a pointer to the ModelView given to init(): that
-/// object and its tables must outlive the annotator (or the next init()).
-template <class Cap>
+/// The runtime recogniser. It works in caller-owned storage of
+/// required_bytes(model, config) bytes (storage.hpp) and never allocates. A
+/// generated header emits that size for its model and own settings
+/// (kAnnotatorBytes), so firmware keeps a static StateBuffer; a host allocates
+/// exactly what a loaded model needs. Keeps pointers to the ModelView given to
+/// init() and to the storage: both must outlive the annotator (or its next init()).
 class Annotator {
 public:
-    /// Binds a model with its own online settings (annotator_config()).
-    Status init(const ModelView& model) noexcept { return init(model, annotator_config(model)); }
+    /// Bytes of storage init() needs for this model and these settings
+    /// (constexpr when both are); unsatisfiable_bytes for settings init() refuses.
+    static constexpr std::size_t required_bytes(const ModelView& model, const AnnotatorConfig& config) noexcept {
+        return plan(model, config).bytes;
+    }
 
-    /// Binds a model with the given settings. Returns invalid_model
-    /// (inconsistent tables, or precision factors that could overflow float),
-    /// model_exceeds_capacity, invalid_argument (config) or ok. Not usable
-    /// until it returns ok.
-    Status init(const ModelView& model, const AnnotatorConfig& config) noexcept {
+    /// Binds a model with the given settings, in `storage` (`bytes` long,
+    /// aligned to state_alignment). Returns invalid_model (inconsistent
+    /// tables, or precision factors that could overflow float),
+    /// invalid_argument (config), storage_too_small, model_exceeds_capacity
+    /// or ok. Not usable until it returns ok.
+    Status init(const ModelView& model, const AnnotatorConfig& config, void* storage, std::size_t bytes) noexcept {
         model_ = nullptr;
-        Status status = matcher_.init(model);
-        if (status == Status::ok) status = segmenter_.init(model, config.segmenter);
-        if (status == Status::ok) status = encoder_.init(model, config.max_gap_us, config.max_backward_us);
+        // Settings first, so a bad one is reported as such rather than as a size.
+        Status status = ActionSegmenter::check(model, config.segmenter);
+        if (status != Status::ok) return status;
+        const Plan p = plan(model, config);
+        if (!detail::storage_fits(storage, bytes, p.bytes)) {
+            // Report a broken model before a size computed from it.
+            status = validate_model(model);
+            return status != Status::ok ? status : Status::storage_too_small;
+        }
+        auto* base = static_cast<unsigned char*>(storage);
+        window_rule_ = config.window_rule;
+        status = window_rule_ ? matcher_.init(model, base + p.matcher, p.matcher_bytes) : validate_matching_tables(model);
+        if (status == Status::ok) status = segmenter_.init(model, config.segmenter, base + p.segmenter, p.segmenter_bytes);
+        if (status == Status::ok)
+            status = encoder_.init(model, EncoderConfig{config.max_gap_us, config.max_backward_us}, base + p.encoder,
+                                   p.encoder_bytes);
         if (status != Status::ok) return status;
         model_ = &model;
         reset();
@@ -123,11 +124,12 @@ public:
     /// Starts another stream: forgets the string, the windows and the label.
     void reset() noexcept {
         encoder_.reset();
-        matcher_.reset();
+        if (window_rule_) matcher_.reset();
         segmenter_.reset();
         has_window_ = false;
         window_ = WindowResult{};
         last_character_ = 0;
+        pushed_ = 0;
     }
 
     /// Feeds one frame.
@@ -145,9 +147,10 @@ public:
         result.status = encoded.status;
         if (!encoded.accepted()) return result;
         if (encoded.status == Status::stream_restarted) {
-            matcher_.reset();
+            if (window_rule_) matcher_.reset();
             segmenter_.reset();
             has_window_ = false;
+            pushed_ = 0;
         }
         emit(encoded.previous, encoded.from_previous, result);
         emit(encoded.current, encoded.from_current, result);
@@ -191,7 +194,9 @@ public:
     /// Time of a character's tick (any character of the current stream).
     std::int64_t character_time_us(std::uint64_t character) const noexcept { return encoder_.tick_time_us(character); }
     /// Characters in the current stream's string so far.
-    std::uint64_t characters() const noexcept { return matcher_.characters_pushed(); }
+    std::uint64_t characters() const noexcept { return pushed_; }
+    /// How many settled labels settled_label(character) remembers.
+    std::size_t settled_history() const noexcept { return segmenter_.settled_history(); }
     /// The most recent character (meaningful once characters() > 0).
     Character last_character() const noexcept { return last_character_; }
     bool initialized() const noexcept { return model_ != nullptr; }
@@ -199,25 +204,49 @@ public:
 private:
     void emit(Character character, std::uint32_t count, FrameResult& result) noexcept {
         for (std::uint32_t t = 0; t < count; ++t) {
-            const std::uint64_t index = matcher_.characters_pushed();
+            const std::uint64_t index = pushed_++;
             last_character_ = character;
             ++result.characters;
             if (segmenter_.push(character)) ++result.characters_settled;
-            if (!matcher_.push(character)) continue;
+            if (!window_rule_ || !matcher_.push(character)) continue;
             ++result.windows_completed;
             has_window_ = true;
             window_.first_character = matcher_.completed_window_start();
             window_.start_time_us = encoder_.tick_time_us(window_.first_character);
             window_.end_time_us = encoder_.tick_time_us(index);
             window_.classification =
-                classify_distances<Cap::max_representatives>(*model_, matcher_.completed_distances());
+                classify_distances(*model_, matcher_.completed_distances());
         }
     }
 
+    // One block: the encoder's, the window matcher's (with the window rule)
+    // and the segmenter's storage, each aligned.
+    struct Plan {
+        std::size_t encoder = 0, encoder_bytes = 0, matcher = 0, matcher_bytes = 0, segmenter = 0,
+                    segmenter_bytes = 0, bytes = 0;
+    };
+    static constexpr Plan plan(const ModelView& model, const AnnotatorConfig& config) noexcept {
+        Plan p;
+        p.encoder_bytes = StringEncoder::required_bytes(model);
+        p.matcher_bytes = config.window_rule ? WindowMatcher::required_bytes(model) : 0u;
+        p.segmenter_bytes = ActionSegmenter::required_bytes(model, config.segmenter);
+        detail::StorageLayout layout;
+        p.encoder = layout.add<unsigned char>(p.encoder_bytes);
+        p.matcher = layout.add<unsigned char>(p.matcher_bytes);
+        p.segmenter = layout.add<unsigned char>(p.segmenter_bytes);
+        p.bytes = p.encoder_bytes == unsatisfiable_bytes || p.matcher_bytes == unsatisfiable_bytes ||
+                          p.segmenter_bytes == unsatisfiable_bytes
+                      ? unsatisfiable_bytes
+                      : layout.bytes();
+        return p;
+    }
+
     const ModelView* model_ = nullptr;
-    StringEncoder<Cap> encoder_;
-    std::conditional_t<Cap::has_windows, WindowMatcher<Cap>, detail::NoWindows> matcher_;
-    ActionSegmenter<Cap> segmenter_;
+    StringEncoder encoder_;
+    WindowMatcher matcher_;
+    ActionSegmenter segmenter_;
+    bool window_rule_ = false;
+    std::uint64_t pushed_ = 0;
     bool has_window_ = false;
     WindowResult window_;
     Character last_character_ = 0;

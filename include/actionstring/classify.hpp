@@ -26,20 +26,19 @@ struct Classification {
     std::uint16_t representative = 0xFFFF;
 };
 
-/// k-nearest-neighbour vote over representative distances (k = model.neighbours).
-/// The label with most votes among the k nearest wins; on a tie, the label of
-/// the nearer neighbour. Equal distances keep representative order.
-/// @tparam MaxRepresentatives bound on model.representative_count (stack scratch)
+/// k-nearest-neighbour vote over representative distances (k = model.neighbours,
+/// at most max_neighbours). The label with most votes among the k nearest
+/// wins; on a tie, the label of the nearer neighbour. Equal distances keep
+/// representative order.
 /// @param distances representative_count floats; read only during the call
-template <std::size_t MaxRepresentatives>
 inline Classification classify_distances(const ModelView& model, const float* distances) noexcept {
     Classification result;
     const std::size_t R = model.representative_count;
-    if (distances == nullptr || R == 0 || R > MaxRepresentatives) return result;
+    if (distances == nullptr || R == 0 || model.neighbours > max_neighbours) return result;
     const std::size_t k = model.neighbours < R ? model.neighbours : R;
 
     // Insertion into a sorted list of the k nearest: k is small.
-    std::uint16_t nearest[MaxRepresentatives] = {};  // (zeroed only to quiet a false maybe-uninitialized)
+    std::uint16_t nearest[max_neighbours] = {};  // (zeroed only to quiet a false maybe-uninitialized)
     std::size_t found = 0;
     for (std::size_t r = 0; r < R; ++r) {
         const float d = distances[r];

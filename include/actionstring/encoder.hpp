@@ -17,6 +17,7 @@
 #include "actionstring/projection.hpp"
 #include "actionstring/sampler.hpp"
 #include "actionstring/status.hpp"
+#include "actionstring/storage.hpp"
 #include "actionstring/tree.hpp"
 
 namespace actionstring {
@@ -38,28 +39,50 @@ struct EncodedFrame {
     bool accepted() const noexcept { return status == Status::ok || status == Status::stream_restarted; }
 };
 
-/// Frame-to-character encoder. Storage fixed by `Cap` (capacity.hpp); needs
-/// only the feature tables of the model. Keeps a pointer to the ModelView
-/// given to init(): it must outlive the encoder (or the next init()).
-template <class Cap>
+/// Stream timing of an encoder (AnnotatorConfig carries the same two).
+struct EncoderConfig {
+    /// A longer gap between accepted frames restarts the stream.
+    std::int64_t max_gap_us = 1000000;
+    /// A frame this much earlier than the last one or less is rejected;
+    /// further back the stream restarts.
+    std::int64_t max_backward_us = 100000;
+};
+
+/// Frame-to-character encoder; needs only the feature tables of the model.
+/// Works in caller-owned storage of required_bytes(model) bytes (storage.hpp).
+/// Keeps pointers to the ModelView given to init() and to the storage: both
+/// must outlive the encoder (or its next init()).
 class StringEncoder {
 public:
-    /// @param max_gap_us      a longer gap between accepted frames restarts the stream
-    /// @param max_backward_us a frame this much earlier than the last one or less
-    ///                        is rejected; further back the stream restarts
+    /// Bytes of storage init() needs for this model (constexpr when the model is).
+    static constexpr std::size_t required_bytes(const ModelView& model, const EncoderConfig& = {}) noexcept {
+        return plan(model).bytes;
+    }
+
     /// @return ok, invalid_model (tables, or precision factors that could
-    ///         overflow float), model_exceeds_capacity, or invalid_argument
+    ///         overflow float), storage_too_small, or invalid_argument
     ///         (times StringSampler::settings_ok() refuses for the model's period)
-    Status init(const ModelView& model, std::int64_t max_gap_us, std::int64_t max_backward_us) noexcept {
+    Status init(const ModelView& model, const EncoderConfig& config, void* storage, std::size_t bytes) noexcept {
         model_ = nullptr;
         const Status status = validate_feature_tables(model);
         if (status != Status::ok) return status;
-        if (!Cap::fits_features(model)) return Status::model_exceeds_capacity;
         if (model.has_gmm() && !gmm_is_overflow_safe(model, max_pose_coordinate)) return Status::invalid_model;
-        if (!StringSampler::settings_ok(model.string_period_us, max_gap_us, max_backward_us))
+        if (!StringSampler::settings_ok(model.string_period_us, config.max_gap_us, config.max_backward_us))
             return Status::invalid_argument;
+        const Plan p = plan(model);
+        if (!detail::storage_fits(storage, bytes, p.bytes)) return Status::storage_too_small;
+        detail::clear_storage(storage, p.bytes);
+        poses_[0] = detail::storage_at<float>(storage, p.poses);
+        poses_[1] = poses_[0] + model.input_dim();
+        skeleton_ = detail::storage_at<float>(storage, p.skeleton);
+        feature_ = detail::storage_at<float>(storage, p.feature);
+        posterior_ = detail::storage_at<float>(storage, p.posterior);
+        scratch_ = detail::storage_at<float>(storage, p.scratch);
+        const Status motion = motion_.init(model, detail::storage_at<unsigned char>(storage, p.motion),
+                                           MotionRing::required_bytes(model));
+        if (motion != Status::ok) return motion;
         model_ = &model;
-        sampler_.configure(model.string_period_us, max_gap_us, max_backward_us);
+        sampler_.configure(model.string_period_us, config.max_gap_us, config.max_backward_us);
         reset();
         return Status::ok;
     }
@@ -84,7 +107,7 @@ public:
             return out;
         }
         const std::size_t current = has_previous_ ? 1u - previous_ : 0u;
-        out.status = normalize_pose(*model_, positions, poses_[current], skeleton_);
+        out.status = normalize_pose(*model_, positions, poses_[current], uses_bones(model_->scale_mode) ? skeleton_ : nullptr);
         if (out.status != Status::ok) return out;
         const SamplePlan plan = sampler_.advance(time_us);
         out.status = plan.status;
@@ -127,25 +150,42 @@ private:
         // no bounded pose overflows the GMM. Should it ever, repeat the last
         // character rather than invent one.
         if (!model_->has_gmm()) last_ = descend_tree(*model_, feature);
-        else if (gmm_posterior<Cap::max_feature_dim>(*model_, feature, posterior_) == Status::ok)
+        else if (gmm_posterior(*model_, feature, posterior_, scratch_) == Status::ok)
             last_ = descend_tree(*model_, posterior_);
         characters_[slot] = last_;
         ready_[slot] = true;
         return last_;
     }
 
+    struct Plan {
+        std::size_t poses = 0, skeleton = 0, feature = 0, posterior = 0, scratch = 0, motion = 0, bytes = 0;
+    };
+    static constexpr Plan plan(const ModelView& m) noexcept {
+        detail::StorageLayout layout;
+        Plan p;
+        p.poses = layout.add<float>(2 * m.input_dim());  // this frame's and the last one's
+        p.skeleton = layout.add<float>(uses_bones(m.scale_mode) ? 3u * m.joint_count : 0u);
+        p.feature = layout.add<float>(m.has_projection() ? m.feature_dim : 0u);
+        p.posterior = layout.add<float>(m.component_count);
+        p.scratch = layout.add<float>(m.has_gmm() ? m.feature_dim : 0u);
+        p.motion = layout.add<unsigned char>(MotionRing::required_bytes(m));
+        p.bytes = layout.bytes();
+        return p;
+    }
+
     const ModelView* model_ = nullptr;
     StringSampler sampler_;
-    float poses_[2][Cap::max_input_dim] = {};  // pose, then with motion its velocity
-    MotionRing<Cap> motion_;
-    float skeleton_[3 * Cap::max_joints] = {};  // the rebuilt skeleton (bone-length scaling)
+    float* poses_[2] = {};  // input_dim() floats each: the pose, then with motion its velocity
+    MotionRing motion_;
+    float* skeleton_ = nullptr;  // the rebuilt skeleton (bone-length scaling)
     Character characters_[2] = {};
     bool ready_[2] = {};
     std::size_t previous_ = 0;
     bool has_previous_ = false;
     Character last_ = 0;
-    float feature_[Cap::max_feature_dim] = {};
-    float posterior_[Cap::max_components] = {};
+    float* feature_ = nullptr;    // the projected pose
+    float* posterior_ = nullptr;  // component_count floats
+    float* scratch_ = nullptr;    // the GMM's feature_dim floats
 };
 
 }  // namespace actionstring

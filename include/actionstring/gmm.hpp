@@ -15,18 +15,16 @@
 namespace actionstring {
 
 /// Squared Mahalanobis distance ‖U_j (z − μ_j)‖² of a feature to component j.
-/// @tparam MaxFeatureDim bound on model.feature_dim (stack scratch)
-template <std::size_t MaxFeatureDim>
-inline float gmm_mahalanobis_sq(const ModelView& model, std::size_t component, const float* feature) noexcept {
+/// @param scratch feature_dim floats (caller-owned; the full covariance's y = U (z − μ))
+inline float gmm_mahalanobis_sq(const ModelView& model, std::size_t component, const float* feature,
+                                float* scratch) noexcept {
     const std::size_t d = model.feature_dim;
     const float* mean = model.gmm_means + component * d;
     const float* factor = model.gmm_factors + component * model.factor_size();
-    float diff[MaxFeatureDim];
-    for (std::size_t c = 0; c < d; ++c) diff[c] = feature[c] - mean[c];
     float q = 0.0f;
     if (model.covariance == Covariance::diagonal) {
         for (std::size_t c = 0; c < d; ++c) {
-            const float y = factor[c] * diff[c];
+            const float y = factor[c] * (feature[c] - mean[c]);
             q += y * y;
         }
         return q;
@@ -34,10 +32,10 @@ inline float gmm_mahalanobis_sq(const ModelView& model, std::size_t component, c
     // U packed column by column (LAPACK 'U' packed): column c holds U[0..c][c].
     // Accumulating y[r] column by column keeps every sum in one fixed order
     // while the inner loop over r is independent, so it vectorises.
-    float y[MaxFeatureDim];
+    float* y = scratch;
     for (std::size_t r = 0; r < d; ++r) y[r] = 0.0f;
     for (std::size_t c = 0; c < d; ++c) {
-        const float dc = diff[c];
+        const float dc = feature[c] - mean[c];
         for (std::size_t r = 0; r <= c; ++r) y[r] += factor[r] * dc;
         factor += c + 1;
     }
@@ -88,13 +86,12 @@ inline bool gmm_is_overflow_safe(const ModelView& model, float max_coordinate) n
 /// Writes log(w_j N(z; μ_j, Σ_j)) for every component.
 /// @param feature    feature_dim floats; read only during the call
 /// @param log_joint  receives component_count floats (caller-owned)
-template <std::size_t MaxFeatureDim>
-inline Status gmm_log_joint(const ModelView& model, const float* feature, float* log_joint) noexcept {
-    if (feature == nullptr || log_joint == nullptr) return Status::invalid_argument;
-    if (model.feature_dim > MaxFeatureDim) return Status::model_exceeds_capacity;
+/// @param scratch    feature_dim floats (caller-owned)
+inline Status gmm_log_joint(const ModelView& model, const float* feature, float* log_joint, float* scratch) noexcept {
+    if (feature == nullptr || log_joint == nullptr || scratch == nullptr) return Status::invalid_argument;
     for (std::size_t j = 0; j < model.component_count; ++j)
         log_joint[j] = model.gmm_log_weights[j] + model.gmm_log_normalizers[j] -
-                       0.5f * gmm_mahalanobis_sq<MaxFeatureDim>(model, j, feature);
+                       0.5f * gmm_mahalanobis_sq(model, j, feature, scratch);
     return Status::ok;
 }
 
@@ -105,12 +102,13 @@ inline Status gmm_log_joint(const ModelView& model, const float* feature, float*
 ///
 /// @param feature         feature_dim floats; read only during the call
 /// @param posterior       receives component_count floats (caller-owned)
+/// @param scratch         feature_dim floats (caller-owned)
 /// @param log_likelihood  if not null, receives log p(z) under the mixture
-/// @return ok, or pose_out_of_range when no likelihood is finite in float
-template <std::size_t MaxFeatureDim>
-inline Status gmm_posterior(const ModelView& model, const float* feature, float* posterior,
+/// @return ok, invalid_argument (a null pointer), or pose_out_of_range when
+///         no likelihood is finite in float
+inline Status gmm_posterior(const ModelView& model, const float* feature, float* posterior, float* scratch,
                             float* log_likelihood = nullptr) noexcept {
-    const Status status = gmm_log_joint<MaxFeatureDim>(model, feature, posterior);
+    const Status status = gmm_log_joint(model, feature, posterior, scratch);
     if (status != Status::ok) return status;
     const std::size_t J = model.component_count;
     float peak = -detail::infinity();

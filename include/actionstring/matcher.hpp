@@ -8,44 +8,56 @@
 // string_distance() on the same strings bit for bit.
 //
 // Every open window receives the same character, so the state is stored cell
-// by cell with the windows side by side ("lanes"): one pass over a
-// representative advances all windows, each lane doing exactly the batch
-// computation's operations, independent of the others. The lane count is the
-// compile-time Cap::max_windows so the lanes sit in SIMD registers; lanes the
-// model does not use compute values nobody reads (a generated capacity has none).
+// by cell with the windows side by side ("lanes", ceil(window / step) of
+// them): one pass over a representative advances all windows, each lane doing
+// exactly the batch computation's operations, independent of the others, so
+// the loop over lanes vectorises. A lane whose window is closed computes
+// values nobody reads.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 
-#include "actionstring/capacity.hpp"
 #include "actionstring/detail/dp.hpp"
 #include "actionstring/detail/math.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/status.hpp"
+#include "actionstring/storage.hpp"
 
 namespace actionstring {
 
-/// Sliding-window matcher state with storage fixed by `Cap` (see capacity.hpp).
-/// Holds a pointer to the ModelView passed to init(): that object and its
-/// tables must outlive the matcher (or the next init()).
-template <class Cap>
+/// Sliding-window matcher state. Works in caller-owned storage of
+/// required_bytes(model) bytes (storage.hpp). Keeps pointers to the ModelView
+/// passed to init() and to the storage: both must outlive the matcher (or its
+/// next init()).
 class WindowMatcher {
 public:
+    /// Bytes of storage init() needs for this model (constexpr when the model is).
+    static constexpr std::size_t required_bytes(const ModelView& model) noexcept { return plan(model).bytes; }
+
     /// Binds the matcher to a model's matching tables (W, representatives,
     /// window settings; the rest may be empty) and clears it. Returns
-    /// invalid_model, model_exceeds_capacity or ok; on failure the matcher
-    /// stays unusable.
-    Status init(const ModelView& model) noexcept {
+    /// invalid_model, model_exceeds_capacity (a string too long for 16-bit
+    /// path lengths), storage_too_small or ok; on failure the matcher stays unusable.
+    Status init(const ModelView& model, void* storage, std::size_t bytes) noexcept {
         model_ = nullptr;
         const Status status = validate_matching_tables(model);
         if (status != Status::ok) return status;
-        if (!Cap::fits_matching(model)) return Status::model_exceeds_capacity;
         for (std::size_t r = 0; r < model.representative_count; ++r)
             if (model.representative_length(r) + model.window_chars > 0xFFFFu) return Status::model_exceeds_capacity;
-        model_ = &model;
+        const Plan p = plan(model);
+        if (!detail::storage_fits(storage, bytes, p.bytes)) return Status::storage_too_small;
+        detail::clear_storage(storage, p.bytes);
         lanes_ = model.max_open_windows();
         track_paths_ = model.normalization == LengthNormalization::path;
+        windows_ = detail::storage_at<Window>(storage, p.windows);
+        costs_ = detail::storage_at<float>(storage, p.costs);
+        paths_ = detail::storage_at<std::uint16_t>(storage, p.paths);
+        best_ = detail::storage_at<float>(storage, p.best);
+        completed_ = detail::storage_at<float>(storage, p.completed);
+        lane_cells_ = detail::storage_at<detail::Cell>(storage, p.lane_cells);
+        lane_costs_ = detail::storage_at<float>(storage, p.lane_costs);
+        model_ = &model;
         reset();
         return Status::ok;
     }
@@ -55,7 +67,7 @@ public:
         pushed_ = 0;
         completed_start_ = 0;
         has_completed_ = false;
-        for (auto& window : windows_) window = Window{};
+        for (std::size_t lane = 0; lane < lanes_; ++lane) windows_[lane] = Window{};
     }
 
     bool initialized() const noexcept { return model_ != nullptr; }
@@ -94,34 +106,61 @@ public:
     std::uint64_t characters_pushed() const noexcept { return pushed_; }
 
 private:
-    static constexpr std::size_t max_lanes = Cap::max_windows;
-    static constexpr std::size_t path_cells = Cap::path_lengths ? Cap::cells_per_window : 1;
-    static constexpr std::size_t path_lanes = Cap::path_lengths ? Cap::max_windows : 1;
-
     struct Window {
         bool open = false;
         std::uint64_t start = 0;
         std::uint32_t filled = 0;
     };
 
+    // The state: per lane a window; per cell (one row or column of
+    // length(rep) + 1 per representative) and lane a cost, and with path
+    // normalisation a path length; per representative and lane the best
+    // subsequence end; one completed distance per representative; and a
+    // line of scratch per lane for the recurrences.
+    struct Plan {
+        std::size_t windows = 0, costs = 0, paths = 0, best = 0, completed = 0, lane_cells = 0, lane_costs = 0,
+                    bytes = 0;
+    };
+    static constexpr Plan plan(const ModelView& m) noexcept {
+        const std::size_t lanes = m.max_open_windows();
+        const std::size_t cells = static_cast<std::size_t>(m.total_representative_chars()) + m.representative_count;
+        const bool paths = m.normalization == LengthNormalization::path;
+        // Saturating products: a hostile model's counts cannot wrap to a small block.
+        const auto times = [](std::size_t a, std::size_t b) {
+            return b != 0 && a > unsatisfiable_bytes / b ? unsatisfiable_bytes : a * b;
+        };
+        detail::StorageLayout layout;
+        Plan p;
+        p.windows = layout.add<Window>(lanes);
+        p.costs = layout.add<float>(times(cells, lanes));
+        p.paths = layout.add<std::uint16_t>(paths ? times(cells, lanes) : 0u);
+        p.best = layout.add<float>(times(m.representative_count, lanes));
+        p.completed = layout.add<float>(m.representative_count);
+        p.lane_cells = layout.add<detail::Cell>(times(2, lanes));
+        p.lane_costs = layout.add<float>(times(2, lanes));
+        p.bytes = layout.bytes();
+        return p;
+    }
+
     bool window_is_a1(std::size_t r) const noexcept { return model_->window_chars <= model_->representative_length(r); }
     std::size_t first_cell(std::size_t r) const noexcept { return model_->representative_offsets[r] + r; }
 
-    // Path lengths exist only when the capacity provides them; the modulo
-    // folds to 0 otherwise and is never reached with tracking on.
+    // Path lengths exist only with path normalisation; without it they read as 0 and are not stored.
     detail::Cell load(std::size_t cell, std::size_t lane) const noexcept {
-        return detail::Cell{costs_[cell][lane], paths_[cell % path_cells][lane % path_lanes]};
+        const std::size_t at = cell * lanes_ + lane;
+        return detail::Cell{costs_[at], track_paths_ ? paths_[at] : 0u};
     }
     void store(std::size_t cell, std::size_t lane, detail::Cell value) noexcept {
-        costs_[cell][lane] = value.cost;
-        paths_[cell % path_cells][lane % path_lanes] = static_cast<std::uint16_t>(value.path);
+        const std::size_t at = cell * lanes_ + lane;
+        costs_[at] = value.cost;
+        if (track_paths_) paths_[at] = static_cast<std::uint16_t>(value.path);
     }
 
     void open_window(std::size_t lane) noexcept {
         const ModelView& m = *model_;
         windows_[lane] = Window{true, pushed_, 0};
         for (std::size_t r = 0; r < m.representative_count; ++r) {
-            best_[r][lane] = detail::infinity();
+            best_[r * lanes_ + lane] = detail::infinity();
             if (!window_is_a1(r)) continue;  // a column needs the window's first character
             const std::size_t base = first_cell(r);
             store(base, lane, detail::dp_origin());
@@ -156,10 +195,11 @@ private:
     template <bool Paths>
     void advance_row(std::size_t base, const Character* rep, std::size_t len, Character c,
                      CharacterWeights w) noexcept {
-        constexpr std::size_t lanes = max_lanes;
+        const std::size_t lanes = lanes_;
         const detail::Cell boundary = detail::dp_col0(model_->variant, w(c, rep[0]));
         if (Paths) {
-            detail::Cell diagonal[max_lanes], left[max_lanes];
+            detail::Cell* diagonal = lane_cells_;
+            detail::Cell* left = lane_cells_ + lanes;
             for (std::size_t lane = 0; lane < lanes; ++lane) {
                 diagonal[lane] = load(base, lane);
                 left[lane] = boundary;
@@ -176,15 +216,17 @@ private:
             }
             return;
         }
-        float diagonal[max_lanes], left[max_lanes];
+        float* diagonal = lane_costs_;
+        float* left = lane_costs_ + lanes;
+        float* first = costs_ + base * lanes;
         for (std::size_t lane = 0; lane < lanes; ++lane) {
-            diagonal[lane] = costs_[base][lane];
+            diagonal[lane] = first[lane];
             left[lane] = boundary.cost;
-            costs_[base][lane] = boundary.cost;
+            first[lane] = boundary.cost;
         }
         for (std::size_t j = 1; j <= len; ++j) {
             const float weight = w(c, rep[j - 1]);
-            float* cells = costs_[base + j];
+            float* cells = costs_ + (base + j) * lanes;
             for (std::size_t lane = 0; lane < lanes; ++lane) {
                 const float above = cells[lane];
                 left[lane] = detail::dp_step_cost(diagonal[lane], above, left[lane], weight);
@@ -198,12 +240,13 @@ private:
     template <bool Paths>
     void advance_column(std::size_t r, std::size_t base, const Character* rep, std::size_t len, Character c,
                         CharacterWeights w) noexcept {
-        constexpr std::size_t lanes = max_lanes;
+        const std::size_t lanes = lanes_;
         const ModelView& m = *model_;
         const detail::Cell boundary = detail::dp_row0(m.variant);
         const bool subsequence = m.variant == MatchVariant::subsequence;
         if (Paths) {
-            detail::Cell diagonal[max_lanes], above[max_lanes];
+            detail::Cell* diagonal = lane_cells_;
+            detail::Cell* above = lane_cells_ + lanes;
             for (std::size_t lane = 0; lane < lanes; ++lane) {
                 diagonal[lane] = load(base, lane);
                 above[lane] = boundary;
@@ -222,15 +265,17 @@ private:
                 for (std::size_t lane = 0; lane < lanes; ++lane) track_best(r, lane, above[lane]);
             return;
         }
-        float diagonal[max_lanes], above[max_lanes];
+        float* diagonal = lane_costs_;
+        float* above = lane_costs_ + lanes;
+        float* first = costs_ + base * lanes;
         for (std::size_t lane = 0; lane < lanes; ++lane) {
-            diagonal[lane] = costs_[base][lane];
+            diagonal[lane] = first[lane];
             above[lane] = boundary.cost;
-            costs_[base][lane] = boundary.cost;
+            first[lane] = boundary.cost;
         }
         for (std::size_t i = 1; i <= len; ++i) {
             const float weight = w(rep[i - 1], c);
-            float* cells = costs_[base + i];
+            float* cells = costs_ + (base + i) * lanes;
             for (std::size_t lane = 0; lane < lanes; ++lane) {
                 const float left = cells[lane];
                 above[lane] = detail::dp_step_cost(diagonal[lane], above[lane], left, weight);
@@ -245,7 +290,8 @@ private:
     // Subsequence with the representative as A1: the best end over the window's columns so far.
     void track_best(std::size_t r, std::size_t lane, detail::Cell last_row) noexcept {
         const float score = detail::dp_score(last_row, model_->normalization, model_->window_chars);
-        if (score < best_[r][lane]) best_[r][lane] = score;
+        float& best = best_[r * lanes_ + lane];
+        if (score < best) best = score;
     }
 
     void finish(std::size_t lane) noexcept {
@@ -261,7 +307,7 @@ private:
                 }
                 completed_[r] = best;
             } else if (m.variant == MatchVariant::subsequence) {
-                completed_[r] = best_[r][lane];
+                completed_[r] = best_[r * lanes_ + lane];
             } else {
                 completed_[r] = detail::dp_score(load(base + len, lane), m.normalization, m.window_chars);
             }
@@ -274,11 +320,13 @@ private:
     std::uint64_t pushed_ = 0;
     std::uint64_t completed_start_ = 0;
     bool has_completed_ = false;
-    Window windows_[max_lanes] = {};
-    float costs_[Cap::cells_per_window][max_lanes] = {};
-    std::uint16_t paths_[path_cells][path_lanes] = {};
-    float best_[Cap::max_representatives][max_lanes] = {};
-    float completed_[Cap::max_representatives] = {};
+    Window* windows_ = nullptr;         // lanes_
+    float* costs_ = nullptr;            // cells × lanes_, lane fastest
+    std::uint16_t* paths_ = nullptr;    // the same, with path normalisation only
+    float* best_ = nullptr;             // R × lanes_
+    float* completed_ = nullptr;        // R
+    detail::Cell* lane_cells_ = nullptr;  // 2 × lanes_ scratch (with paths)
+    float* lane_costs_ = nullptr;         // 2 × lanes_ scratch (costs only)
 };
 
 }  // namespace actionstring

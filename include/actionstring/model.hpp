@@ -105,7 +105,9 @@ struct ModelView {
         return representative_offsets[r + 1] - representative_offsets[r];
     }
     constexpr std::uint32_t total_representative_chars() const noexcept {
-        return representative_count == 0 ? 0u : representative_offsets[representative_count];
+        return representative_count == 0 || representative_offsets == nullptr
+                   ? 0u
+                   : representative_offsets[representative_count];
     }
     /// Windows that can be open at once: ceil(window / step).
     constexpr std::uint32_t max_open_windows() const noexcept {
@@ -126,6 +128,9 @@ struct CharacterWeights {
 constexpr CharacterWeights character_weights(const ModelView& m) noexcept {
     return CharacterWeights{m.character_distances, m.character_count};
 }
+
+/// Most neighbours of the kNN vote (its scratch is on the stack and its work quadratic in k).
+constexpr std::size_t max_neighbours = 64;
 
 /// Smallest string period a model may have (a 1 kHz string rate; the paper's is 12 Hz).
 constexpr std::uint32_t min_string_period_us = 1000;
@@ -295,8 +300,8 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     if (m.normalization > LengthNormalization::query) return refuse(problem, "normalization: unknown");
     if (m.window_chars == 0) return refuse(problem, "window_chars: zero");
     if (m.step_chars == 0) return refuse(problem, "step_chars: zero");
-    if (m.neighbours == 0 || m.neighbours > R)
-        return refuse(problem, "neighbours: zero or more than the representatives");
+    if (m.neighbours == 0 || m.neighbours > R || m.neighbours > max_neighbours)
+        return refuse(problem, "neighbours: zero, over 64 or more than the representatives");
     if (detail::is_nan(m.unknown_distance) || m.unknown_distance < 0.0f)
         return refuse(problem, "unknown_distance: negative or NaN");
     // Online settings.

@@ -81,7 +81,7 @@
     SCALAR(LengthNormalization, normalization, LengthNormalization::none, 0, 2)                           \
     SCALAR(std::uint16_t, window_chars, 0, 1, 65535)       /* sliding window length in characters */      \
     SCALAR(std::uint16_t, step_chars, 0, 1, 65535)         /* a window opens every step_chars */          \
-    SCALAR(std::uint16_t, neighbours, 1, 1, 65535)         /* k of the kNN vote */                        \
+    SCALAR(std::uint16_t, neighbours, 1, 1, 64)            /* k of the kNN vote */                        \
     SCALAR(float, unknown_distance, detail::infinity(), 0, 0) /* best distance above it: unknown */     \
     /* --- online settings of the segmenter (design §1.8), chosen at training --- */                      \
     SCALAR(std::uint32_t, settle_delay_us, 2000000, 0, 600000000) /* a character's label is final then */ \

@@ -14,17 +14,39 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "actionstring/capacity.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/normalize.hpp"
+#include "actionstring/status.hpp"
+#include "actionstring/storage.hpp"
 
 namespace actionstring {
 
-/// Recent poses of one stream, for the velocity. Storage fixed by `Cap`
-/// (Cap::motion_ring poses; one when the limits have no motion).
-template <class Cap>
+/// Poses the ring keeps: a pose every quarter span, so the one nearest the
+/// span is always within reach.
+constexpr std::size_t motion_ring_poses = 6;
+
+/// Recent poses of one stream, for the velocity. Works in caller-owned
+/// storage (storage.hpp) of required_bytes(model) bytes: none for a model
+/// without motion.
 class MotionRing {
 public:
+    static constexpr std::size_t required_bytes(const ModelView& model) noexcept { return plan(model).bytes; }
+
+    /// Binds the storage for a model's pose length (the model must have
+    /// motion for update() to be called). Returns storage_too_small or ok.
+    Status init(const ModelView& model, void* storage, std::size_t bytes) noexcept {
+        poses_ = nullptr;
+        const Plan p = plan(model);
+        if (p.bytes == 0) return Status::ok;
+        if (!detail::storage_fits(storage, bytes, p.bytes)) return Status::storage_too_small;
+        detail::clear_storage(storage, p.bytes);
+        poses_ = detail::storage_at<float>(storage, p.poses);
+        times_ = detail::storage_at<std::int64_t>(storage, p.times);
+        pose_dim_ = model.pose_dim();
+        reset();
+        return Status::ok;
+    }
+
     /// Forgets the stream (call when it restarts).
     void reset() noexcept {
         count_ = 0;
@@ -34,43 +56,59 @@ public:
     /// Writes the velocity of the pose in `input[0, D)` at `time_us` into
     /// `input[D, 2 D)` (D = model.pose_dim()), then keeps the pose if a
     /// quarter span has passed since the last one kept. The model must have
-    /// motion and fit Cap (the encoder checked both).
+    /// motion and be the one given to init() (the encoder sees to both).
     void update(const ModelView& model, std::int64_t time_us, float* input) noexcept {
-        const std::size_t D = model.pose_dim();
+        const std::size_t D = pose_dim_;
         const std::int64_t span = model.velocity_span_us;
         // The kept pose whose age is nearest the span, among those at least half a span old.
-        std::size_t best = Cap::motion_ring;
+        std::size_t best = motion_ring_poses;
         std::int64_t best_error = 0;
         for (std::size_t k = 0; k < count_; ++k) {
             const std::int64_t age = time_us - times_[k];
             if (age < span / 2) continue;
             const std::int64_t error = age > span ? age - span : span - age;
-            if (best == Cap::motion_ring || error < best_error) best = k, best_error = error;
+            if (best == motion_ring_poses || error < best_error) best = k, best_error = error;
         }
         float* velocity = input + D;
-        if (best == Cap::motion_ring) {
+        if (best == motion_ring_poses) {
             for (std::size_t i = 0; i < D; ++i) velocity[i] = 0.0f;
         } else {
             const float per_second = model.velocity_weight / (static_cast<float>(time_us - times_[best]) * 1.0e-6f);
+            const float* earlier = poses_ + best * D;
             for (std::size_t i = 0; i < D; ++i) {
-                const float v = (input[i] - poses_[best][i]) * per_second;
+                const float v = (input[i] - earlier[i]) * per_second;
                 velocity[i] = v > max_pose_coordinate    ? max_pose_coordinate
                               : v < -max_pose_coordinate ? -max_pose_coordinate
                                                          : v;
             }
         }
-        const std::size_t newest = next_ == 0 ? Cap::motion_ring - 1 : next_ - 1;
+        const std::size_t newest = next_ == 0 ? motion_ring_poses - 1 : next_ - 1;
         if (count_ == 0 || time_us - times_[newest] >= span / 4) {
-            for (std::size_t i = 0; i < D; ++i) poses_[next_][i] = input[i];
+            float* kept = poses_ + next_ * D;
+            for (std::size_t i = 0; i < D; ++i) kept[i] = input[i];
             times_[next_] = time_us;
-            next_ = next_ + 1 == Cap::motion_ring ? 0 : next_ + 1;
-            if (count_ < Cap::motion_ring) ++count_;
+            next_ = next_ + 1 == motion_ring_poses ? 0 : next_ + 1;
+            if (count_ < motion_ring_poses) ++count_;
         }
     }
 
 private:
-    float poses_[Cap::motion_ring][Cap::max_pose_dim] = {};
-    std::int64_t times_[Cap::motion_ring] = {};
+    struct Plan {
+        std::size_t poses = 0, times = 0, bytes = 0;
+    };
+    static constexpr Plan plan(const ModelView& model) noexcept {
+        Plan p;
+        if (!model.has_motion()) return p;
+        detail::StorageLayout layout;
+        p.poses = layout.add<float>(motion_ring_poses * model.pose_dim());
+        p.times = layout.add<std::int64_t>(motion_ring_poses);
+        p.bytes = layout.bytes();
+        return p;
+    }
+
+    float* poses_ = nullptr;  // motion_ring_poses × D
+    std::int64_t* times_ = nullptr;
+    std::size_t pose_dim_ = 0;
     std::size_t count_ = 0;
     std::size_t next_ = 0;
 };

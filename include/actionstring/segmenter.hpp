@@ -25,10 +25,10 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "actionstring/capacity.hpp"
 #include "actionstring/detail/math.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/status.hpp"
+#include "actionstring/storage.hpp"
 
 namespace actionstring {
 
@@ -38,7 +38,7 @@ namespace actionstring {
 struct SegmenterConfig {
     /// How long after a character its label becomes final. Longer sees more
     /// of the action before deciding; the paper's rule answers one window late.
-    /// At most max_settle_delay_us and the capacity's max_settle_chars.
+    /// At most max_settle_delay_us; the state's storage grows with it.
     std::int64_t settle_delay_us = 2000000;
     /// Cost of starting another segment (discourages flicker).
     float segment_penalty = 3.0f;
@@ -62,36 +62,47 @@ constexpr SegmenterConfig segmenter_config(const ModelView& m) noexcept {
     return c;
 }
 
-/// Longest settle delay a segmenter accepts (10 minutes); the capacity's
-/// max_settle_chars usually binds first.
+/// Longest settle delay a segmenter accepts (10 minutes).
 constexpr std::int64_t max_settle_delay_us = 600000000;
 
-/// Online segmentation state with storage fixed by `Cap`. Holds a pointer to
-/// the ModelView passed to init(): it must outlive the segmenter (or the next
-/// init()).
-template <class Cap>
+/// Online segmentation state. Works in caller-owned storage of
+/// required_bytes(model, config) bytes (storage.hpp): two words per
+/// representative character and two rings as long as the settle delay.
+/// Keeps pointers to the ModelView passed to init() and to the storage: both
+/// must outlive the segmenter (or its next init()).
 class ActionSegmenter {
 public:
-    /// Binds a model (W, representatives, labels, string period). Returns
-    /// invalid_model, model_exceeds_capacity (more representative characters
-    /// than Cap, or a settle delay longer than Cap::max_settle_chars), or
-    /// invalid_argument (a negative or NaN setting); ok otherwise.
-    /// Binds a model with its own online settings (segmenter_config()).
-    Status init(const ModelView& model) noexcept { return init(model, segmenter_config(model)); }
+    /// Bytes of storage init() needs for this model and these settings
+    /// (constexpr when both are); unsatisfiable_bytes for settings check() refuses.
+    static constexpr std::size_t required_bytes(const ModelView& model, const SegmenterConfig& config) noexcept {
+        return plan(model, config).bytes;
+    }
 
-    Status init(const ModelView& model, const SegmenterConfig& config) noexcept {
+    /// Binds a model (W, representatives, labels, string period). Returns
+    /// invalid_model, invalid_argument (a negative, NaN or too long setting),
+    /// storage_too_small, or ok.
+    Status init(const ModelView& model, const SegmenterConfig& config, void* storage, std::size_t bytes) noexcept {
         model_ = nullptr;
         const Status status = check(model, config);
         if (status != Status::ok) return status;
+        const Plan p = plan(model, config);
+        if (!detail::storage_fits(storage, bytes, p.bytes)) return Status::storage_too_small;
+        detail::clear_storage(storage, p.bytes);
         settle_chars_ = settle_chars_for(model, config);
+        ring_size_ = p.ring_size;
+        costs_ = detail::storage_at<float>(storage, p.costs);
+        starts_ = detail::storage_at<std::uint32_t>(storage, p.starts);
+        ends_ = detail::storage_at<SegmentEnd>(storage, p.ends);
+        settled_ = detail::storage_at<LabelId>(storage, p.settled);
         config_ = config;
         model_ = &model;
         reset();
         return Status::ok;
     }
 
-    /// What init() would return for this model and these settings, with no
-    /// state touched (a caller can check settings before applying them).
+    /// What init() would return for this model and these settings given
+    /// enough storage, with no state touched (a caller can check settings
+    /// before applying them).
     static Status check(const ModelView& model, const SegmenterConfig& config) noexcept {
         const Status status = validate_matching_tables(model);
         if (status != Status::ok) return status;
@@ -100,12 +111,9 @@ public:
             !detail::is_finite(config.segment_penalty) || !detail::is_finite(config.stay_penalty) ||
             !detail::is_finite(config.skip_penalty))
             return Status::invalid_argument;
-        if (model.representative_count > Cap::max_representatives ||
-            model.total_representative_chars() > Cap::max_representative_chars)
-            return Status::model_exceeds_capacity;
+        if (model.representative_count >= unknown_rep) return Status::model_exceeds_capacity;
         if (model.string_period_us == 0) return Status::invalid_model;
         if (config.settle_delay_us > max_settle_delay_us) return Status::invalid_argument;
-        if (settle_chars_for(model, config) > Cap::max_settle_chars) return Status::model_exceeds_capacity;
         return Status::ok;
     }
 
@@ -114,12 +122,15 @@ public:
         pushed_ = 0;
         last_end_ = 0.0f;
         best_ = Hypothesis{};
-        for (std::size_t i = 0; i < Cap::max_representative_chars; ++i) {
+        const std::size_t cells = model_->total_representative_chars();
+        for (std::size_t i = 0; i < cells; ++i) {
             costs_[i] = detail::infinity();
             starts_[i] = 0;
         }
-        for (auto& end : ends_) end = SegmentEnd{};
-        for (auto& label : settled_) label = unknown_label;
+        for (std::size_t i = 0; i < ring_size_; ++i) {
+            ends_[i] = SegmentEnd{};
+            settled_[i] = unknown_label;
+        }
     }
 
     bool initialized() const noexcept { return model_ != nullptr; }
@@ -164,13 +175,13 @@ public:
                 end = SegmentEnd{static_cast<std::uint16_t>(r), start[n - 1]};
             }
         }
-        ends_[now % ring_size] = end;
+        ends_[now % ring_size_] = end;
         last_end_ = end_cost;
         best_ = best;
         ++pushed_;
         if (pushed_ <= settle_chars_) return false;
         const std::uint64_t settled = pushed_ - 1 - settle_chars_;
-        settled_[settled % ring_size] = label_at(settled);
+        settled_[settled % ring_size_] = label_at(settled);
         return true;
     }
 
@@ -185,12 +196,12 @@ public:
     /// Final label of a settled character among the last settled_history();
     /// unknown_label for any other index.
     LabelId settled_label(std::uint64_t index) const noexcept {
-        if (!has_settled() || index > settled_character() || settled_character() - index >= ring_size)
+        if (!has_settled() || index > settled_character() || settled_character() - index >= ring_size_)
             return unknown_label;
-        return settled_[index % ring_size];
+        return settled_[index % ring_size_];
     }
     /// How many settled labels settled_label(index) remembers.
-    static constexpr std::size_t settled_history() noexcept { return ring_size; }
+    std::size_t settled_history() const noexcept { return ring_size_; }
     /// What the current best explanation says of a character that is not yet
     /// settled (index within the last settle_chars() + 1): to flush the end of
     /// a stream. Returns unknown_label for other indices.
@@ -203,15 +214,17 @@ public:
 
 private:
     // The settle delay in characters, rounded (settings already checked).
-    static std::uint32_t settle_chars_for(const ModelView& model, const SegmenterConfig& config) noexcept {
+    static constexpr std::uint32_t settle_chars_for(const ModelView& model, const SegmenterConfig& config) noexcept {
         const std::int64_t period = model.string_period_us;
         return static_cast<std::uint32_t>((config.settle_delay_us + period / 2) / period);
     }
 
     static constexpr std::uint16_t unknown_rep = 0xFFFF;
-    // A power of two, so that slot = index mod 2^32 mod ring_size stays
-    // consistent when the 32-bit index wraps.
-    static constexpr std::size_t ring_size = detail::next_power_of_two(Cap::max_settle_chars + 1);
+
+    struct Plan {
+        std::size_t costs = 0, starts = 0, ends = 0, settled = 0, ring_size = 0, bytes = unsatisfiable_bytes;
+    };
+    static constexpr Plan plan(const ModelView& model, const SegmenterConfig& config) noexcept;
 
     struct Hypothesis {
         float cost = 0.0f;
@@ -234,11 +247,11 @@ private:
         const std::uint32_t target_age = static_cast<std::uint32_t>(pushed_ - 1 - index);
         std::uint16_t rep = best_.rep;
         std::uint32_t start = best_.start;
-        for (std::uint32_t guard = 0; guard <= ring_size; ++guard) {
+        for (std::size_t guard = 0; guard <= ring_size_; ++guard) {
             const std::uint32_t start_age = newest - start;
             if (start_age >= target_age) return label_of(rep);
             const std::uint32_t previous = start - 1u;  // the end of the segment before
-            const SegmentEnd& end = ends_[previous % ring_size];
+            const SegmentEnd& end = ends_[previous % ring_size_];
             rep = end.rep;
             start = end.start;
         }
@@ -251,10 +264,28 @@ private:
     std::uint64_t pushed_ = 0;
     float last_end_ = 0.0f;
     Hypothesis best_;
-    float costs_[Cap::max_representative_chars] = {};
-    std::uint32_t starts_[Cap::max_representative_chars] = {};
-    SegmentEnd ends_[ring_size] = {};
-    LabelId settled_[ring_size] = {};
+    // A power of two above settle_chars_, so that slot = index mod 2^32 mod
+    // ring_size_ stays consistent when the 32-bit index wraps.
+    std::size_t ring_size_ = 0;
+    float* costs_ = nullptr;           // one per representative character
+    std::uint32_t* starts_ = nullptr;  // the start of each cell's segment
+    SegmentEnd* ends_ = nullptr;       // ring_size_: the best explanation ending at each character
+    LabelId* settled_ = nullptr;       // ring_size_: the settled labels
 };
+
+constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, const SegmenterConfig& config) noexcept {
+    Plan p;
+    // Settings check() refuses have no size; the ring needs a string period.
+    if (model.string_period_us == 0 || !(config.settle_delay_us >= 0) || config.settle_delay_us > max_settle_delay_us)
+        return p;
+    p.ring_size = detail::next_power_of_two(std::size_t{settle_chars_for(model, config)} + 1u);
+    detail::StorageLayout layout;
+    p.costs = layout.add<float>(model.total_representative_chars());
+    p.starts = layout.add<std::uint32_t>(model.total_representative_chars());
+    p.ends = layout.add<SegmentEnd>(p.ring_size);
+    p.settled = layout.add<LabelId>(p.ring_size);
+    p.bytes = layout.bytes();
+    return p;
+}
 
 }  // namespace actionstring

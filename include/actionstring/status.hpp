@@ -24,12 +24,16 @@ enum class Status : std::uint8_t {
     stream_restarted,
     /// The model's tables are inconsistent (index out of range, non-finite value, bad size).
     invalid_model,
-    /// The model is larger than the compile-time capacity of the state object.
+    /// The model needs more than the runtime can represent (a string longer
+    /// than 16-bit warping-path lengths allow).
     model_exceeds_capacity,
     /// An argument is out of range (null pointer, wrong joint count, bad length).
     invalid_argument,
     /// The state object was used before a successful init().
     not_initialized,
+    /// The storage given to init() is null, misaligned or smaller than
+    /// required_bytes() for this model and these settings.
+    storage_too_small,
 };
 
 /// Short, stable, human-readable name of a status code (static storage).
@@ -57,6 +61,8 @@ constexpr const char* status_name(Status status) noexcept {
             return "invalid_argument";
         case Status::not_initialized:
             return "not_initialized";
+        case Status::storage_too_small:
+            return "storage_too_small";
     }
     return "unknown_status";
 }

@@ -11,7 +11,7 @@
 namespace {
 
 namespace model = ACTIONSTRING_C_MODEL_NAMESPACE;
-using Annotator = actionstring::Annotator<model::ModelCapacity>;
+using actionstring::Annotator;
 
 // Distinguish a state set up by actionstring_init() from stray memory: a
 // magic word, the state's own address (memory filled with the magic, or a
@@ -24,6 +24,7 @@ struct State {
     std::uint32_t magic = kMagic;
     const void* self = nullptr;
     Annotator annotator;
+    actionstring::StateBuffer<model::kAnnotatorWithWindowsBytes> storage;
     std::uint32_t end_magic = kEndMagic;
 };
 
@@ -59,7 +60,10 @@ actionstring_status actionstring_init(void* memory, size_t size, actionstring_st
         reinterpret_cast<std::uintptr_t>(memory) % alignof(State) != 0)
         return ACTIONSTRING_INVALID_ARGUMENT;
     auto* state = new (memory) State();
-    const actionstring::Status status = state->annotator.init(model::kModel);
+    actionstring::AnnotatorConfig config = actionstring::annotator_config(model::kModel);
+    config.window_rule = true;
+    const actionstring::Status status =
+        state->annotator.init(model::kModel, config, state->storage.data(), state->storage.size());
     if (status != actionstring::Status::ok) {
         state->magic = 0;
         return code(status);
@@ -106,16 +110,17 @@ actionstring_status actionstring_set_online_settings(actionstring_state* handle,
     if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
     if (settings == nullptr) return ACTIONSTRING_INVALID_ARGUMENT;
     actionstring::AnnotatorConfig config = actionstring::annotator_config(model::kModel);
+    config.window_rule = true;
     config.segmenter.settle_delay_us = settings->settle_delay_us;
     config.segmenter.segment_penalty = settings->segment_penalty;
     config.segmenter.stay_penalty = settings->stay_penalty;
     config.segmenter.skip_penalty = settings->skip_penalty;
     config.segmenter.unknown_cost = settings->unknown_cost;
     // Checked first, so a refused setting leaves the state as it was.
-    if (actionstring::ActionSegmenter<model::ModelCapacity>::check(model::kModel, config.segmenter) !=
-        actionstring::Status::ok)
+    if (actionstring::ActionSegmenter::check(model::kModel, config.segmenter) != actionstring::Status::ok ||
+        actionstring::Annotator::required_bytes(model::kModel, config) > state->storage.size())
         return ACTIONSTRING_INVALID_ARGUMENT;
-    return code(state->annotator.init(model::kModel, config));
+    return code(state->annotator.init(model::kModel, config, state->storage.data(), state->storage.size()));
 }
 
 int32_t actionstring_label(const actionstring_state* handle) {

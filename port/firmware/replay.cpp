@@ -18,10 +18,7 @@
 
 namespace model = ACTIONSTRING_REPLAY_MODEL_NAMESPACE;
 namespace stream = actionstring_stream;
-// The segmenter alone labels the stream: it is the better rule on streams of
-// actions, and leaving the paper's window matcher out halves the state.
-using Cap = model::ModelCapacity::without_windows;
-using Annotator = actionstring::Annotator<Cap>;
+using actionstring::Annotator;
 
 namespace {
 
@@ -81,8 +78,12 @@ std::uint32_t calibration_cycles(std::uint32_t iterations) {
 #endif
 
 // The state lives in zero-initialised storage (.bss), not in an initialised
-// object the start-up code would have to copy from flash.
-alignas(Annotator) unsigned char annotator_storage[sizeof(Annotator)];
+// object the start-up code would have to copy from flash. Its size is the
+// model's own (the generated kAnnotatorBytes): the model's settings, so the
+// segmenter alone labels the stream; it is the better rule on streams of
+// actions, and leaving the paper's window matcher out halves the state.
+alignas(Annotator) unsigned char annotator_object[sizeof(Annotator)];
+actionstring::StateBuffer<model::kAnnotatorBytes> annotator_state;
 
 const char* name(actionstring::LabelId label) {
     return label == actionstring::unknown_label ? "unknown" : model::kModel.label_names[label];
@@ -92,9 +93,10 @@ const char* name(actionstring::LabelId label) {
 
 int main() {
     static_assert(stream::kJointCount == model::kModel.joint_count, "the stream's skeleton is the model's");
-    Annotator& annotator = *new (annotator_storage) Annotator();
+    Annotator& annotator = *new (annotator_object) Annotator();
     Line line;
-    const actionstring::Status status = annotator.init(model::kModel);
+    const actionstring::Status status = annotator.init(model::kModel, actionstring::annotator_config(model::kModel),
+                                                       annotator_state.data(), annotator_state.size());
     if (status != actionstring::Status::ok) {
         line.text("model rejected: ").text(actionstring::status_name(status)).write();
         return 1;
@@ -107,12 +109,15 @@ int main() {
         .text(model::kModelChecksum)
         .write();
     line.text("# port ").text(actionstring::port::name()).write();
-    line.text("# state bytes: annotator ")
+    line.text("# state bytes: annotator object ")
         .number(sizeof(Annotator))
+        .text(" storage ")
+        .number(annotator_state.size())
         .text(" encoder ")
-        .number(sizeof(actionstring::StringEncoder<Cap>))
+        .number(actionstring::StringEncoder::required_bytes(model::kModel))
         .text(" segmenter ")
-        .number(sizeof(actionstring::ActionSegmenter<Cap>))
+        .number(actionstring::ActionSegmenter::required_bytes(model::kModel,
+                                                              actionstring::segmenter_config(model::kModel)))
         .write();
 #if defined(__arm__)
     line.text("# calibration instructions 2000000 cycles ").number(calibration_cycles(1000000u)).write();

@@ -6,12 +6,12 @@
 #include <memory>
 
 #include "actionstring/annotator.hpp"
-#include "actionstring/capacity.hpp"
 #include "common/time.hpp"
 #include "run/classify.hpp"
 #include "run/encode.hpp"
 #include "run/skeleton.hpp"
 #include "run/stream_labels.hpp"
+#include "run/state.hpp"
 
 namespace actionstring {
 namespace host {
@@ -66,9 +66,10 @@ ClipResults evaluate_model(const ModelView& model, const std::vector<LabelledCli
 
 std::vector<double> annotator_frame_times(const ModelView& model, const std::vector<LabelledClip>& clips) {
     for (const LabelledClip& c : clips) require_joint_count(model, c.clip.joint_count(), c.clip.source);
-    auto annotator = std::make_unique<Annotator<HostCapacity>>();
+    // As a device runs it: the model's own settings, the segmenter alone.
+    Stateful<Annotator> annotator;
     std::vector<double> times;
-    if (annotator->init(model) != Status::ok) return times;
+    if (annotator.init(model, annotator_config(model)) != Status::ok) return times;
     // Clips back to back on one clock: each starts 1 µs after the previous
     // ends, whatever its own time axis (an interval of a recording starts late).
     std::int64_t offset = 0;

@@ -10,8 +10,8 @@ namespace host {
 
 /// A C++17 header of constexpr tables for `model`: a DO-NOT-EDIT banner with
 /// the artifact's checksum, one array per table of the model schema, `kModel`
-/// (a ModelView), `ModelLimits` and `ModelCapacity` (a Capacity that fits
-/// exactly) and `kModelChecksum`, in namespace `ns`. Throws
+/// (a ModelView), `kAnnotatorBytes` and `kAnnotatorWithWindowsBytes` (the
+/// Annotator's exact storage for it) and `kModelChecksum`, in namespace `ns`. Throws
 /// std::invalid_argument for a model that fails validation or a namespace
 /// that is not a C++ namespace name.
 std::string generate_header(const ModelData& model, const std::string& checksum, const std::string& ns,

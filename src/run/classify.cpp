@@ -19,7 +19,7 @@ Classification classify_string(const ModelView& model, const std::vector<Charact
                             MatchOptions{model.variant, model.normalization}, workspace.data(), &distances[r]);
         }
     }
-    return classify_distances<4096>(model, distances.data());
+    return classify_distances(model, distances.data());
 }
 
 double clip_accuracy(const ModelView& model, const std::vector<LabelledClip>& clips) {

@@ -7,11 +7,11 @@
 #include <string>
 
 #include "actionstring/annotator.hpp"
-#include "actionstring/capacity.hpp"
 #include "actionstring/encoder.hpp"
 #include "actionstring/motion.hpp"
 #include "actionstring/normalize.hpp"
 #include "actionstring/sampler.hpp"
+#include "run/state.hpp"
 #include "common/time.hpp"
 #include "run/skeleton.hpp"
 
@@ -29,8 +29,8 @@ constexpr AnnotatorConfig kDeviceTiming{};
 
 std::vector<Character> clip_string(const ModelView& model, const Clip& clip) {
     require_joint_count(model, clip.joint_count(), clip.source);
-    auto encoder = std::make_unique<StringEncoder<HostCapacity>>();
-    const Status status = encoder->init(model, kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us);
+    Stateful<StringEncoder> encoder;
+    const Status status = encoder.init(model, EncoderConfig{kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us});
     if (status == Status::invalid_argument)
         throw std::invalid_argument("the model's string period (" + std::to_string(model.string_period_us) +
                                     " us) is too short: a " + std::to_string(kDeviceTiming.max_gap_us) +
@@ -56,7 +56,8 @@ std::size_t sample_poses(const ModelView& model, const Clip& clip, double rate_h
     sampler.configure(period_us, kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us);
     const std::size_t D = model.input_dim();  // the pose, and with motion its velocity
     std::vector<float> previous(D), current(D), skeleton(3u * model.joint_count);
-    auto motion = std::make_unique<MotionRing<HostCapacity>>();
+    Stateful<MotionRing> motion;
+    if (motion.init(model) != Status::ok) throw std::invalid_argument("the model's motion settings are invalid");
     bool has_previous = false;
     std::size_t rejected = 0;
     for (std::size_t f = 0; f < clip.frame_count(); ++f) {

@@ -7,9 +7,9 @@
 #include <memory>
 #include <stdexcept>
 
-#include "actionstring/capacity.hpp"
 #include "common/time.hpp"
 #include "run/skeleton.hpp"
+#include "run/state.hpp"
 
 namespace actionstring {
 namespace host {
@@ -26,22 +26,22 @@ std::string annotator_refusal(const ModelView& model, const AnnotatorConfig& con
     const SegmenterConfig& s = config.segmenter;
     const double period_s = us_to_seconds(model.string_period_us);
     const double settle_chars = std::round(us_to_seconds(s.settle_delay_us) / period_s);
-    if (s.settle_delay_us < 0 || s.settle_delay_us > max_settle_delay_us ||
-        settle_chars > static_cast<double>(HostCapacity::max_settle_chars))
-        return "a settle delay of " + std::to_string(us_to_seconds(s.settle_delay_us)) + " s is " +
+    if (s.settle_delay_us < 0 || s.settle_delay_us > max_settle_delay_us)
+        return "a settle delay of " + std::to_string(us_to_seconds(s.settle_delay_us)) + " s (" +
                std::to_string(static_cast<long long>(settle_chars)) + " characters at the model's " +
-               std::to_string(1.0 / period_s) + " Hz string rate; the host annotator settles at most " +
-               std::to_string(HostCapacity::max_settle_chars) + " characters behind";
+               std::to_string(1.0 / period_s) + " Hz string rate) is outside 0 to " +
+               std::to_string(us_to_seconds(max_settle_delay_us)) + " s";
     if (!StringSampler::settings_ok(model.string_period_us, config.max_gap_us, config.max_backward_us))
         return "a restart gap of " + std::to_string(config.max_gap_us) + " us and a backward tolerance of " +
                std::to_string(config.max_backward_us) + " us do not suit the model's " +
                std::to_string(model.string_period_us) + " us string period (at most 60 s and " +
                std::to_string(max_ticks_per_frame) + " periods; the tolerance at most the gap)";
     if (status == Status::model_exceeds_capacity)
-        return "the model (" + std::to_string(model.representative_count) + " representatives, " +
-               std::to_string(model.total_representative_chars()) + " characters, J " +
-               std::to_string(model.component_count) + ", d " + std::to_string(model.feature_dim) +
-               ") exceeds what the host annotator holds";
+        return "a representative of the model (" + std::to_string(model.total_representative_chars()) +
+               " characters in all) with the window is longer than 16-bit path lengths hold";
+    if (status == Status::storage_too_small)
+        return "the annotator's state for this model and settings (" +
+               std::to_string(Annotator::required_bytes(model, config)) + " bytes) cannot be allocated";
     return std::string("the annotator refused the model or its settings: ") + status_name(status) +
            " (penalties and costs must be finite and at least 0)";
 }
@@ -49,8 +49,11 @@ std::string annotator_refusal(const ModelView& model, const AnnotatorConfig& con
 StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config, const std::vector<double>& times_s,
                           const float* positions, std::size_t joints) {
     require_joint_count(model, joints, "the stream");
-    auto annotator = std::make_unique<Annotator<HostCapacity>>();
-    const Status status = annotator->init(model, config);
+    // Every rule, the paper's window rule included.
+    AnnotatorConfig every_rule = config;
+    every_rule.window_rule = true;
+    Stateful<Annotator> annotator;
+    const Status status = annotator.init(model, every_rule);
     if (status != Status::ok) throw std::invalid_argument(annotator_refusal(model, config, status));
     const std::size_t frames = times_s.size();
     StreamLabels out;

@@ -34,7 +34,7 @@ struct StreamLabels {
     std::vector<double> settled_at_s;  ///< When that final label was output.
 };
 
-/// Why Annotator<HostCapacity>::init() refused a model and settings with
+/// Why Annotator::init() refused a model and settings with
 /// `status`, in words a user can act on (which field, which setting, which limit).
 std::string annotator_refusal(const ModelView& model, const AnnotatorConfig& config, Status status);
 

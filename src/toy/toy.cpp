@@ -5,8 +5,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "actionstring/capacity.hpp"
 #include "actionstring/encoder.hpp"
+#include "run/state.hpp"
 
 namespace actionstring {
 namespace host {
@@ -127,16 +127,16 @@ ToyWorld make_toy_world(const ToyOptions& options) {
     // Representatives: each action's string from a clean performance, through
     // the runtime's own encoder.
     ModelView view = m.view();
-    using Cap = ToyCapacity;
     for (std::size_t a = 0; a < world.actions.size(); ++a) {
-        StringEncoder<Cap> encoder;
-        if (encoder.init(view, 1000000, 0) != Status::ok) throw std::logic_error("toy model rejected by the encoder");
+        Stateful<StringEncoder> encoder;
+        if (encoder.init(view, EncoderConfig{1000000, 0}) != Status::ok)
+            throw std::logic_error("toy model rejected by the encoder");
         ToyStreamOptions clean;
         clean.position_noise_m = 0.0;
         clean.frame_rate_hz = 60.0;
         std::vector<Character> chars;
         for (const auto& frame : toy_stream(world, {static_cast<int>(a)}, clean)) {
-            const EncodedFrame e = encoder.push_frame(frame.time_us, frame.positions.data());
+            const EncodedFrame e = encoder->push_frame(frame.time_us, frame.positions.data());
             chars.insert(chars.end(), e.from_previous, e.previous);
             chars.insert(chars.end(), e.from_current, e.current);
         }

@@ -12,25 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "actionstring/capacity.hpp"
 #include "io/clip.hpp"
 #include "io/clip_list.hpp"
 #include "model/model_data.hpp"
 
 namespace actionstring {
 namespace host {
-
-/// Limits that fit every toy world's model (5 joints, J ≤ 16, windows ≤ 8 steps).
-struct ToyLimits : DefaultLimits {
-    static constexpr std::size_t joints = 8;
-    static constexpr std::size_t pose_joints = 8;
-    static constexpr std::size_t feature_dim = 24;
-    static constexpr std::size_t components = 16;
-    static constexpr std::size_t representatives = 16;
-    static constexpr std::size_t representative_chars = 256;
-    static constexpr std::size_t windows = 8;
-};
-using ToyCapacity = Capacity<ToyLimits>;
 
 /// One synthetic action: key-poses visited in order, each held then blended to the next.
 struct ToyAction {

@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "actionstring/capacity.hpp"
+#include "actionstring/storage.hpp"
 #include "actionstring/gmm.hpp"
 #include "actionstring/projection.hpp"
 #include "actionstring/string_distance.hpp"
@@ -51,8 +51,8 @@ void check_options(const TrainingOptions& o) {
     auto require = [](bool ok, const char* what) {
         if (!ok) throw std::invalid_argument(what);
     };
-    require(o.components >= 0 && o.components <= static_cast<int>(HostCapacity::max_components),
-            "components (J) must be between 0 (no GMM) and 64");
+    require(o.components >= 0 && o.components <= 4096, "components (J) must be between 0 (no GMM) and 4096");
+    require(o.neighbours >= 1 && o.neighbours <= static_cast<int>(max_neighbours), "k must be between 1 and 64");
     require(o.covariance_floor > 0, "the covariance floor must be positive");
     require(o.pca_dim >= 0, "the PCA dimension must be ≥ 0");
     require(o.feature_rate_hz > 0 && o.string_rate_hz > 0, "rates must be positive");
@@ -158,10 +158,12 @@ ModelData start_model(const std::vector<LabelledClip>& clips, const TrainingOpti
     m.up_axis = static_cast<std::uint8_t>(first.up_axis);
     for (std::size_t j = 0; j < first.joint_count(); ++j)
         if (static_cast<int>(j) != first.roles.root) m.pose_joints.push_back(static_cast<std::uint16_t>(j));
-    if (m.pose_joints.size() > HostCapacity::max_pose_dim / 3)
+    // The model stores dimensions in 16 bits: the input (pose and velocity, 6 per joint) must fit.
+    constexpr std::size_t most_pose_joints = 65535 / 6;
+    if (m.pose_joints.size() > most_pose_joints)
         throw std::invalid_argument("the skeleton has " + std::to_string(m.pose_joints.size()) +
-                                    " joints besides the root; at most " +
-                                    std::to_string(HostCapacity::max_pose_dim / 3) + " are supported");
+                                    " joints besides the root; at most " + std::to_string(most_pose_joints) +
+                                    " are supported");
     m.scale_mode = options.scale_mode;
     if (uses_bones(options.scale_mode)) set_bones(m, clips);
     m.velocity_weight = static_cast<float>(options.velocity_weight);
@@ -208,9 +210,9 @@ Eigen::MatrixXd fit_projection(ModelData& m, const std::vector<float>& poses, co
                 m.projection_matrix.push_back(
                     static_cast<float>(axes(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(c))));
     }
-    if (d > HostCapacity::max_feature_dim)
-        throw std::invalid_argument("the pose has " + std::to_string(d) + " dimensions; at most " +
-                                    std::to_string(HostCapacity::max_feature_dim) + " are supported (use --pca)");
+    if (d > 65535)
+        throw std::invalid_argument("the pose has " + std::to_string(d) +
+                                    " dimensions; at most 65535 are supported (use --pca)");
     m.feature_dim = static_cast<std::uint16_t>(d);
     std::vector<float> feature(d);
     Eigen::MatrixXd samples(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(n));
@@ -273,11 +275,10 @@ TreeFeatures posterior_features(const ModelData& m, const std::vector<float>& po
     const ModelView view = m.view();
     const std::size_t D = view.input_dim(), J = view.component_count, n = poses.size() / D;
     TreeFeatures features{std::vector<float>(n * J), J};
-    std::vector<float> feature(view.feature_dim);
+    std::vector<float> feature(view.feature_dim), scratch(view.feature_dim);
     for (std::size_t i = 0; i < n; ++i) {
         project_pose(view, poses.data() + i * D, feature.data());
-        if (gmm_posterior<HostCapacity::max_feature_dim>(view, feature.data(), features.values.data() + i * J) !=
-            Status::ok)
+        if (gmm_posterior(view, feature.data(), features.values.data() + i * J, scratch.data()) != Status::ok)
             throw std::runtime_error("a training pose fell outside the GMM's float range");
     }
     return features;
@@ -362,13 +363,10 @@ void set_matching(ModelData& m, const TrainingOptions& options, int representati
     m.stay_penalty = online.stay_penalty;
     m.skip_penalty = online.skip_penalty;
     m.unknown_cost = online.unknown_cost;
-    if (!HostCapacity::fits(m.view()))
-        throw std::invalid_argument(std::to_string(representatives) + " representatives of " +
-                                    std::to_string(m.view().total_representative_chars()) +
-                                    " characters in all exceed what the host tools can run (" +
-                                    std::to_string(HostCapacity::max_representatives) + " and " +
-                                    std::to_string(HostCapacity::max_representative_chars) +
-                                    "): raise --sigma, or lower --string-rate");
+    // The model stores representative indices in 16 bits (0xFFFF means "no action").
+    if (representatives >= 0xFFFF)
+        throw std::invalid_argument(std::to_string(representatives) +
+                                    " representatives are more than a model holds (65534): raise --sigma");
 }
 
 }  // namespace

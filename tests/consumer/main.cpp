@@ -60,22 +60,18 @@ constexpr ModelView make_model() {
 }
 
 constexpr ModelView kModel = make_model();
-struct ConsumerLimits : DefaultLimits {
-    static constexpr std::size_t joints = 4;
-    static constexpr std::size_t pose_joints = 1;
-    static constexpr std::size_t feature_dim = 3;
-    static constexpr std::size_t components = 2;
-    static constexpr std::size_t representatives = 2;
-    static constexpr std::size_t representative_chars = 16;
-    static constexpr std::size_t windows = 2;
-};
-using Cap = Capacity<ConsumerLimits>;
-Annotator<Cap> annotator;
+constexpr AnnotatorConfig kConfig = [] {
+    AnnotatorConfig config = annotator_config(kModel);
+    config.window_rule = true;
+    return config;
+}();
+Annotator annotator;
+StateBuffer<Annotator::required_bytes(kModel, kConfig)> state;
 
 }  // namespace
 
 int main() {
-    if (annotator.init(kModel) != Status::ok) return 2;
+    if (annotator.init(kModel, kConfig, state.data(), state.size()) != Status::ok) return 2;
     // Standing at x = 1 facing any way, right hand raised.
     for (int frame = 0; frame < 60; ++frame) {
         const float positions[] = {1.0f, 1.0f, 0.0f, 1.0f, 1.0f, -0.1f, 1.0f, 1.0f, 0.1f, 1.0f, 1.6f, 0.3f};

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "actionstring/annotator.hpp"
-#include "actionstring/capacity.hpp"
+#include "run/state.hpp"
 #include "model/artifact.hpp"
 #include "io/clip.hpp"
 #include "model/header.hpp"
@@ -59,9 +59,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // A model that loads has passed the same checks as codegen and init().
     const std::string header = generate_header(model, "0", "fuzz", "fuzz.model");
     if (header.empty()) std::abort();
-    static auto annotator = std::make_unique<Annotator<HostCapacity>>();
+    static Stateful<Annotator> annotator;
     const ModelView view = model.view();
-    const Status status = annotator->init(view);
+    AnnotatorConfig config = annotator_config(view);
+    config.window_rule = true;
+    // A valid model may still ask for more state than a fuzzing run should allocate.
+    if (Annotator::required_bytes(view, config) > (std::size_t{64} << 20)) return 0;
+    const Status status = annotator.init(view, config);
     if (status == Status::model_exceeds_capacity) return 0;
     if (status != Status::ok) std::abort();
     for (int step = 0; step < 40; ++step) {

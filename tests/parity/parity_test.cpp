@@ -12,6 +12,7 @@
 #include "model/header.hpp"
 #include "io/stream.hpp"
 #include "io/text.hpp"
+#include "run/state.hpp"
 #include "toy/toy.hpp"
 #include "fixture_model.hpp"
 #include "fixture_pca_model.hpp"
@@ -20,9 +21,15 @@ using namespace actionstring;
 
 namespace {
 
+// Both rules, so window distances are compared too.
+AnnotatorConfig every_rule(const ModelView& model) {
+    AnnotatorConfig config = annotator_config(model);
+    config.window_rule = true;
+    return config;
+}
+
 // Feeds one frame to both annotators and requires identical results; counts completed windows.
-template <class GeneratedCap>
-void push_both(Annotator<GeneratedCap>& generated, Annotator<HostCapacity>& host_side, const ModelView& view,
+void push_both(Annotator& generated, Annotator& host_side, const ModelView& view,
                std::int64_t time_us, const float* positions, std::size_t& windows, std::size_t& characters) {
     const FrameResult a = generated.push_frame(time_us, positions);
     const FrameResult b = host_side.push_frame(time_us, positions);
@@ -31,6 +38,9 @@ void push_both(Annotator<GeneratedCap>& generated, Annotator<HostCapacity>& host
     REQUIRE(a.windows_completed == b.windows_completed);
     REQUIRE(generated.last_character() == host_side.last_character());
     REQUIRE(generated.label() == host_side.label());
+    REQUIRE(generated.live_label() == host_side.live_label());
+    REQUIRE(a.characters_settled == b.characters_settled);
+    if (a.characters_settled > 0) REQUIRE(generated.settled_label() == host_side.settled_label());
     const float ca = generated.confidence(), cb = host_side.confidence();
     REQUIRE(std::memcmp(&ca, &cb, sizeof ca) == 0);
     if (a.windows_completed > 0) {
@@ -46,17 +56,20 @@ void push_both(Annotator<GeneratedCap>& generated, Annotator<HostCapacity>& host
 namespace {
 
 // Streams a jittery toy performance with dropped frames through the generated
-// header's annotator and the loaded artifact's, requiring identical results.
-template <class GeneratedCap>
+// header's annotator (in a static buffer of the header's exact size) and the
+// loaded artifact's (storage allocated for it), requiring identical results.
+template <std::size_t GeneratedBytes>
 void check_parity(const ModelView& generated_model, const char* checksum, const char* artifact_path) {
     host::ModelData loaded = host::load_model(artifact_path);
     const ModelView view = loaded.view();
     CHECK(std::strcmp(checksum + 8, host::artifact_checksum(host::read_file(artifact_path)).c_str()) == 0);
-    // Different capacities on purpose: the exact one from the header and the host's.
-    auto generated = std::make_unique<Annotator<GeneratedCap>>();
-    auto host_side = std::make_unique<Annotator<HostCapacity>>();
-    REQUIRE(generated->init(generated_model) == Status::ok);
-    REQUIRE(host_side->init(view) == Status::ok);
+    auto storage = std::make_unique<StateBuffer<GeneratedBytes>>();
+    auto generated = std::make_unique<Annotator>();
+    host::Stateful<Annotator> host_side;
+    REQUIRE(generated->init(generated_model, every_rule(generated_model), storage->data(), storage->size()) ==
+            Status::ok);
+    REQUIRE(host_side.init(view, every_rule(view)) == Status::ok);
+    CHECK(host_side.storage_bytes() == GeneratedBytes);
 
     host::ToyWorld world = host::make_toy_world();
     std::vector<int> sequence;
@@ -75,13 +88,14 @@ void check_parity(const ModelView& generated_model, const char* checksum, const 
 }  // namespace
 
 TEST_CASE("generated header and loaded artifact agree bit for bit") {
-    check_parity<fixture::ModelCapacity>(fixture::kModel, fixture::kModelChecksum, ACTIONSTRING_FIXTURE_MODEL);
+    check_parity<fixture::kAnnotatorWithWindowsBytes>(fixture::kModel, fixture::kModelChecksum,
+                                                      ACTIONSTRING_FIXTURE_MODEL);
 }
 
 TEST_CASE("the same without a GMM: the tree descends on projected poses") {
     CHECK(fixture_pca::kModel.component_count == 0);
-    check_parity<fixture_pca::ModelCapacity>(fixture_pca::kModel, fixture_pca::kModelChecksum,
-                                             ACTIONSTRING_FIXTURE_PCA_MODEL);
+    check_parity<fixture_pca::kAnnotatorWithWindowsBytes>(fixture_pca::kModel, fixture_pca::kModelChecksum,
+                                                          ACTIONSTRING_FIXTURE_PCA_MODEL);
 }
 
 #if defined(ACTIONSTRING_WITH_EXAMPLE_MODEL)
@@ -104,10 +118,12 @@ TEST_CASE("the committed HDM05 header and its artifact agree bit for bit on real
     const ModelView view = loaded.view();
     REQUIRE(std::strcmp(actionstring_hdm05::kModelChecksum + 8,
                         host::artifact_checksum(host::read_file(artifact)).c_str()) == 0);
-    auto generated = std::make_unique<Annotator<actionstring_hdm05::ModelCapacity>>();
-    auto host_side = std::make_unique<Annotator<HostCapacity>>();
-    REQUIRE(generated->init(actionstring_hdm05::kModel) == Status::ok);
-    REQUIRE(host_side->init(view) == Status::ok);
+    auto storage = std::make_unique<StateBuffer<actionstring_hdm05::kAnnotatorWithWindowsBytes>>();
+    auto generated = std::make_unique<Annotator>();
+    host::Stateful<Annotator> host_side;
+    REQUIRE(generated->init(actionstring_hdm05::kModel, every_rule(actionstring_hdm05::kModel), storage->data(),
+                            storage->size()) == Status::ok);
+    REQUIRE(host_side.init(view, every_rule(view)) == Status::ok);
     std::size_t windows = 0, characters = 0;
     std::int64_t offset = 0;
     for (const host::ClipListEntry& entry : host::read_clip_list(list)) {

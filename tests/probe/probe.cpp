@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "actionstring/annotator.hpp"
-#include "actionstring/capacity.hpp"
+#include "run/state.hpp"
 #include "io/clip_list.hpp"
 #include "io/formats.hpp"
 #include "io/text.hpp"
@@ -237,8 +237,12 @@ Outcome model_outcome(const std::string& text, const std::vector<float>& frame) 
     try {
         const ModelData model = parse_model("probe.model", text);
         const ModelView view = model.view();
-        auto annotator = std::make_unique<Annotator<HostCapacity>>();
-        const Status status = annotator->init(view);
+        Stateful<Annotator> annotator;
+        AnnotatorConfig config = annotator_config(view);
+        config.window_rule = true;
+        // A valid model that asks for more state than the probe allocates counts as accepted.
+        if (Annotator::required_bytes(view, config) > (std::size_t{256} << 20)) return accepted;
+        const Status status = annotator.init(view, config);
         if (status == Status::model_exceeds_capacity) return accepted;
         if (status != Status::ok) return garbage;
         std::vector<float> positions(3u * view.joint_count);
@@ -279,7 +283,7 @@ void probe_models(const std::string& model_path, int cases, std::mt19937_64& rng
     }
 }
 
-// Adversarial timestamps and frames through the committed-size host annotator.
+// Adversarial timestamps and frames through the host annotator.
 void probe_streams(const std::string& model_path, int cases, std::mt19937_64& rng, Tally& tally) {
     const ModelData model = load_model(model_path);
     const ModelView view = model.view();
@@ -288,10 +292,11 @@ void probe_streams(const std::string& model_path, int cases, std::mt19937_64& rn
         const Outcome o = isolated(
             [&]() -> Outcome {
                 std::mt19937_64 r(seed);
-                auto annotator = std::make_unique<Annotator<HostCapacity>>();
+                Stateful<Annotator> annotator;
                 AnnotatorConfig config;
+                config.window_rule = true;
                 config.max_gap_us = std::uniform_int_distribution<std::int64_t>(100000, 60000000)(r);
-                if (annotator->init(view, config) != Status::ok) return garbage;
+                if (annotator.init(view, config) != Status::ok) return garbage;
                 std::vector<float> frame(3u * view.joint_count);
                 std::int64_t t = std::uniform_int_distribution<std::int64_t>(INT64_MIN / 2, INT64_MAX / 2)(r);
                 for (int f = 0; f < 3000; ++f) {
