@@ -12,11 +12,43 @@ namespace actionstring_hdm05 {
 
 inline constexpr char kModelChecksum[] = "fnv1a64:dc8d700c12f39c67";
 
-inline constexpr const char* const kJointNames[31] = {
-    "root", "lhipjoint", "lfemur", "ltibia", "lfoot", "ltoes", "rhipjoint", "rfemur", 
-    "rtibia", "rfoot", "rtoes", "lowerback", "upperback", "thorax", "lowerneck", "upperneck", 
-    "head", "lclavicle", "lhumerus", "lradius", "lwrist", "lhand", "lfingers", "lthumb", 
-    "rclavicle", "rhumerus", "rradius", "rwrist", "rhand", "rfingers", "rthumb"
+inline constexpr char kJointNamesText[] =
+    "root" "\0"
+    "lhipjoint" "\0"
+    "lfemur" "\0"
+    "ltibia" "\0"
+    "lfoot" "\0"
+    "ltoes" "\0"
+    "rhipjoint" "\0"
+    "rfemur" "\0"
+    "rtibia" "\0"
+    "rfoot" "\0"
+    "rtoes" "\0"
+    "lowerback" "\0"
+    "upperback" "\0"
+    "thorax" "\0"
+    "lowerneck" "\0"
+    "upperneck" "\0"
+    "head" "\0"
+    "lclavicle" "\0"
+    "lhumerus" "\0"
+    "lradius" "\0"
+    "lwrist" "\0"
+    "lhand" "\0"
+    "lfingers" "\0"
+    "lthumb" "\0"
+    "rclavicle" "\0"
+    "rhumerus" "\0"
+    "rradius" "\0"
+    "rwrist" "\0"
+    "rhand" "\0"
+    "rfingers" "\0"
+    "rthumb" "\0";
+inline constexpr std::uint32_t kJointNamesOffsets[32] = {
+    0, 5, 15, 22, 29, 35, 41, 51, 
+    58, 65, 71, 77, 87, 97, 104, 114, 
+    124, 129, 139, 148, 156, 163, 169, 178, 
+    185, 195, 204, 212, 219, 225, 234, 241
 };
 inline constexpr std::uint16_t kPoseJoints[30] = {
     1, 2, 3, 4, 5, 6, 7, 8, 
@@ -1499,15 +1531,27 @@ inline constexpr ::actionstring::LabelId kRepresentativeLabels[22] = {
     2, 2, 2, 3, 3, 4, 5, 5, 
     5, 6, 6, 6, 7, 8
 };
-inline constexpr const char* const kLabelNames[11] = {
-    "depositFloorR", "elbowToKnee1RepsLelbowStart", "grabHighR", "hopBothLegs1hops", "jogLeftCircle4StepsRstart", "kickLFront1Reps", "lieDownFloor", "rotateArmsBothBackward1Reps", 
-    "sneak2StepsLStart", "squat1Reps", "throwBasketball"
+inline constexpr char kLabelNamesText[] =
+    "depositFloorR" "\0"
+    "elbowToKnee1RepsLelbowStart" "\0"
+    "grabHighR" "\0"
+    "hopBothLegs1hops" "\0"
+    "jogLeftCircle4StepsRstart" "\0"
+    "kickLFront1Reps" "\0"
+    "lieDownFloor" "\0"
+    "rotateArmsBothBackward1Reps" "\0"
+    "sneak2StepsLStart" "\0"
+    "squat1Reps" "\0"
+    "throwBasketball" "\0";
+inline constexpr std::uint32_t kLabelNamesOffsets[12] = {
+    0, 14, 42, 52, 69, 95, 111, 124, 
+    152, 170, 181, 197
 };
 
 constexpr ::actionstring::ModelView make_model() {
     ::actionstring::ModelView m{};
     m.joint_count = 31;
-    m.joint_names = kJointNames;
+    m.joint_names = ::actionstring::NameTable{kJointNamesText, kJointNamesOffsets};
     m.root_joint = 0;
     m.left_hip_joint = 1;
     m.right_hip_joint = 6;
@@ -1542,7 +1586,7 @@ constexpr ::actionstring::ModelView make_model() {
     m.representative_chars = kRepresentativeChars;
     m.representative_labels = kRepresentativeLabels;
     m.label_count = 11;
-    m.label_names = kLabelNames;
+    m.label_names = ::actionstring::NameTable{kLabelNamesText, kLabelNamesOffsets};
     m.variant = static_cast<::actionstring::MatchVariant>(1);
     m.normalization = static_cast<::actionstring::LengthNormalization>(0);
     m.window_chars = 24;

@@ -11,14 +11,15 @@ using namespace actionstring;
 namespace {
 struct Reps {
     std::vector<LabelId> labels;
-    const char* names[3] = {"a", "b", "c"};
+    static constexpr char names_text[] = "a\0b\0c";
+    static constexpr std::uint32_t names_offsets[4] = {0, 2, 4, 6};
     ModelView view;
     Reps(std::vector<LabelId> l, std::uint16_t k, float unknown = std::numeric_limits<float>::infinity())
         : labels(std::move(l)) {
         view.representative_count = static_cast<std::uint16_t>(labels.size());
         view.representative_labels = labels.data();
         view.label_count = 3;
-        view.label_names = names;
+        view.label_names = NameTable{names_text, names_offsets};
         view.neighbours = k;
         view.unknown_distance = unknown;
     }

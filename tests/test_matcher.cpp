@@ -20,7 +20,8 @@ struct RandomMatching {
     std::vector<std::uint32_t> offsets{0};
     std::vector<Character> strings;
     std::vector<LabelId> labels;
-    const char* names[1] = {"only"};
+    static constexpr char names_text[] = "only";
+    static constexpr std::uint32_t names_offsets[2] = {0, 5};
     ModelView view;
 };
 
@@ -47,7 +48,7 @@ void fill(RandomMatching& m, std::mt19937& rng, MatchVariant variant, LengthNorm
     v.representative_chars = m.strings.data();
     v.representative_labels = m.labels.data();
     v.label_count = 1;
-    v.label_names = m.names;
+    v.label_names = NameTable{m.names_text, m.names_offsets};
     v.variant = variant;
     v.normalization = normalization;
     v.window_chars = static_cast<std::uint16_t>(uniform(1, 30));

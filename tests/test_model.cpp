@@ -116,3 +116,28 @@ TEST_CASE("the annotator refuses a maximum gap shorter than the string period") 
     config.max_gap_us = view.string_period_us - 1;
     CHECK(annotator.init(view, config) == Status::invalid_argument);
 }
+
+TEST_CASE("packed names are checked: terminated, non-empty, no NUL inside, offsets from 0") {
+    host::ToyWorld world = host::make_toy_world();
+    ModelView view = world.model.view();
+    REQUIRE(view.label_count == 4);
+    static constexpr char good[] = "a\0b\0c\0d";
+    static constexpr std::uint32_t good_offsets[5] = {0, 2, 4, 6, 8};
+    view.label_names = NameTable{good, good_offsets};
+    CHECK(validate_model(view) == Status::ok);
+    CHECK(std::string(view.label_names[3]) == "d");
+    static constexpr char unterminated[] = "a\0b\0c\0dd";
+    static constexpr std::uint32_t unterminated_offsets[5] = {0, 2, 4, 6, 8};
+    static constexpr std::uint32_t empty_name[5] = {0, 2, 4, 6, 6};
+    static constexpr std::uint32_t late_start[5] = {2, 2, 4, 6, 8};
+    static constexpr char inner_nul[] = "a\0\0\0c\0d";
+    static constexpr std::uint32_t inner_offsets[5] = {0, 2, 2, 6, 8};
+    const char* problem = "";
+    for (const NameTable names : {NameTable{unterminated, unterminated_offsets}, NameTable{good, empty_name},
+                                  NameTable{good, late_start}, NameTable{inner_nul, inner_offsets},
+                                  NameTable{nullptr, good_offsets}, NameTable{good, nullptr}}) {
+        view.label_names = names;
+        CHECK(validate_model(view, &problem) == Status::invalid_model);
+        CHECK(std::string(problem).rfind("label_names", 0) == 0);
+    }
+}

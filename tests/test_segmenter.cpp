@@ -24,7 +24,8 @@ struct Tables {
     std::vector<std::uint32_t> offsets{0};
     std::vector<Character> strings;
     std::vector<LabelId> labels;
-    const char* names[4] = {"a", "b", "c", "d"};
+    static constexpr char names_text[] = "a\0b\0c\0d";
+    static constexpr std::uint32_t names_offsets[5] = {0, 2, 4, 6, 8};
     ModelView view;
 
     void finish(int K) {
@@ -35,7 +36,7 @@ struct Tables {
         view.representative_chars = strings.data();
         view.representative_labels = labels.data();
         view.label_count = 4;
-        view.label_names = names;
+        view.label_names = NameTable{names_text, names_offsets};
         view.window_chars = 4;
         view.step_chars = 2;
         view.neighbours = 1;

@@ -37,7 +37,7 @@ Clip rearranged(const Clip& clip, const std::vector<std::size_t>& order, const s
 TEST_CASE("the model records its input skeleton, and a file in another joint order is mapped by name") {
     ToyWorld world = make_toy_world();
     const ModelView view = world.model.view();
-    REQUIRE(view.joint_names != nullptr);
+    REQUIRE(view.joint_names.present());
     CHECK(std::string(view.joint_names[3]) == "lhand");
     const std::vector<LabelledClip> clips = toy_clips(world, 1, 3);
     const Clip& original = clips.front().clip;

@@ -65,6 +65,18 @@ constexpr std::size_t max_bone_joints = 256;
 /// bone_order, bone_lengths).
 constexpr bool uses_bones(ScaleMode mode) noexcept { return mode == ScaleMode::bone_lengths; }
 
+/// Names (of joints, of labels) packed end to end, each NUL-terminated: name
+/// i starts at text + offsets[i], and a table of n names has n + 1 offsets
+/// (the last is the packed length). One form for a generated header's
+/// constexpr arrays, a host model and a binary model read in place. Not owned.
+struct NameTable {
+    const char* text = nullptr;
+    const std::uint32_t* offsets = nullptr;
+
+    constexpr const char* operator[](std::size_t i) const noexcept { return text + offsets[i]; }
+    constexpr bool present() const noexcept { return text != nullptr && offsets != nullptr; }
+};
+
 /// Non-owning view of a trained model. All pointers refer to storage that must
 /// outlive every state object initialised from this view (a generated header's
 /// `constexpr` arrays live forever; a host artifact must outlive its users).
@@ -76,7 +88,7 @@ struct ModelView {
 #define ACTIONSTRING_VIEW_SCALAR(T, FIELD, INITIAL, LOW, HIGH) T FIELD = INITIAL;
 #define ACTIONSTRING_VIEW_COUNT(T, FIELD, TABLE) T FIELD = 0;
 #define ACTIONSTRING_VIEW_TABLE(T, FIELD, SIZE, LOW, HIGH) const T* FIELD = nullptr;
-#define ACTIONSTRING_VIEW_NAMES(FIELD, COUNT) const char* const* FIELD = nullptr;
+#define ACTIONSTRING_VIEW_NAMES(FIELD, COUNT) NameTable FIELD;
     ACTIONSTRING_MODEL_FIELDS(ACTIONSTRING_VIEW_SCALAR, ACTIONSTRING_VIEW_COUNT, ACTIONSTRING_VIEW_TABLE,
                               ACTIONSTRING_VIEW_NAMES)
 #undef ACTIONSTRING_VIEW_SCALAR
@@ -153,6 +165,20 @@ inline bool all_finite(const float* values, std::size_t count) noexcept {
     return true;
 }
 
+/// Whether `names` holds `count` non-empty NUL-terminated names with no NUL
+/// inside, offsets rising from 0: each name ends where the next begins.
+inline bool names_ok(const NameTable& names, std::size_t count) noexcept {
+    if (!names.present() || names.offsets[0] != 0) return false;
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::uint32_t begin = names.offsets[i], end = names.offsets[i + 1];
+        if (end < begin + 2u) return false;  // at least one character and the NUL
+        for (std::uint32_t k = begin; k + 1 < end; ++k)
+            if (names.text[k] == '\0') return false;
+        if (names.text[end - 1] != '\0') return false;
+    }
+    return true;
+}
+
 /// All finite and within [low, high].
 inline bool all_within(const float* values, std::size_t count, float low, float high) noexcept {
     if (values == nullptr) return false;
@@ -179,9 +205,10 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
     const float big = max_table_value;
     // Skeleton.
     if (m.joint_count == 0) return refuse(problem, "joint_count: no joints");
-    if (m.joint_names != nullptr)  // optional in a hand-built view; trained models name every joint
-        for (std::size_t j = 0; j < m.joint_count; ++j)
-            if (m.joint_names[j] == nullptr) return refuse(problem, "joint_names: a null name");
+    // Optional in a hand-built view; trained models name every joint.
+    if ((m.joint_names.text != nullptr || m.joint_names.offsets != nullptr) &&
+        !detail::names_ok(m.joint_names, m.joint_count))
+        return refuse(problem, "joint_names: not joint_count non-empty NUL-terminated names");
     if (m.up_axis > 2) return refuse(problem, "up_axis: not 0, 1 or 2");
     if (m.scale_mode > ScaleMode::bone_lengths) return refuse(problem, "scale_mode: unknown mode");
     if (m.covariance > Covariance::diagonal) return refuse(problem, "covariance: unknown kind");
@@ -279,9 +306,9 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     if (!detail::all_within(m.character_distances, K * K, 0.0f, max_table_value))
         return refuse(problem, "character_distances: missing, negative, non-finite or beyond 1e6");
     // Strings and representatives.
-    if (m.label_count == 0 || m.label_names == nullptr) return refuse(problem, "label_names: none");
-    for (std::size_t l = 0; l < m.label_count; ++l)
-        if (m.label_names[l] == nullptr) return refuse(problem, "label_names: a null name");
+    if (m.label_count == 0 || !m.label_names.present()) return refuse(problem, "label_names: none");
+    if (!detail::names_ok(m.label_names, m.label_count))
+        return refuse(problem, "label_names: not label_count non-empty NUL-terminated names");
     const std::size_t R = m.representative_count;
     if (R == 0 || m.representative_offsets == nullptr || m.representative_chars == nullptr ||
         m.representative_labels == nullptr)

@@ -163,7 +163,7 @@ uint32_t actionstring_label_count(void) { return model::kModel.label_count; }
 
 const char* actionstring_label_name_of(int32_t label) {
     if (label < 0 || static_cast<uint32_t>(label) >= model::kModel.label_count) return "unknown";
-    return model::kModel.label_names[label];
+    return model::kModel.label_names[static_cast<std::size_t>(label)];
 }
 
 const char* actionstring_model_checksum(void) { return model::kModelChecksum; }

@@ -7,6 +7,7 @@
 
 #include "actionstring/annotator.hpp"
 #include "common/time.hpp"
+#include "model/model_data.hpp"
 #include "run/classify.hpp"
 #include "run/encode.hpp"
 #include "run/skeleton.hpp"
@@ -19,7 +20,7 @@ namespace host {
 ClipResults start_results(const std::string& method, const ModelView& model, const std::vector<LabelledClip>& clips) {
     ClipResults r;
     r.method = method;
-    r.labels.assign(model.label_names, model.label_names + model.label_count);
+    r.labels = name_strings(model.label_names, model.label_count);
     for (const LabelledClip& c : clips)
         if (std::find(r.labels.begin(), r.labels.end(), c.label) == r.labels.end()) r.labels.push_back(c.label);
     return r;

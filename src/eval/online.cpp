@@ -6,6 +6,7 @@
 #include <random>
 
 #include "common/time.hpp"
+#include "model/model_data.hpp"
 #include "io/stream.hpp"
 
 namespace actionstring {
@@ -145,7 +146,7 @@ int model_label(const std::vector<std::string>& names, const std::string& label)
 
 OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed,
                              const AnnotatorConfig& config) {
-    const std::vector<std::string> names(model.label_names, model.label_names + model.label_count);
+    const std::vector<std::string> names = name_strings(model.label_names, model.label_count);
     std::map<std::string, std::vector<std::size_t>> by_subject;
     for (std::size_t c = 0; c < clips.size(); ++c) by_subject[clips[c].subject].push_back(c);
     std::mt19937 rng(seed);
@@ -179,7 +180,7 @@ OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledC
 
 OnlineReport evaluate_recordings(const ModelView& model, const std::vector<LabelledRecording>& recordings,
                                  const AnnotatorConfig& config) {
-    const std::vector<std::string> names(model.label_names, model.label_names + model.label_count);
+    const std::vector<std::string> names = name_strings(model.label_names, model.label_count);
     OnlineReport report;
     PooledTimelines pooled;
     for (const LabelledRecording& recording : recordings) {

@@ -52,6 +52,17 @@ void put_table(std::ostringstream& out, const char* type, const char* field, con
     put_cpp_array(out, type_name(type), array_name(field), values, [type](T v) { return value_literal(v, type); });
 }
 
+// Packed names (NameTable): each name's literal, then its NUL as a literal of
+// its own (so no escape can run into the next name), and the offsets.
+void put_names(std::ostringstream& out, const char* field, const NameList& names) {
+    if (names.empty()) return;
+    out << "inline constexpr char " << array_name((std::string(field) + "_text").c_str()) << "[] =";
+    for (const std::string& name : names) out << "\n    " << c_string(name) << " \"\\0\"";
+    out << ";\n";
+    put_cpp_array(out, "std::uint32_t", array_name((std::string(field) + "_offsets").c_str()), names.packed_offsets(),
+                  [](std::uint32_t v) { return std::to_string(v); });
+}
+
 }  // namespace
 
 std::string generate_header(const ModelData& m, const std::string& checksum, const std::string& ns,
@@ -73,8 +84,7 @@ std::string generate_header(const ModelData& m, const std::string& checksum, con
 #define ACTIONSTRING_ARRAY_SCALAR(T, FIELD, INITIAL, LOW, HIGH)
 #define ACTIONSTRING_ARRAY_COUNT(T, FIELD, TABLE)
 #define ACTIONSTRING_ARRAY_TABLE(T, FIELD, SIZE, LOW, HIGH) put_table(out, #T, #FIELD, m.FIELD);
-#define ACTIONSTRING_ARRAY_NAMES(FIELD, COUNT) \
-    put_cpp_array(out, "const char* const", array_name(#FIELD), m.FIELD.strings(), c_string);
+#define ACTIONSTRING_ARRAY_NAMES(FIELD, COUNT) put_names(out, #FIELD, m.FIELD);
     ACTIONSTRING_MODEL_FIELDS(ACTIONSTRING_ARRAY_SCALAR, ACTIONSTRING_ARRAY_COUNT, ACTIONSTRING_ARRAY_TABLE,
                               ACTIONSTRING_ARRAY_NAMES)
 #undef ACTIONSTRING_ARRAY_SCALAR
@@ -89,7 +99,12 @@ std::string generate_header(const ModelData& m, const std::string& checksum, con
 #define ACTIONSTRING_SET_COUNT(T, FIELD, TABLE) out << "    m." #FIELD " = " << v.FIELD << ";\n";
 #define ACTIONSTRING_SET_TABLE(T, FIELD, SIZE, LOW, HIGH) \
     out << "    m." #FIELD " = " << (m.FIELD.empty() ? std::string("nullptr") : array_name(#FIELD)) << ";\n";
-#define ACTIONSTRING_SET_NAMES(FIELD, COUNT) out << "    m." #FIELD " = " << array_name(#FIELD) << ";\n";
+#define ACTIONSTRING_SET_NAMES(FIELD, COUNT)                                                                  \
+    out << "    m." #FIELD " = "                                                                               \
+        << (m.FIELD.empty() ? std::string("::actionstring::NameTable{}")                                      \
+                            : "::actionstring::NameTable{" + array_name(#FIELD "_text") + ", " +               \
+                                  array_name(#FIELD "_offsets") + "}")                                         \
+        << ";\n";
     ACTIONSTRING_MODEL_FIELDS(ACTIONSTRING_SET_SCALAR, ACTIONSTRING_SET_COUNT, ACTIONSTRING_SET_TABLE,
                               ACTIONSTRING_SET_NAMES)
 #undef ACTIONSTRING_SET_SCALAR

@@ -25,7 +25,7 @@ ModelView ModelData::view() const {
 #define ACTIONSTRING_VIEW_OF_SCALAR(T, FIELD, INITIAL, LOW, HIGH) m.FIELD = FIELD;
 #define ACTIONSTRING_VIEW_OF_COUNT(T, FIELD, TABLE) m.FIELD = static_cast<T>(TABLE.size());
 #define ACTIONSTRING_VIEW_OF_TABLE(T, FIELD, SIZE, LOW, HIGH) m.FIELD = data_or_null(FIELD);
-#define ACTIONSTRING_VIEW_OF_NAMES(FIELD, COUNT) m.FIELD = FIELD.pointers();
+#define ACTIONSTRING_VIEW_OF_NAMES(FIELD, COUNT) m.FIELD = FIELD.table();
     ACTIONSTRING_MODEL_FIELDS(ACTIONSTRING_VIEW_OF_SCALAR, ACTIONSTRING_VIEW_OF_COUNT, ACTIONSTRING_VIEW_OF_TABLE,
                               ACTIONSTRING_VIEW_OF_NAMES)
 #undef ACTIONSTRING_VIEW_OF_SCALAR
@@ -33,6 +33,13 @@ ModelView ModelData::view() const {
 #undef ACTIONSTRING_VIEW_OF_TABLE
 #undef ACTIONSTRING_VIEW_OF_NAMES
     return m;
+}
+
+std::vector<std::string> name_strings(const NameTable& names, std::size_t count) {
+    std::vector<std::string> out;
+    if (!names.present()) return out;
+    for (std::size_t i = 0; i < count; ++i) out.emplace_back(names[i]);
+    return out;
 }
 
 const char* mismatched_table(const ModelData& model) {

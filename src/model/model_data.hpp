@@ -13,33 +13,25 @@
 namespace actionstring {
 namespace host {
 
-/// Names (of joints, of labels) with the table of C-string pointers a
-/// ModelView hands out, kept in step with the names on every change.
+/// Names (of joints, of labels), kept beside the packed form a ModelView
+/// reads (NameTable: NUL-terminated names end to end, and their offsets).
 class NameList {
 public:
-    NameList() = default;
-    NameList(const NameList& other) : names_(other.names_) { refresh(); }
-    NameList& operator=(const NameList& other) {
-        names_ = other.names_;
-        refresh();
-        return *this;
-    }
-    // A moved vector keeps its buffer, so the pointers stay valid.
-    NameList(NameList&&) noexcept = default;
-    NameList& operator=(NameList&&) noexcept = default;
-
     template <class Iterator>
     void assign(Iterator first, Iterator last) {
-        names_.assign(first, last);
-        refresh();
+        clear();
+        for (; first != last; ++first) push_back(*first);
     }
     void push_back(std::string name) {
+        if (offsets_.empty()) offsets_.push_back(0);
+        text_.append(name).push_back('\0');
+        offsets_.push_back(static_cast<std::uint32_t>(text_.size()));
         names_.push_back(std::move(name));
-        refresh();
     }
     void clear() {
         names_.clear();
-        pointers_.clear();
+        text_.clear();
+        offsets_.clear();
     }
     std::size_t size() const noexcept { return names_.size(); }
     bool empty() const noexcept { return names_.empty(); }
@@ -49,17 +41,22 @@ public:
     std::vector<std::string>::const_iterator begin() const noexcept { return names_.begin(); }
     std::vector<std::string>::const_iterator end() const noexcept { return names_.end(); }
     const std::vector<std::string>& strings() const noexcept { return names_; }
-    /// [size()] NUL-terminated names, or null when there are none.
-    const char* const* pointers() const noexcept { return pointers_.empty() ? nullptr : pointers_.data(); }
+    /// The packed names (valid until the list changes), or an empty table when there are none.
+    NameTable table() const noexcept {
+        return names_.empty() ? NameTable{} : NameTable{text_.data(), offsets_.data()};
+    }
+    /// The packed text (every name and its NUL) and the size() + 1 offsets.
+    const std::string& packed_text() const noexcept { return text_; }
+    const std::vector<std::uint32_t>& packed_offsets() const noexcept { return offsets_; }
 
 private:
-    void refresh() {
-        pointers_.clear();
-        for (const std::string& name : names_) pointers_.push_back(name.c_str());
-    }
     std::vector<std::string> names_;
-    std::vector<const char*> pointers_;
+    std::string text_;
+    std::vector<std::uint32_t> offsets_;
 };
+
+/// The names of a table as strings.
+std::vector<std::string> name_strings(const NameTable& names, std::size_t count);
 
 /// Every table of a model in host memory: the fields of
 /// ACTIONSTRING_MODEL_FIELDS, scalars by value and each table as a vector

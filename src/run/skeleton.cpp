@@ -4,13 +4,14 @@
 #include <stdexcept>
 
 #include "io/text.hpp"
+#include "model/model_data.hpp"
 
 namespace actionstring {
 namespace host {
 namespace {
 
 bool has_joint(const ModelView& model, const char* name) {
-    if (model.joint_names == nullptr) return false;
+    if (!model.joint_names.present()) return false;
     for (std::size_t j = 0; j < model.joint_count; ++j)
         if (std::string(model.joint_names[j]) == name) return true;
     return false;
@@ -47,7 +48,7 @@ std::string rig_name(const ModelView& model) {
 
 void conform_to_model(const ModelView& model, Clip& clip) {
     const std::size_t J = model.joint_count;
-    if (model.joint_names == nullptr) {
+    if (!model.joint_names.present()) {
         if (clip.joint_count() != J)
             throw ReadError(clip.source, 0,
                             std::to_string(clip.joint_count()) + " joints, the model expects " + expectation(model));
@@ -93,7 +94,7 @@ void conform_to_model(const ModelView& model, Clip& clip) {
     }
     clip.positions = std::move(positions);
     clip.parents = std::move(parents);
-    clip.joint_names.assign(model.joint_names, model.joint_names + J);
+    clip.joint_names = name_strings(model.joint_names, J);
     clip.roles = JointRoles{model.root_joint, model.left_hip_joint, model.right_hip_joint};
     flag_lost_frames(clip);
 }

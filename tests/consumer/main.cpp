@@ -23,7 +23,8 @@ constexpr float kW[] = {0.0f, 2.0f, 2.0f, 0.0f};
 constexpr std::uint32_t kOffsets[] = {0, 8, 16};
 constexpr Character kStrings[] = {0, 0, 1, 1, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
 constexpr LabelId kLabels[] = {0, 1};
-constexpr const char* kLabelNames[] = {"wave", "hold_up"};
+constexpr char kLabelText[] = "wave\0hold_up";
+constexpr std::uint32_t kLabelOffsets[] = {0, 5, 13};
 
 constexpr ModelView make_model() {
     ModelView m{};
@@ -53,7 +54,7 @@ constexpr ModelView make_model() {
     m.representative_chars = kStrings;
     m.representative_labels = kLabels;
     m.label_count = 2;
-    m.label_names = kLabelNames;
+    m.label_names = NameTable{kLabelText, kLabelOffsets};
     m.window_chars = 8;
     m.step_chars = 4;
     return m;
