@@ -19,3 +19,4 @@
 #include "actionstring/matcher.hpp"
 #include "actionstring/classify.hpp"
 #include "actionstring/annotator.hpp"
+#include "actionstring/blob.hpp"

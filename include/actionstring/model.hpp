@@ -146,6 +146,9 @@ constexpr std::size_t max_neighbours = 64;
 
 /// Smallest string period a model may have (a 1 kHz string rate; the paper's is 12 Hz).
 constexpr std::uint32_t min_string_period_us = 1000;
+/// Largest string period (a 1 Hz string rate): the default restart gap (1 s)
+/// then always spans a period, so a model's own settings always work.
+constexpr std::uint32_t max_string_period_us = 1000000;
 /// Largest magnitude of any value in the projection, GMM means and factors,
 /// tree centroids and W: far above anything training produces, low enough
 /// that sums over a model's dimensions stay far inside float range.
@@ -293,6 +296,8 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
     }
     if (m.string_period_us < min_string_period_us)
         return refuse(problem, "string_period_us: below 1000 (a string rate above 1 kHz)");
+    if (m.string_period_us > max_string_period_us)
+        return refuse(problem, "string_period_us: above 1000000 (a string rate below 1 Hz)");
     return Status::ok;
 }
 

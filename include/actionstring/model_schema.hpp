@@ -69,7 +69,7 @@
     SCALAR(std::uint16_t, character_count, 0, 0, 65535)    /* K */                                        \
     TABLE(float, character_distances, std::size_t{m.character_count} * m.character_count, 0, 0) /* W */ \
     /* --- strings and representatives (design §1.5, §1.7) --- */                                         \
-    SCALAR(std::uint32_t, string_period_us, 0, 1, 4294967295) /* one character every this many us */     \
+    SCALAR(std::uint32_t, string_period_us, 0, 1, 1000000) /* one character every this many us */        \
     COUNT(std::uint16_t, representative_count, representative_labels) /* R */                            \
     TABLE(std::uint32_t, representative_offsets, m.representative_count + 1u, 0, 4294967295)              \
     TABLE(Character, representative_chars, m.total_representative_chars(), 0, 65535)                     \

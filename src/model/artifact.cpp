@@ -13,6 +13,7 @@
 #include "actionstring/model.hpp"
 #include "common/cpp_literals.hpp"
 #include "io/text.hpp"
+#include "model/blob.hpp"
 
 namespace actionstring {
 namespace host {
@@ -242,7 +243,10 @@ ModelData parse_model(const std::string& name, std::string_view text) {
 
 void save_model(const ModelData& model, const std::string& path) { write_file(path, serialize_model(model)); }
 
-ModelData load_model(const std::string& path) { return parse_model(path, read_file(path)); }
+ModelData load_model(const std::string& path) {
+    const std::string bytes = read_file(path);
+    return looks_like_blob(bytes) ? read_blob(path, bytes) : parse_model(path, bytes);
+}
 
 }  // namespace host
 }  // namespace actionstring

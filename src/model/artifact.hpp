@@ -35,6 +35,7 @@ std::string serialize_fields(const ModelData& model);
 ModelData parse_fields(const std::string& name, std::string_view fields);
 
 void save_model(const ModelData& model, const std::string& path);
+/// Reads a model file: an artifact, or a blob (`codegen --blob`).
 ModelData load_model(const std::string& path);
 
 /// The checksum recorded in an artifact's text, as 16 hex digits.

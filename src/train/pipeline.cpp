@@ -56,6 +56,7 @@ void check_options(const TrainingOptions& o) {
     require(o.covariance_floor > 0, "the covariance floor must be positive");
     require(o.pca_dim >= 0, "the PCA dimension must be ≥ 0");
     require(o.feature_rate_hz > 0 && o.string_rate_hz > 0, "rates must be positive");
+    require(o.string_rate_hz >= 1.0 && o.string_rate_hz <= 1000.0, "the string rate must be between 1 and 1000 Hz");
     require(o.epsilon > 0, "ε must be positive");
     require(o.sigma >= 0, "σ must be ≥ 0");
     require(o.neighbours >= 1, "k must be ≥ 1");

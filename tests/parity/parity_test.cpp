@@ -8,7 +8,9 @@
 #include <memory>
 
 #include "actionstring/annotator.hpp"
+#include "actionstring/blob.hpp"
 #include "model/artifact.hpp"
+#include "model/blob.hpp"
 #include "model/header.hpp"
 #include "io/stream.hpp"
 #include "io/text.hpp"
@@ -30,9 +32,22 @@ AnnotatorConfig every_rule(const ModelView& model) {
 
 // Feeds one frame to both annotators and requires identical results; counts completed windows.
 void push_both(Annotator& generated, Annotator& host_side, const ModelView& view,
-               std::int64_t time_us, const float* positions, std::size_t& windows, std::size_t& characters) {
+               std::int64_t time_us, const float* positions, std::size_t& windows, std::size_t& characters,
+               Annotator* blob_side = nullptr) {
     const FrameResult a = generated.push_frame(time_us, positions);
     const FrameResult b = host_side.push_frame(time_us, positions);
+    if (blob_side != nullptr) {
+        // The blob read in place, a third copy of the same model.
+        const FrameResult c = blob_side->push_frame(time_us, positions);
+        REQUIRE(c.status == a.status);
+        REQUIRE(c.characters_settled == a.characters_settled);
+        REQUIRE(blob_side->last_character() == generated.last_character());
+        REQUIRE(blob_side->label() == generated.label());
+        REQUIRE(blob_side->live_label() == generated.live_label());
+        if (c.characters_settled > 0) REQUIRE(blob_side->settled_label() == generated.settled_label());
+        const float cc = blob_side->confidence(), ca = generated.confidence();
+        REQUIRE(std::memcmp(&cc, &ca, sizeof cc) == 0);
+    }
     REQUIRE(a.status == b.status);
     REQUIRE(a.characters == b.characters);
     REQUIRE(a.windows_completed == b.windows_completed);
@@ -70,6 +85,17 @@ void check_parity(const ModelView& generated_model, const char* checksum, const 
             Status::ok);
     REQUIRE(host_side.init(view, every_rule(view)) == Status::ok);
     CHECK(host_side.storage_bytes() == GeneratedBytes);
+    // The same artifact as a blob, read in place.
+    const std::string bytes = host::write_blob(loaded);
+    struct Block {
+        alignas(blob_alignment) unsigned char bytes[blob_alignment];
+    };
+    std::vector<Block> blob(bytes.size() / blob_alignment + 1);
+    std::memcpy(blob.front().bytes, bytes.data(), bytes.size());
+    ModelView blob_view;
+    REQUIRE(model_from_blob(blob.front().bytes, bytes.size(), blob_view) == Status::ok);
+    host::Stateful<Annotator> blob_side;
+    REQUIRE(blob_side.init(blob_view, every_rule(blob_view)) == Status::ok);
 
     host::ToyWorld world = host::make_toy_world();
     std::vector<int> sequence;
@@ -80,7 +106,8 @@ void check_parity(const ModelView& generated_model, const char* checksum, const 
     stream.drop_probability = 0.05;
     std::size_t windows = 0, characters = 0;
     for (const auto& frame : host::toy_stream(world, sequence, stream))
-        push_both(*generated, *host_side, view, frame.time_us, frame.positions.data(), windows, characters);
+        push_both(*generated, *host_side, view, frame.time_us, frame.positions.data(), windows, characters,
+                  &*blob_side);
     CHECK(windows > 100);
     CHECK(characters > 500);
 }
