@@ -20,6 +20,6 @@ ensure_packages() {
 }
 
 # Packages for building and testing on the host, and for the Cortex-M builds.
-ACTIONSTRING_HOST_PACKAGES=(cmake make g++ clang libclang-rt-14-dev libeigen3-dev doctest-dev jq
+ACTIONSTRING_HOST_PACKAGES=(cmake make g++ clang libclang-rt-14-dev libeigen3-dev doctest-dev jq mono-mcs mono-runtime
                             gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib
                             qemu-system-arm)

@@ -116,10 +116,14 @@ public:
             status = encoder_.init(model, EncoderConfig{config.max_gap_us, config.max_backward_us}, base + p.encoder,
                                    p.encoder_bytes);
         if (status != Status::ok) return status;
+        config_ = config;
         model_ = &model;
         reset();
         return Status::ok;
     }
+
+    /// The settings given to the last successful init().
+    const AnnotatorConfig& config() const noexcept { return config_; }
 
     /// Starts another stream: forgets the string, the windows and the label.
     void reset() noexcept {
@@ -242,6 +246,7 @@ private:
     }
 
     const ModelView* model_ = nullptr;
+    AnnotatorConfig config_;
     StringEncoder encoder_;
     WindowMatcher matcher_;
     ActionSegmenter segmenter_;

@@ -1,75 +1,218 @@
-// actionstring C API over the runtime and one generated model header.
+// actionstring C API over the runtime: models from blobs (or one built in),
+// states in caller memory sized by the model.
 #define ACTIONSTRING_C_BUILDING
 #include "actionstring_c.h"
 
 #include <cstdint>
+#include <cstring>
 #include <new>
 
 #include "actionstring/annotator.hpp"
+#include "actionstring/blob.hpp"
+#include "actionstring/storage.hpp"
+#if defined(ACTIONSTRING_C_MODEL_HEADER)
 #include ACTIONSTRING_C_MODEL_HEADER
+#endif
 
 namespace {
 
-namespace model = ACTIONSTRING_C_MODEL_NAMESPACE;
 using actionstring::Annotator;
+using actionstring::AnnotatorConfig;
+using actionstring::ModelView;
+using actionstring::Status;
 
-// Distinguish a state set up by actionstring_init() from stray memory: a
-// magic word, the state's own address (memory filled with the magic, or a
-// state copied or overwritten after init, does not hold it) and a closing
-// magic word after the annotator (an overrun from the memory before it).
-constexpr std::uint32_t kMagic = 0x41535452u;     // "ASTR"
-constexpr std::uint32_t kEndMagic = 0x52545341u;  // "RTSA"
+// A handle or state set up by this API is told from stray memory by a magic
+// word and its own address (memory filled with the magic, or a copy, does not
+// hold it); a state also ends in a guard block (an overrun from the memory
+// before it, or a state given less memory than it claims).
+constexpr std::uint32_t kModelMagic = 0x4153544Du;  // "ASTM"
+constexpr std::uint32_t kStateMagic = 0x41535452u;  // "ASTR"
+constexpr unsigned char kGuardByte = 0xA5;
+constexpr std::size_t kGuardBytes = 16;
+
+struct Model {
+    std::uint32_t magic = 0;
+    const void* self = nullptr;
+    ModelView view;
+    char checksum[40] = {};
+};
+static_assert(sizeof(Model) <= sizeof(actionstring_model), "the public handle holds the model");
+static_assert(alignof(Model) <= alignof(actionstring_model), "the public handle is aligned for the model");
 
 struct State {
-    std::uint32_t magic = kMagic;
+    std::uint32_t magic = 0;
     const void* self = nullptr;
+    const Model* model = nullptr;
+    std::size_t total = 0;  // bytes from the state's start to the end of its guard
     Annotator annotator;
-    actionstring::StateBuffer<model::kAnnotatorWithWindowsBytes> storage;
-    std::uint32_t end_magic = kEndMagic;
 };
+constexpr std::size_t kHeaderBytes =
+    (sizeof(State) + actionstring::state_alignment - 1) / actionstring::state_alignment * actionstring::state_alignment;
 
-static_assert(ACTIONSTRING_OK == static_cast<int>(actionstring::Status::ok), "status values match");
-static_assert(ACTIONSTRING_TIME_WENT_BACKWARDS == static_cast<int>(actionstring::Status::time_went_backwards),
-              "status values match");
-static_assert(ACTIONSTRING_NOT_INITIALIZED == static_cast<int>(actionstring::Status::not_initialized),
-              "status values match");
+static_assert(ACTIONSTRING_OK == static_cast<int>(Status::ok), "status values match");
+static_assert(ACTIONSTRING_TIME_WENT_BACKWARDS == static_cast<int>(Status::time_went_backwards), "status values match");
+static_assert(ACTIONSTRING_NOT_INITIALIZED == static_cast<int>(Status::not_initialized), "status values match");
+static_assert(ACTIONSTRING_STORAGE_TOO_SMALL == static_cast<int>(Status::storage_too_small), "status values match");
 
-actionstring_status code(actionstring::Status status) { return static_cast<actionstring_status>(status); }
+actionstring_status code(Status status) { return static_cast<actionstring_status>(status); }
+
+const Model* checked_model(const actionstring_model* handle) {
+    if (handle == nullptr) return nullptr;
+    const auto* model = reinterpret_cast<const Model*>(handle);
+    return model->magic == kModelMagic && model->self == model ? model : nullptr;
+}
 
 // The state behind a handle, or null when the handle is not one
-// actionstring_init() returned (misaligned, never initialised, overwritten).
+// actionstring_init() returned (misaligned, never initialised, overwritten, moved).
 const State* checked(const void* handle) {
-    if (handle == nullptr || reinterpret_cast<std::uintptr_t>(handle) % alignof(State) != 0) return nullptr;
+    if (handle == nullptr || reinterpret_cast<std::uintptr_t>(handle) % actionstring::state_alignment != 0)
+        return nullptr;
     const auto* state = static_cast<const State*>(handle);
-    if (state->magic != kMagic || state->self != state || state->end_magic != kEndMagic) return nullptr;
+    if (state->magic != kStateMagic || state->self != state || checked_model(reinterpret_cast<const actionstring_model*>(
+                                                                       state->model)) == nullptr)
+        return nullptr;
+    if (state->total < kHeaderBytes + kGuardBytes) return nullptr;
+    const auto* guard = reinterpret_cast<const unsigned char*>(state) + state->total - kGuardBytes;
+    for (std::size_t i = 0; i < kGuardBytes; ++i)
+        if (guard[i] != kGuardByte) return nullptr;
     return state;
 }
 State* live(actionstring_state* handle) { return const_cast<State*>(checked(handle)); }
 const State* live(const actionstring_state* handle) { return checked(handle); }
 
+AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) {
+    AnnotatorConfig config = actionstring::annotator_config(model);
+    if (c == nullptr) return config;
+    config.max_gap_us = c->max_gap_us;
+    config.max_backward_us = c->max_backward_us;
+    config.window_rule = c->window_rule != 0;
+    config.segmenter.settle_delay_us = c->online.settle_delay_us;
+    config.segmenter.segment_penalty = c->online.segment_penalty;
+    config.segmenter.stay_penalty = c->online.stay_penalty;
+    config.segmenter.skip_penalty = c->online.skip_penalty;
+    config.segmenter.unknown_cost = c->online.unknown_cost;
+    return config;
+}
+
+// Whether a config is one init() accepts for the model (given enough memory).
+bool config_ok(const ModelView& model, const AnnotatorConfig& config) {
+    return actionstring::ActionSegmenter::check(model, config.segmenter) == Status::ok &&
+           actionstring::StringSampler::settings_ok(model.string_period_us, config.max_gap_us,
+                                                    config.max_backward_us) &&
+           Annotator::required_bytes(model, config) != actionstring::unsatisfiable_bytes;
+}
+
+void set_model(actionstring_model* handle, const ModelView& view, const char* checksum) {
+    Model* model = new (handle) Model();
+    model->view = view;
+    std::strncpy(model->checksum, checksum, sizeof model->checksum - 1);
+    model->self = model;
+    model->magic = kModelMagic;
+}
+
 }  // namespace
 
 extern "C" {
 
-size_t actionstring_state_size(void) { return sizeof(State); }
-size_t actionstring_state_alignment(void) { return alignof(State); }
+actionstring_status actionstring_model_from_blob(const void* blob, size_t size, actionstring_model* handle) {
+    if (handle == nullptr) return ACTIONSTRING_INVALID_ARGUMENT;
+    reinterpret_cast<Model*>(handle)->magic = 0;
+    ModelView view;
+    const Status status = actionstring::model_from_blob(blob, size, view);
+    if (status != Status::ok) return code(status);
+    // The blob's own checksum, as recorded in it (verified by model_from_blob).
+    const auto* bytes = static_cast<const unsigned char*>(blob);
+    char checksum[40] = "blob-fnv1a64:";
+    const std::uint64_t sum = actionstring::detail::blob_u64(bytes + actionstring::detail::blob_checksum_at);
+    for (int i = 0; i < 16; ++i) checksum[13 + i] = "0123456789abcdef"[(sum >> (4 * (15 - i))) & 0xFu];
+    set_model(handle, view, checksum);
+    return ACTIONSTRING_OK;
+}
 
-actionstring_status actionstring_init(void* memory, size_t size, actionstring_state** handle) {
-    if (handle != nullptr) *handle = nullptr;
-    if (memory == nullptr || handle == nullptr || size < sizeof(State) ||
-        reinterpret_cast<std::uintptr_t>(memory) % alignof(State) != 0)
-        return ACTIONSTRING_INVALID_ARGUMENT;
+actionstring_status actionstring_model_builtin(actionstring_model* handle) {
+    if (handle == nullptr) return ACTIONSTRING_INVALID_ARGUMENT;
+#if defined(ACTIONSTRING_C_MODEL_HEADER)
+    set_model(handle, ACTIONSTRING_C_MODEL_NAMESPACE::kModel, ACTIONSTRING_C_MODEL_NAMESPACE::kModelChecksum);
+    return ACTIONSTRING_OK;
+#else
+    reinterpret_cast<Model*>(handle)->magic = 0;
+    return ACTIONSTRING_INVALID_ARGUMENT;
+#endif
+}
+
+uint32_t actionstring_model_joint_count(const actionstring_model* handle) {
+    const Model* model = checked_model(handle);
+    return model == nullptr ? 0u : model->view.joint_count;
+}
+
+const char* actionstring_model_joint_name(const actionstring_model* handle, uint32_t joint) {
+    const Model* model = checked_model(handle);
+    if (model == nullptr || joint >= model->view.joint_count || !model->view.joint_names.present()) return "";
+    return model->view.joint_names[joint];
+}
+
+uint32_t actionstring_model_label_count(const actionstring_model* handle) {
+    const Model* model = checked_model(handle);
+    return model == nullptr ? 0u : model->view.label_count;
+}
+
+const char* actionstring_model_label_name(const actionstring_model* handle, int32_t label) {
+    const Model* model = checked_model(handle);
+    if (model == nullptr || label < 0 || static_cast<uint32_t>(label) >= model->view.label_count) return "unknown";
+    return model->view.label_names[static_cast<std::size_t>(label)];
+}
+
+const char* actionstring_model_checksum(const actionstring_model* handle) {
+    const Model* model = checked_model(handle);
+    return model == nullptr ? "" : model->checksum;
+}
+
+actionstring_status actionstring_default_config(const actionstring_model* handle, actionstring_config* config) {
+    const Model* model = checked_model(handle);
+    if (model == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    if (config == nullptr) return ACTIONSTRING_INVALID_ARGUMENT;
+    const AnnotatorConfig c = actionstring::annotator_config(model->view);
+    config->online = actionstring_model_online_settings(handle);
+    config->max_gap_us = c.max_gap_us;
+    config->max_backward_us = c.max_backward_us;
+    config->window_rule = c.window_rule ? 1 : 0;
+    return ACTIONSTRING_OK;
+}
+
+size_t actionstring_state_size(const actionstring_model* handle, const actionstring_config* c) {
+    const Model* model = checked_model(handle);
+    if (model == nullptr) return 0;
+    const AnnotatorConfig config = to_config(model->view, c);
+    if (!config_ok(model->view, config)) return 0;
+    return kHeaderBytes + Annotator::required_bytes(model->view, config) + kGuardBytes;
+}
+
+size_t actionstring_state_alignment(void) { return actionstring::state_alignment; }
+
+actionstring_status actionstring_init(const actionstring_model* handle, const actionstring_config* c, void* memory,
+                                      size_t size, actionstring_state** out) {
+    if (out != nullptr) *out = nullptr;
+    const Model* model = checked_model(handle);
+    if (model == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    if (out == nullptr) return ACTIONSTRING_INVALID_ARGUMENT;
+    const AnnotatorConfig config = to_config(model->view, c);
+    if (!config_ok(model->view, config)) return ACTIONSTRING_INVALID_ARGUMENT;
+    const std::size_t needed = kHeaderBytes + Annotator::required_bytes(model->view, config) + kGuardBytes;
+    if (memory == nullptr || size < needed ||
+        reinterpret_cast<std::uintptr_t>(memory) % actionstring::state_alignment != 0)
+        return ACTIONSTRING_STORAGE_TOO_SMALL;
     auto* state = new (memory) State();
-    actionstring::AnnotatorConfig config = actionstring::annotator_config(model::kModel);
-    config.window_rule = true;
-    const actionstring::Status status =
-        state->annotator.init(model::kModel, config, state->storage.data(), state->storage.size());
-    if (status != actionstring::Status::ok) {
-        state->magic = 0;
-        return code(status);
-    }
+    auto* bytes = static_cast<unsigned char*>(memory);
+    const Status status =
+        state->annotator.init(model->view, config, bytes + kHeaderBytes, size - kHeaderBytes - kGuardBytes);
+    if (status != Status::ok) return code(status);
+    // The guard at the very end of the caller's memory: everything before it is the state's.
+    state->total = size;
+    std::memset(bytes + size - kGuardBytes, kGuardByte, kGuardBytes);
+    state->model = model;
     state->self = state;
-    *handle = reinterpret_cast<actionstring_state*>(state);
+    state->magic = kStateMagic;
+    *out = reinterpret_cast<actionstring_state*>(state);
     return ACTIONSTRING_OK;
 }
 
@@ -78,7 +221,7 @@ actionstring_status actionstring_push_frame(actionstring_state* handle, int64_t 
     actionstring_frame_result out{ACTIONSTRING_OK, 0, 0, 0};
     State* state = live(handle);
     if (state == nullptr) out.status = ACTIONSTRING_NOT_INITIALIZED;
-    else if (positions == nullptr || position_count != static_cast<size_t>(model::kModel.joint_count) * 3u)
+    else if (positions == nullptr || position_count != static_cast<size_t>(state->model->view.joint_count) * 3u)
         out.status = ACTIONSTRING_INVALID_ARGUMENT;
     else {
         const actionstring::FrameResult frame = state->annotator.push_frame(time_us, positions);
@@ -98,8 +241,10 @@ actionstring_status actionstring_reset(actionstring_state* handle) {
     return ACTIONSTRING_OK;
 }
 
-actionstring_online_settings actionstring_model_online_settings(void) {
-    const actionstring::SegmenterConfig c = actionstring::segmenter_config(model::kModel);
+actionstring_online_settings actionstring_model_online_settings(const actionstring_model* handle) {
+    const Model* model = checked_model(handle);
+    if (model == nullptr) return actionstring_online_settings{0, 0.0f, 0.0f, 0.0f, 0.0f};
+    const actionstring::SegmenterConfig c = actionstring::segmenter_config(model->view);
     return actionstring_online_settings{c.settle_delay_us, c.segment_penalty, c.stay_penalty, c.skip_penalty,
                                         c.unknown_cost};
 }
@@ -109,18 +254,18 @@ actionstring_status actionstring_set_online_settings(actionstring_state* handle,
     State* state = live(handle);
     if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
     if (settings == nullptr) return ACTIONSTRING_INVALID_ARGUMENT;
-    actionstring::AnnotatorConfig config = actionstring::annotator_config(model::kModel);
-    config.window_rule = true;
+    const ModelView& model = state->model->view;
+    AnnotatorConfig config = state->annotator.config();
     config.segmenter.settle_delay_us = settings->settle_delay_us;
     config.segmenter.segment_penalty = settings->segment_penalty;
     config.segmenter.stay_penalty = settings->stay_penalty;
     config.segmenter.skip_penalty = settings->skip_penalty;
     config.segmenter.unknown_cost = settings->unknown_cost;
     // Checked first, so a refused setting leaves the state as it was.
-    if (actionstring::ActionSegmenter::check(model::kModel, config.segmenter) != actionstring::Status::ok ||
-        actionstring::Annotator::required_bytes(model::kModel, config) > state->storage.size())
-        return ACTIONSTRING_INVALID_ARGUMENT;
-    return code(state->annotator.init(model::kModel, config, state->storage.data(), state->storage.size()));
+    if (!config_ok(model, config)) return ACTIONSTRING_INVALID_ARGUMENT;
+    const std::size_t room = state->total - kHeaderBytes - kGuardBytes;
+    if (Annotator::required_bytes(model, config) > room) return ACTIONSTRING_STORAGE_TOO_SMALL;
+    return code(state->annotator.init(model, config, reinterpret_cast<unsigned char*>(state) + kHeaderBytes, room));
 }
 
 int32_t actionstring_label(const actionstring_state* handle) {
@@ -158,19 +303,14 @@ const char* actionstring_label_name(const actionstring_state* handle) {
     return state == nullptr ? "unknown" : state->annotator.label_name();
 }
 
-uint32_t actionstring_joint_count(void) { return model::kModel.joint_count; }
-uint32_t actionstring_label_count(void) { return model::kModel.label_count; }
-
-const char* actionstring_label_name_of(int32_t label) {
-    if (label < 0 || static_cast<uint32_t>(label) >= model::kModel.label_count) return "unknown";
-    return model::kModel.label_names[static_cast<std::size_t>(label)];
+const actionstring_model* actionstring_state_model(const actionstring_state* handle) {
+    const State* state = live(handle);
+    return state == nullptr ? nullptr : reinterpret_cast<const actionstring_model*>(state->model);
 }
 
-const char* actionstring_model_checksum(void) { return model::kModelChecksum; }
-
 const char* actionstring_status_name(actionstring_status status) {
-    if (status < 0 || status > ACTIONSTRING_NOT_INITIALIZED) return "unknown_status";
-    return actionstring::status_name(static_cast<actionstring::Status>(status));
+    if (status < 0 || status > ACTIONSTRING_STORAGE_TOO_SMALL) return "unknown_status";
+    return actionstring::status_name(static_cast<Status>(status));
 }
 
 }  // extern "C"

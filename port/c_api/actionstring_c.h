@@ -1,14 +1,24 @@
 /* actionstring C API — for engines (Unity through P/Invoke, Unreal, plain C).
  *
- * The library is built around one generated model header (by default the
- * committed HDM05 example, models/hdm05_model.hpp). The caller owns the state's
- * memory: ask for its size and alignment, pass a buffer to actionstring_init(),
- * and keep that buffer alive and unmoved until the last call with the state.
- * No call allocates, throws or keeps a pointer to a caller's frame. Every call
- * reports through actionstring_status; none aborts on bad input.
+ * Models are data. Load a model blob at run time (written by
+ * `actionstring codegen MODEL --blob FILE`) with actionstring_model_from_blob(),
+ * or take the model compiled into the library, if it was built with one
+ * (actionstring_model_builtin()). Any number of models and states may be used
+ * at once; each state runs one model.
  *
- * Threading: a state is used by one thread at a time; different states are
- * independent. */
+ * Memory belongs to the caller, and no call allocates:
+ *  - a model handle (actionstring_model) is a plain struct the caller
+ *    declares; a model read from a blob points into the blob's bytes, which
+ *    must stay alive, unchanged and aligned to 16 bytes while the model (and
+ *    any state running it) is used; the handle must not move either;
+ *  - a state lives in caller memory of actionstring_state_size() bytes,
+ *    aligned to actionstring_state_alignment(), alive and unmoved until the
+ *    last call with it; it needs no release (reuse or free the memory).
+ * No call throws, aborts on bad input, or keeps a pointer to a caller's frame;
+ * every call reports through actionstring_status.
+ *
+ * Threading: a state is used by one thread at a time; different states, and
+ * states sharing one model, are independent. */
 #ifndef ACTIONSTRING_C_H
 #define ACTIONSTRING_C_H
 
@@ -40,45 +50,24 @@ enum {
     ACTIONSTRING_DEGENERATE_POSE = 3,     /**< frame rejected: hips give no facing direction */
     ACTIONSTRING_POSE_OUT_OF_RANGE = 4,   /**< frame rejected: too far from every key-pose */
     ACTIONSTRING_TIME_WENT_BACKWARDS = 5, /**< frame rejected: earlier than the previous frame */
-    ACTIONSTRING_STREAM_RESTARTED = 6,    /**< frame accepted after a long gap; windows restarted */
-    ACTIONSTRING_INVALID_MODEL = 7,
+    ACTIONSTRING_STREAM_RESTARTED = 6,    /**< frame accepted after a long gap; the stream restarted */
+    ACTIONSTRING_INVALID_MODEL = 7,       /**< a blob that is damaged, of another version, or not a valid model */
     ACTIONSTRING_MODEL_EXCEEDS_CAPACITY = 8,
-    ACTIONSTRING_INVALID_ARGUMENT = 9, /**< null pointer, short or misaligned buffer, wrong count */
-    ACTIONSTRING_NOT_INITIALIZED = 10  /**< the state was not set up by actionstring_init() */
+    ACTIONSTRING_INVALID_ARGUMENT = 9,  /**< null pointer, wrong count, bad setting, no built-in model */
+    ACTIONSTRING_NOT_INITIALIZED = 10,  /**< not a model or state set up by this API (or overwritten since) */
+    ACTIONSTRING_STORAGE_TOO_SMALL = 11 /**< memory null, misaligned or smaller than actionstring_state_size() */
 };
+
+/** A model handle: declared by the caller (stack, static, or inside an engine
+ *  object), filled by actionstring_model_from_blob() or actionstring_model_builtin(). */
+typedef struct actionstring_model {
+    uint64_t opaque[80];
+} actionstring_model;
 
 /** Opaque state: lives in caller-owned memory. */
 typedef struct actionstring_state actionstring_state;
 
-/** What one actionstring_push_frame() did. */
-typedef struct actionstring_frame_result {
-    actionstring_status status;  /**< OK or STREAM_RESTARTED when accepted, else why rejected */
-    uint32_t characters;         /**< characters appended to the action string */
-    uint32_t windows_completed;  /**< windows that completed (and may have changed the label) */
-    uint32_t characters_settled; /**< characters whose final label the segmenter decided */
-} actionstring_frame_result;
-
-/** Bytes and alignment the state needs. */
-ACTIONSTRING_C_API size_t actionstring_state_size(void);
-ACTIONSTRING_C_API size_t actionstring_state_alignment(void);
-
-/** Sets up a state in `memory` (`size` bytes, aligned to actionstring_state_alignment())
- *  and stores its handle in *state. The memory stays the caller's; the state needs no
- *  release, the caller may simply reuse or free the memory after its last call. */
-ACTIONSTRING_C_API actionstring_status actionstring_init(void* memory, size_t size, actionstring_state** state);
-
-/** Feeds one frame: `positions` holds actionstring_joint_count() × 3 floats (xyz per joint,
- *  metres) and is read only during the call; `position_count` must equal that number.
- *  `result` may be NULL. Returns the frame's status (also in result->status). */
-ACTIONSTRING_C_API actionstring_status actionstring_push_frame(actionstring_state* state, int64_t time_us,
-                                                               const float* positions, size_t position_count,
-                                                               actionstring_frame_result* result);
-
-/** Forgets the stream (string, windows, label); the model stays bound. */
-ACTIONSTRING_C_API actionstring_status actionstring_reset(actionstring_state* state);
-
-/** The segmenter's online settings. A model carries its own, chosen at
- *  training; actionstring_init() uses them. */
+/** The segmenter's online settings. A model carries its own, chosen at training. */
 typedef struct actionstring_online_settings {
     int64_t settle_delay_us; /**< a character's label is final this long after it */
     float segment_penalty;   /**< cost of starting another segment */
@@ -87,20 +76,87 @@ typedef struct actionstring_online_settings {
     float unknown_cost;      /**< cost per character of "no action"; INFINITY turns it off */
 } actionstring_online_settings;
 
-/** The model's own online settings. */
-ACTIONSTRING_C_API actionstring_online_settings actionstring_model_online_settings(void);
+/** Everything a state is set up with. actionstring_default_config() gives the model's own. */
+typedef struct actionstring_config {
+    actionstring_online_settings online;
+    int64_t max_gap_us;      /**< a longer gap between accepted frames restarts the stream (default 1 s) */
+    int64_t max_backward_us; /**< a frame this much earlier than the last is rejected as jitter (100 ms) */
+    int32_t window_rule;     /**< nonzero: also run the paper's window rule (actionstring_label()); default 0 */
+} actionstring_config;
 
+/** What one actionstring_push_frame() did. */
+typedef struct actionstring_frame_result {
+    actionstring_status status;  /**< OK or STREAM_RESTARTED when accepted, else why rejected */
+    uint32_t characters;         /**< characters appended to the action string */
+    uint32_t windows_completed;  /**< windows that completed (with the window rule) */
+    uint32_t characters_settled; /**< characters whose final label the segmenter decided */
+} actionstring_frame_result;
+
+/* ---- models ------------------------------------------------------------------------ */
+
+/** Reads a model blob in place: `blob` (`size` bytes, aligned to 16) is checked
+ *  once (version, checksum, every table's bounds, every value) and then used
+ *  where it lies. INVALID_MODEL for a damaged, truncated, foreign or hostile
+ *  blob, INVALID_ARGUMENT for a null or misaligned one; the model is then unusable. */
+ACTIONSTRING_C_API actionstring_status actionstring_model_from_blob(const void* blob, size_t size,
+                                                                    actionstring_model* model);
+/** The model compiled into the library (a generated header), or INVALID_ARGUMENT
+ *  when the library was built without one. */
+ACTIONSTRING_C_API actionstring_status actionstring_model_builtin(actionstring_model* model);
+
+/** Joints per frame (frames hold 3 × this many floats), or 0 for a bad handle. */
+ACTIONSTRING_C_API uint32_t actionstring_model_joint_count(const actionstring_model* model);
+/** A joint's name in frame order, or "" when out of range or unnamed. Points into the model. */
+ACTIONSTRING_C_API const char* actionstring_model_joint_name(const actionstring_model* model, uint32_t joint);
+/** Labels, and a label's name ("unknown" when out of range). Points into the model. */
+ACTIONSTRING_C_API uint32_t actionstring_model_label_count(const actionstring_model* model);
+ACTIONSTRING_C_API const char* actionstring_model_label_name(const actionstring_model* model, int32_t label);
+/** Where the model came from: "fnv1a64:…" of the artifact a built-in header was
+ *  generated from, or "blob-fnv1a64:…" of a blob. Points into the handle; "" for a bad one. */
+ACTIONSTRING_C_API const char* actionstring_model_checksum(const actionstring_model* model);
+/** Fills *config with the model's own settings and the default timing. */
+ACTIONSTRING_C_API actionstring_status actionstring_default_config(const actionstring_model* model,
+                                                                   actionstring_config* config);
+
+/* ---- states ------------------------------------------------------------------------ */
+
+/** Bytes a state needs for this model and config (NULL: the model's own), or 0
+ *  for a bad handle or a config actionstring_init() would refuse. */
+ACTIONSTRING_C_API size_t actionstring_state_size(const actionstring_model* model, const actionstring_config* config);
+/** Alignment the state's memory needs (16). */
+ACTIONSTRING_C_API size_t actionstring_state_alignment(void);
+
+/** Sets up a state for `model` (which must outlive it) in `memory` (`size`
+ *  bytes, aligned) and stores its handle in *state. config NULL: the model's own. */
+ACTIONSTRING_C_API actionstring_status actionstring_init(const actionstring_model* model,
+                                                         const actionstring_config* config, void* memory, size_t size,
+                                                         actionstring_state** state);
+
+/** Feeds one frame: `positions` holds 3 × the model's joint count floats (xyz per joint,
+ *  metres) and is read only during the call; `position_count` must equal that number
+ *  (INVALID_ARGUMENT otherwise). `result` may be NULL. Returns the frame's status. */
+ACTIONSTRING_C_API actionstring_status actionstring_push_frame(actionstring_state* state, int64_t time_us,
+                                                               const float* positions, size_t position_count,
+                                                               actionstring_frame_result* result);
+
+/** Forgets the stream (string, windows, label); the model stays bound. */
+ACTIONSTRING_C_API actionstring_status actionstring_reset(actionstring_state* state);
+
+/** The model's own online settings (zeros for a bad handle). */
+ACTIONSTRING_C_API actionstring_online_settings actionstring_model_online_settings(const actionstring_model* model);
 /** Replaces a state's online settings and restarts its stream. INVALID_ARGUMENT
- *  (and the state unchanged) for a negative, NaN or too long setting, or a
- *  settle delay longer than the state holds; NOT_INITIALIZED for a bad state. */
+ *  for a negative, NaN or too long setting; STORAGE_TOO_SMALL when the state's
+ *  memory cannot hold them (a longer settle delay needs more: ask
+ *  actionstring_state_size()); NOT_INITIALIZED for a bad state. On failure the
+ *  state is unchanged. */
 ACTIONSTRING_C_API actionstring_status actionstring_set_online_settings(actionstring_state* state,
                                                                         const actionstring_online_settings* settings);
 
-/** Current label index (0 .. actionstring_label_count()-1), or -1 for unknown or a bad state. */
+/** The paper's window rule (needs config.window_rule): the current label index, or -1. */
 ACTIONSTRING_C_API int32_t actionstring_label(const actionstring_state* state);
-/** Confidence of the current label in [0, 1]; 0 when unknown. */
+/** Confidence of actionstring_label() in [0, 1]; 0 when unknown. */
 ACTIONSTRING_C_API float actionstring_confidence(const actionstring_state* state);
-/** Name of the current label, or "unknown". Static storage; never NULL. */
+/** Name of actionstring_label(), or "unknown". Never NULL. */
 ACTIONSTRING_C_API const char* actionstring_label_name(const actionstring_state* state);
 
 /** The segmenter's label for the newest character (no delay, may still change), or -1. */
@@ -110,13 +166,9 @@ ACTIONSTRING_C_API int64_t actionstring_settled_character(const actionstring_sta
 /** Final label of a settled character (one of the most recent, e.g. those the last frame
  *  reported in characters_settled), or -1 for unknown or a character not remembered. */
 ACTIONSTRING_C_API int32_t actionstring_settled_label(const actionstring_state* state, int64_t character);
+/** The model a state runs, or NULL for a bad state. */
+ACTIONSTRING_C_API const actionstring_model* actionstring_state_model(const actionstring_state* state);
 
-/** The model: joints per frame, labels, a label's name ("unknown" when out of range). */
-ACTIONSTRING_C_API uint32_t actionstring_joint_count(void);
-ACTIONSTRING_C_API uint32_t actionstring_label_count(void);
-ACTIONSTRING_C_API const char* actionstring_label_name_of(int32_t label);
-/** Checksum of the model artifact the library was generated from ("fnv1a64:…"). */
-ACTIONSTRING_C_API const char* actionstring_model_checksum(void);
 /** Short stable name of a status code; static storage; never NULL. */
 ACTIONSTRING_C_API const char* actionstring_status_name(actionstring_status status);
 

@@ -1,8 +1,10 @@
 /* The C API from C: contract checks on a synthetic stream, then (given a
  * stream file written by `actionstring stream-table --text`) a real recording,
  * printing each change of the settled label in the replay firmware's format so
- * port/firmware/run_replay.sh can compare it with the C++ build.
- *   test_c_api [STREAM.txt] */
+ * port/firmware/run_replay.sh can compare it with the C++ build. Given blobs
+ * (`actionstring codegen MODEL --blob FILE`), loads each at run time and runs
+ * them all at once.
+ *   test_c_api [--blob FILE]... [STREAM.txt] */
 #include <math.h>
 #include <stdalign.h>
 #include <stdint.h>
@@ -21,8 +23,8 @@ static int failures = 0;
         }                                                                                 \
     } while (0)
 
-/* Room for the state wherever the platform's strictest alignment suffices. */
-static alignas(max_align_t) unsigned char state_memory[64 * 1024];
+/* Room for a state wherever the platform's strictest alignment suffices. */
+static alignas(16) unsigned char state_memory[256 * 1024];
 
 enum { kMaxJoints = 64 };
 
@@ -36,26 +38,45 @@ static void synthetic_frame(uint32_t joints, int frame, float* xyz) {
     }
 }
 
-static void contract_checks(void) {
-    const size_t size = actionstring_state_size();
+static void contract_checks(const actionstring_model* model) {
+    actionstring_config config;
+    CHECK(actionstring_default_config(model, &config) == ACTIONSTRING_OK);
+    config.window_rule = 1; /* both rules, so the window label is checked too */
+    const size_t size = actionstring_state_size(model, &config);
     const size_t alignment = actionstring_state_alignment();
-    const uint32_t joints = actionstring_joint_count();
+    const uint32_t joints = actionstring_model_joint_count(model);
     actionstring_state* state = NULL;
     float frame[3 * kMaxJoints];
     actionstring_frame_result result;
 
     CHECK(size > 0 && size <= sizeof state_memory);
-    CHECK(alignment > 0 && (alignment & (alignment - 1)) == 0 && alignment <= alignof(max_align_t));
+    CHECK(actionstring_state_size(model, NULL) < size); /* the segmenter alone needs less */
+    CHECK(alignment == 16);
     CHECK(joints > 0 && joints <= kMaxJoints);
-    CHECK(actionstring_label_count() > 0);
-    CHECK(strncmp(actionstring_model_checksum(), "fnv1a64:", 8) == 0);
+    CHECK(actionstring_model_label_count(model) > 0);
+    CHECK(strncmp(actionstring_model_checksum(model), "fnv1a64:", 8) == 0);
+    CHECK(strcmp(actionstring_model_joint_name(model, 0), "root") == 0);
+    CHECK(strcmp(actionstring_model_joint_name(model, joints), "") == 0);
 
     /* Bad set-up never yields a state. */
-    CHECK(actionstring_init(NULL, size, &state) == ACTIONSTRING_INVALID_ARGUMENT && state == NULL);
-    CHECK(actionstring_init(state_memory, size - 1, &state) == ACTIONSTRING_INVALID_ARGUMENT && state == NULL);
-    CHECK(actionstring_init(state_memory, size, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
-    if (alignment > 1)
-        CHECK(actionstring_init(state_memory + 1, size, &state) == ACTIONSTRING_INVALID_ARGUMENT && state == NULL);
+    CHECK(actionstring_init(model, &config, NULL, size, &state) == ACTIONSTRING_STORAGE_TOO_SMALL && state == NULL);
+    CHECK(actionstring_init(model, &config, state_memory, size - 1, &state) == ACTIONSTRING_STORAGE_TOO_SMALL &&
+          state == NULL);
+    CHECK(actionstring_init(model, &config, state_memory, size, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_init(NULL, &config, state_memory, size, &state) == ACTIONSTRING_NOT_INITIALIZED && state == NULL);
+    CHECK(actionstring_init(model, &config, state_memory + 1, size, &state) == ACTIONSTRING_STORAGE_TOO_SMALL &&
+          state == NULL);
+    actionstring_config bad_config = config;
+    bad_config.online.segment_penalty = -1.0f;
+    CHECK(actionstring_state_size(model, &bad_config) == 0);
+    CHECK(actionstring_init(model, &bad_config, state_memory, size, &state) == ACTIONSTRING_INVALID_ARGUMENT);
+
+    /* A model handle that never went through this API is refused. */
+    actionstring_model stray;
+    memset(&stray, 0x4D, sizeof stray);
+    CHECK(actionstring_model_joint_count(&stray) == 0);
+    CHECK(actionstring_state_size(&stray, NULL) == 0);
+    CHECK(strcmp(actionstring_model_label_name(&stray, 0), "unknown") == 0);
 
     /* Memory that never went through init is refused, not trusted. */
     memset(state_memory, 0xAB, sizeof state_memory);
@@ -68,45 +89,48 @@ static void contract_checks(void) {
     CHECK(actionstring_label(NULL) == -1);
     CHECK(strcmp(actionstring_label_name(NULL), "unknown") == 0);
 
-    /* Memory that starts with the magic word, or is full of it, is not a state
-     * (before: SIGSEGV in push_frame). */
+    /* Memory full of the magic word is not a state. */
     for (size_t i = 0; i + 4 <= sizeof state_memory; i += 4) {
-        const uint32_t magic = 0x41535452u; /* the head magic, in this machine's byte order */
+        const uint32_t magic = 0x41535452u; /* the state magic, in this machine's byte order */
         memcpy(state_memory + i, &magic, 4);
     }
     CHECK(actionstring_push_frame((actionstring_state*)(void*)state_memory, 0, frame, 3 * joints, &result) ==
           ACTIONSTRING_NOT_INITIALIZED);
     CHECK(actionstring_reset((actionstring_state*)(void*)state_memory) == ACTIONSTRING_NOT_INITIALIZED);
 
-    /* A real state copied elsewhere, overwritten after init, or reached through
-     * a misaligned handle is refused too. */
-    static alignas(max_align_t) unsigned char copy_memory[sizeof state_memory];
-    CHECK(actionstring_init(state_memory, size, &state) == ACTIONSTRING_OK && state != NULL);
+    /* A real state copied elsewhere, overwritten after init, overrun at its end,
+     * or reached through a misaligned handle is refused too. */
+    static alignas(16) unsigned char copy_memory[sizeof state_memory];
+    CHECK(actionstring_init(model, &config, state_memory, size, &state) == ACTIONSTRING_OK && state != NULL);
+    CHECK(actionstring_state_model(state) == model);
     memcpy(copy_memory, state_memory, size);
     CHECK(actionstring_push_frame((actionstring_state*)(void*)copy_memory, 0, frame, 3 * joints, NULL) ==
           ACTIONSTRING_NOT_INITIALIZED);
     CHECK(actionstring_push_frame((actionstring_state*)(void*)(state_memory + 1), 0, frame, 3 * joints, NULL) ==
           ACTIONSTRING_NOT_INITIALIZED);
-    memset(state_memory + 4, 0x5A, size - 4); /* everything after the head magic */
+    memset(state_memory + 4, 0x5A, size - 4); /* everything after the magic */
     CHECK(actionstring_push_frame(state, 0, frame, 3 * joints, NULL) == ACTIONSTRING_NOT_INITIALIZED);
-    CHECK(actionstring_init(state_memory, size, &state) == ACTIONSTRING_OK && state != NULL);
+    CHECK(actionstring_init(model, &config, state_memory, size, &state) == ACTIONSTRING_OK && state != NULL);
     memset(state_memory + size - 16, 0, 16); /* an overrun into the end of a state */
     CHECK(actionstring_push_frame(state, 0, frame, 3 * joints, NULL) == ACTIONSTRING_NOT_INITIALIZED);
 
-    CHECK(actionstring_init(state_memory, size, &state) == ACTIONSTRING_OK && state != NULL);
+    CHECK(actionstring_init(model, &config, state_memory, size, &state) == ACTIONSTRING_OK && state != NULL);
     CHECK(actionstring_label(state) == -1);
     CHECK(strcmp(actionstring_label_name(state), "unknown") == 0);
     CHECK(actionstring_confidence(state) == 0.0f);
 
     /* The model's online settings, and replacing them: a bad one changes nothing. */
-    const actionstring_online_settings own = actionstring_model_online_settings();
+    const actionstring_online_settings own = actionstring_model_online_settings(model);
     CHECK(own.settle_delay_us > 0 && own.segment_penalty >= 0.0f);
     actionstring_online_settings bad = own;
     bad.segment_penalty = -1.0f;
     CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
     bad = own;
-    bad.settle_delay_us = (int64_t)3600 * 1000000; /* an hour: more than the state holds */
+    bad.settle_delay_us = (int64_t)3600 * 1000000; /* an hour: beyond the runtime's 10 minutes */
     CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
+    bad = own;
+    bad.settle_delay_us = own.settle_delay_us * 8; /* valid, but needs a longer ring than the memory holds */
+    CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_STORAGE_TOO_SMALL);
     CHECK(actionstring_set_online_settings(state, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
     CHECK(actionstring_set_online_settings(NULL, &own) == ACTIONSTRING_NOT_INITIALIZED);
     actionstring_online_settings eager = own;
@@ -117,6 +141,7 @@ static void contract_checks(void) {
 
     /* Wrong element count or a null frame: rejected before the runtime sees it. */
     CHECK(actionstring_push_frame(state, 0, frame, 3 * joints - 1, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_push_frame(state, 0, frame, 3 * joints + 3, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
     CHECK(actionstring_push_frame(state, 0, NULL, 3 * joints, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
 
     /* Ten seconds at 60 Hz; one NaN frame, one lost-tracking frame, one frame from the past. */
@@ -136,10 +161,10 @@ static void contract_checks(void) {
         if (status == ACTIONSTRING_OK) ++accepted;
         characters += result.characters;
         const int32_t label = actionstring_label(state);
-        CHECK(label >= -1 && label < (int32_t)actionstring_label_count());
+        CHECK(label >= -1 && label < (int32_t)actionstring_model_label_count(model));
         const float confidence = actionstring_confidence(state);
         CHECK(confidence >= 0.0f && confidence <= 1.0f);
-        CHECK(strcmp(actionstring_label_name(state), actionstring_label_name_of(label)) == 0);
+        CHECK(strcmp(actionstring_label_name(state), actionstring_model_label_name(model, label)) == 0);
     }
     CHECK(accepted == 597);
     CHECK(characters > 50);                /* about 12 characters per second of accepted frames */
@@ -156,9 +181,84 @@ static void contract_checks(void) {
     CHECK(actionstring_live_label(state) == -1);
     CHECK(actionstring_settled_character(state) == -1);
     CHECK(strcmp(actionstring_status_name(ACTIONSTRING_TRACKING_LOST), "tracking_lost") == 0);
+    CHECK(strcmp(actionstring_status_name(ACTIONSTRING_STORAGE_TOO_SMALL), "storage_too_small") == 0);
     CHECK(strcmp(actionstring_status_name(12345), "unknown_status") == 0);
-    CHECK(strcmp(actionstring_label_name_of(-1), "unknown") == 0);
-    CHECK(strcmp(actionstring_label_name_of((int32_t)actionstring_label_count()), "unknown") == 0);
+    CHECK(strcmp(actionstring_model_label_name(model, -1), "unknown") == 0);
+    CHECK(strcmp(actionstring_model_label_name(model, (int32_t)actionstring_model_label_count(model)), "unknown") == 0);
+}
+
+/* A blob file in memory aligned to 16 bytes (as the runtime reads it in place). */
+static unsigned char* read_blob(const char* path, size_t* size) {
+    FILE* file = fopen(path, "rb");
+    if (file == NULL) return NULL;
+    fseek(file, 0, SEEK_END);
+    const long length = ftell(file);
+    fseek(file, 0, SEEK_SET);
+    unsigned char* bytes = length > 0 ? aligned_alloc(16, ((size_t)length + 15) / 16 * 16) : NULL;
+    if (bytes != NULL && fread(bytes, 1, (size_t)length, file) != (size_t)length) {
+        free(bytes);
+        bytes = NULL;
+    }
+    fclose(file);
+    *size = (size_t)length;
+    return bytes;
+}
+
+enum { kMaxBlobs = 4 };
+
+/* Models read from blobs at run time, several at once, each with its own state. */
+static void blob_checks(const char* const* paths, int count) {
+    static actionstring_model models[kMaxBlobs];
+    static alignas(16) unsigned char memory[kMaxBlobs][128 * 1024];
+    unsigned char* blobs[kMaxBlobs] = {0};
+    size_t sizes[kMaxBlobs] = {0};
+    actionstring_state* states[kMaxBlobs] = {0};
+    float frame[3 * kMaxJoints];
+    for (int b = 0; b < count; ++b) {
+        blobs[b] = read_blob(paths[b], &sizes[b]);
+        CHECK(blobs[b] != NULL);
+        if (blobs[b] == NULL) return;
+        CHECK(actionstring_model_from_blob(blobs[b], sizes[b], &models[b]) == ACTIONSTRING_OK);
+        CHECK(strncmp(actionstring_model_checksum(&models[b]), "blob-fnv1a64:", 13) == 0);
+        CHECK(actionstring_model_joint_count(&models[b]) > 0 && actionstring_model_joint_count(&models[b]) <= kMaxJoints);
+        const size_t size = actionstring_state_size(&models[b], NULL);
+        CHECK(size > 0 && size <= sizeof memory[b]);
+        CHECK(actionstring_init(&models[b], NULL, memory[b], size, &states[b]) == ACTIONSTRING_OK);
+    }
+    /* A damaged blob is refused, and so is a misaligned one. */
+    if (count > 0) {
+        static actionstring_model damaged;
+        blobs[0][sizes[0] / 2] ^= 0x10;
+        CHECK(actionstring_model_from_blob(blobs[0], sizes[0], &damaged) == ACTIONSTRING_INVALID_MODEL);
+        blobs[0][sizes[0] / 2] ^= 0x10;
+        CHECK(actionstring_model_from_blob(blobs[0] + 1, sizes[0] - 1, &damaged) == ACTIONSTRING_INVALID_ARGUMENT);
+        CHECK(actionstring_model_joint_count(&damaged) == 0);
+        CHECK(actionstring_model_from_blob(blobs[0], sizes[0] - 16, &damaged) == ACTIONSTRING_INVALID_MODEL);
+    }
+    /* Every state fed at once, each with its own model's skeleton. */
+    uint32_t labelled[kMaxBlobs] = {0};
+    for (int f = 0; f < 900; ++f)
+        for (int b = 0; b < count; ++b) {
+            const uint32_t joints = actionstring_model_joint_count(&models[b]);
+            synthetic_frame(joints, f + 37 * b, frame);
+            CHECK(actionstring_push_frame(states[b], (int64_t)f * 16667, frame, 3 * joints, NULL) == ACTIONSTRING_OK);
+            const int32_t live = actionstring_live_label(states[b]);
+            CHECK(live >= -1 && live < (int32_t)actionstring_model_label_count(&models[b]));
+            if (live >= 0) ++labelled[b];
+            /* A frame of another model's skeleton is refused. */
+            if (b > 0 && joints != actionstring_model_joint_count(&models[0]))
+                CHECK(actionstring_push_frame(states[b], (int64_t)f * 16667 + 1, frame,
+                                              3 * actionstring_model_joint_count(&models[0]), NULL) ==
+                      ACTIONSTRING_INVALID_ARGUMENT);
+        }
+    for (int b = 0; b < count; ++b) {
+        CHECK(labelled[b] > 0);
+        CHECK(actionstring_state_model(states[b]) == &models[b]);
+        printf("blob %s: %u joints, %u labels, state %zu bytes, live label on %u of 900 frames\n", paths[b],
+               actionstring_model_joint_count(&models[b]), actionstring_model_label_count(&models[b]),
+               actionstring_state_size(&models[b], NULL), labelled[b]);
+        free(blobs[b]);
+    }
 }
 
 /* Each line: time_us, then joints × 3 floats (C99 hex or decimal). */
@@ -168,9 +268,17 @@ static int replay_file(const char* path) {
         fprintf(stderr, "%s: cannot open\n", path);
         return 1;
     }
-    const uint32_t joints = actionstring_joint_count();
+    static actionstring_model model;
+    if (actionstring_model_builtin(&model) != ACTIONSTRING_OK) {
+        fclose(file);
+        return 1;
+    }
+    const uint32_t joints = actionstring_model_joint_count(&model);
     actionstring_state* state = NULL;
-    if (actionstring_init(state_memory, sizeof state_memory, &state) != ACTIONSTRING_OK) {
+    actionstring_config config;
+    actionstring_default_config(&model, &config);
+    config.window_rule = 1;
+    if (actionstring_init(&model, &config, state_memory, sizeof state_memory, &state) != ACTIONSTRING_OK) {
         fclose(file);
         return 1;
     }
@@ -203,7 +311,7 @@ static int replay_file(const char* path) {
             ++settled;
             if (label == shown) continue;
             shown = label;
-            printf("settled %u char %lld %s\n", index, (long long)character, actionstring_label_name_of(label));
+            printf("settled %u char %lld %s\n", index, (long long)character, actionstring_model_label_name(&model, label));
         }
         ++index;
     }
@@ -213,8 +321,22 @@ static int replay_file(const char* path) {
 }
 
 int main(int argc, char** argv) {
-    contract_checks();
-    if (argc > 1 && replay_file(argv[1]) != 0) return 1;
+    const char* blobs[kMaxBlobs] = {0};
+    int blob_count = 0;
+    const char* stream = NULL;
+    for (int i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "--blob") == 0 && i + 1 < argc && blob_count < kMaxBlobs) blobs[blob_count++] = argv[++i];
+        else if (stream == NULL) stream = argv[i];
+        else {
+            fprintf(stderr, "usage: test_c_api [--blob FILE]... [STREAM.txt]\n");
+            return 2;
+        }
+    }
+    static actionstring_model builtin;
+    if (actionstring_model_builtin(&builtin) == ACTIONSTRING_OK) contract_checks(&builtin);
+    else CHECK(blob_count > 0); /* a library without a built-in model is tested through blobs */
+    blob_checks(blobs, blob_count);
+    if (stream != NULL && replay_file(stream) != 0) return 1;
     if (failures != 0) {
         fprintf(stderr, "%d check(s) failed\n", failures);
         return 1;
