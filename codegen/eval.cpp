@@ -9,6 +9,7 @@
 #include "common/time.hpp"
 #include "eval/baselines.hpp"
 #include "eval/clip_eval.hpp"
+#include "eval/evaluation.hpp"
 #include "eval/json.hpp"
 #include "eval/online.hpp"
 #include "eval/report.hpp"
@@ -62,40 +63,19 @@ void print_results(const host::ClipResults& r) {
     std::printf("  %-44s clip accuracy %.3f, unknown %.3f\n", r.method.c_str(), r.clip_accuracy, r.unknown_rate);
 }
 
-// Everything one evaluation run computes.
-struct Evaluation {
-    std::vector<host::LabelledClip> clips;
-    bool recordings = false;                 // the list names intervals of continuous recordings
-    std::vector<host::ClipResults> results;  // the model's first, then the baselines
-    std::vector<double> frame_ns;            // sorted
-    bool online = false;
-    host::OnlineReport online_report;
-};
+using host::Evaluation;
 
+// Reads the list (and the training list for the baselines), then evaluates.
 Evaluation evaluate(const ModelView& view, const std::string& clips_path, const std::string& train_path,
                     const host::ReadOptions& read, bool online, std::uint32_t seed, const AnnotatorConfig& config) {
-    Evaluation e;
     const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
+    std::vector<host::LabelledClip> train;
+    if (!train_path.empty()) train = host::load_labelled_clips(train_path, read);
+    std::vector<host::LabelledRecording> recordings;
+    if (online && host::has_intervals(entries)) recordings = host::read_recordings(entries, read);
+    Evaluation e = host::evaluate(view, host::load_labelled_clips(entries, read), std::move(train),
+                                  std::move(recordings), online, seed, config);
     e.recordings = host::has_intervals(entries);
-    e.clips = host::load_labelled_clips(entries, read);
-    host::conform_to_model(view, e.clips);
-    e.results.push_back(host::evaluate_model(view, e.clips));
-    if (!train_path.empty()) {
-        auto train = host::load_labelled_clips(train_path, read);
-        host::conform_to_model(view, train);
-        e.results.push_back(host::evaluate_all_strings(view, train, e.clips));
-        e.results.push_back(host::evaluate_pca_characters(view, train, e.clips));
-        e.results.push_back(host::evaluate_pose_dtw(view, train, e.clips));
-    }
-    e.frame_ns = host::annotator_frame_times(view, e.clips);
-    e.online = online;
-    if (online && e.recordings) {
-        std::vector<host::LabelledRecording> recordings = host::read_recordings(entries, read);
-        for (host::LabelledRecording& recording : recordings) host::conform_to_model(view, recording.clip);
-        e.online_report = host::evaluate_recordings(view, recordings, config);
-    } else if (online) {
-        e.online_report = host::evaluate_online(view, e.clips, seed, config);
-    }
     return e;
 }
 
@@ -132,39 +112,6 @@ void print_evaluation(const Evaluation& e, const std::string& clips_path, std::u
         "\nannotator per frame (host build, the model's own settings, %zu frames): median %.0f ns, p99 %.0f ns, max %.0f ns\n",
         e.frame_ns.size(), host::sorted_quantile(e.frame_ns, 0.5), host::sorted_quantile(e.frame_ns, 0.99),
         host::sorted_quantile(e.frame_ns, 1.0));
-}
-
-// The model's results object, extended with the run's other figures.
-std::string evaluation_json(const Evaluation& e, const std::string& model_path, std::uint32_t seed,
-                            const AnnotatorConfig& config) {
-    host::JsonWriter out;
-    out.begin_object();
-    host::write_fields(out, e.results.front(), e.clips);
-    out.field("model", model_path);
-    out.key("frame_time_ns")
-        .begin_object()
-        .field("median", host::sorted_quantile(e.frame_ns, 0.5))
-        .field("p99", host::sorted_quantile(e.frame_ns, 0.99))
-        .field("max", host::sorted_quantile(e.frame_ns, 1.0))
-        .end_object();
-    out.key("baselines").begin_array();
-    for (std::size_t i = 1; i < e.results.size(); ++i) host::write_json(out, e.results[i], e.clips);
-    out.end_array();
-    if (e.online) {
-        out.field("frame_accuracy", e.online_report.settled.frame_accuracy);
-        out.key("online").begin_object();
-        out.field("streams", e.recordings ? "recordings" : "concatenated clips")
-            .field("seed", static_cast<long long>(seed))
-            .field("settle_delay_s", host::us_to_seconds(config.segmenter.settle_delay_us));
-        out.key("settled");
-        host::write_json(out, e.online_report.settled);
-        out.key("live");
-        host::write_json(out, e.online_report.live);
-        out.key("latest_window");
-        host::write_json(out, e.online_report.window);
-        out.end_object();
-    }
-    return out.end_object().str();
 }
 
 }  // namespace
@@ -210,7 +157,7 @@ int run_eval(int argc, char** argv) {
                                online ? &e.online_report : nullptr, model.label_names.strings());
             std::printf("\nreport: %s/report.md\n", report_dir.c_str());
         }
-        if (!json_path.empty()) host::write_file(json_path, evaluation_json(e, model_path, seed, config));
+        if (!json_path.empty()) host::write_file(json_path, host::evaluation_json(e, model_path, seed, config));
         return 0;
     });
 }

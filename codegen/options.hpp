@@ -15,24 +15,13 @@
 #include "actionstring/annotator.hpp"
 #include "actionstring/segmenter.hpp"
 #include "io/clip.hpp"
+#include "train/settings.hpp"
 
 namespace actionstring {
 namespace cli {
 
-/// The whole of `text` as a number in [low, high], or nothing.
-inline std::optional<double> parse_real(const std::string& text, double low, double high) {
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || end == text.c_str() || *end != '\0' || !(v >= low && v <= high)) return std::nullopt;
-    return v;
-}
-
-/// "[low, high]" as the messages print a range.
-inline std::string range_text(double low, double high) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "[%g, %g]", low, high);
-    return buffer;
-}
+using host::parse_real;
+using host::range_text;
 
 /// Runs a command's body; an exception becomes "actionstring CMD: what" on
 /// stderr and exit status 1.
@@ -85,37 +74,26 @@ private:
     bool ok_ = true;
 };
 
-/// "ROOT,LEFT_HIP,RIGHT_HIP" → role names.
+/// "ROOT,LEFT_HIP,RIGHT_HIP" → role names (a message through `args` when malformed).
 inline host::RoleNames parse_roles(ArgumentReader& args, const std::string& text) {
-    host::RoleNames names;
-    const std::size_t first = text.find(','), second = first == std::string::npos ? first : text.find(',', first + 1);
-    if (second == std::string::npos || text.find(',', second + 1) != std::string::npos) {
-        args.error("--roles expects ROOT,LEFT_HIP,RIGHT_HIP, got '" + text + "'");
-        return names;
+    try {
+        return host::parse_role_names(text);
+    } catch (const std::invalid_argument& error) {
+        args.error(error.what());
+        return {};
     }
-    names.root = text.substr(0, first);
-    names.left_hip = text.substr(first + 1, second - first - 1);
-    names.right_hip = text.substr(second + 1);
-    return names;
 }
 
-/// Applies one of the segmenter's settings by name (without dashes: settle,
-/// segment-penalty, stay-penalty, skip-penalty, unknown-cost), as train, eval
-/// and annotate take them. Returns false when `name` is not one of them.
+/// Applies one of the segmenter's settings by name (host::apply_segmenter_setting),
+/// a bad value reported through `args`. Returns false when `name` is not one of them.
 inline bool apply_segmenter_setting(ArgumentReader& args, const std::string& name, const std::string& value,
                                     SegmenterConfig& config) {
-    const double unbounded = std::numeric_limits<double>::infinity();
-    const std::string option = "--" + name;
-    if (name == "settle")
-        config.settle_delay_us = static_cast<std::int64_t>(std::llround(args.number_of(option, value, 0, 60) * 1e6));
-    else if (name == "segment-penalty")
-        config.segment_penalty = static_cast<float>(args.number_of(option, value, 0, 1e6));
-    else if (name == "stay-penalty") config.stay_penalty = static_cast<float>(args.number_of(option, value, 0, 1e6));
-    else if (name == "skip-penalty") config.skip_penalty = static_cast<float>(args.number_of(option, value, 0, 1e6));
-    else if (name == "unknown-cost")
-        config.unknown_cost = static_cast<float>(args.number_of(option, value, 0, unbounded));
-    else return false;
-    return true;
+    try {
+        return host::apply_segmenter_setting(name, value, config);
+    } catch (const std::invalid_argument& error) {
+        args.error(error.what());
+        return true;
+    }
 }
 
 /// The segmenter's settings given to eval or annotate: they override the

@@ -76,46 +76,12 @@ void print_train_usage(std::FILE* out) {
 
 bool apply(ArgumentReader& args, const std::string& name, const std::string& value, host::TrainingOptions& o,
            host::ReadOptions& read) {
-    auto number = [&](double low, double high) { return args.number_of("--" + name, value, low, high); };
-    auto choice = [&](std::initializer_list<const char*> names) {
-        int i = 0;
-        for (const char* n : names) {
-            if (value == n) return i;
-            ++i;
-        }
-        args.error("--" + name + ": unknown value '" + value + "'");
-        return 0;
-    };
-    if (name == "components") o.components = static_cast<int>(number(0, 64));
-    else if (name == "covariance") o.covariance = static_cast<Covariance>(choice({"full", "diagonal"}));
-    else if (name == "covariance-floor") o.covariance_floor = number(1e-12, 1e6);
-    else if (name == "pca") o.pca_dim = static_cast<int>(number(0, 96));
-    else if (name == "feature-rate") o.feature_rate_hz = number(0.1, 10000);
-    else if (name == "em-iterations") o.em_max_iterations = static_cast<int>(number(1, 100000));
-    else if (name == "em-tolerance") o.em_tolerance = number(0, 1);
-    else if (name == "em-restarts") o.em_restarts = static_cast<int>(number(1, 64));
-    else if (name == "scale") o.scale_mode = static_cast<ScaleMode>(choice({"none", "hip-width", "bones"}));
-    else if (name == "mirror") o.mirror = value == "true" || value == "1" || value.empty();
-    else if (name == "velocity") o.velocity_weight = number(0, 1000);
-    else if (name == "velocity-span") o.velocity_span_s = number(0.01, 2);
-    else if (name == "epsilon") o.epsilon = number(1e-9, 1e9);
-    else if (name == "max-characters") o.max_characters = static_cast<int>(number(1, 4096));
-    else if (name == "string-rate") o.string_rate_hz = number(0.1, 10000);
-    else if (name == "variant") o.variant = static_cast<MatchVariant>(choice({"paper", "whole", "subsequence"}));
-    else if (name == "normalization")
-        o.normalization = static_cast<LengthNormalization>(choice({"none", "path", "query"}));
-    else if (name == "sigma") o.sigma = number(0, 1e9);
-    else if (name == "keep-singletons") o.keep_singletons = value == "true" || value == "1" || value.empty();
-    else if (name == "neighbours") o.neighbours = static_cast<int>(number(1, 4096));
-    else if (name == "window") o.window_seconds = number(0.01, 3600);
-    else if (name == "step") o.step_seconds = number(0.01, 3600);
-    else if (name == "unknown-distance") o.unknown_distance = number(0, 1e30);
-    else if (name == "seed") o.seed = static_cast<std::uint32_t>(number(0, 4294967295.0));
-    else if (apply_segmenter_setting(args, name, value, o.online)) return true;
-    else if (name == "rate") read.frame_rate_hz = number(0.001, 1e6);
-    else if (name == "roles") read.roles = parse_roles(args, value);
-    else return false;
-    return true;
+    try {
+        return host::apply_training_setting(name, value, o, read);
+    } catch (const std::invalid_argument& error) {
+        args.error(error.what());
+        return true;
+    }
 }
 
 const char* variant_name(MatchVariant v) {
@@ -125,28 +91,16 @@ const char* normalization_name(LengthNormalization n) {
     return n == LengthNormalization::none ? "none" : n == LengthNormalization::path ? "path" : "query";
 }
 
-// A config file: 'setting value' lines with the option names without dashes; # comments.
+// A config file (host::read_training_config), a problem reported through `args`.
 bool read_config(ArgumentReader& args, const std::string& path, host::TrainingOptions& options,
                  host::ReadOptions& read) {
-    std::string text;
     try {
-        text = host::read_file(path);
+        host::read_training_config(path, options, read);
+        return true;
     } catch (const host::ReadError& error) {
         args.error(std::string("--config: ") + error.what());
         return false;
     }
-    host::LineScanner scanner(path, text);
-    std::string_view line;
-    while (scanner.next_content(line, '#')) {
-        const std::vector<std::string_view> words = host::split_words(line);
-        const std::string name(words[0]), value(words.size() > 1 ? words[1] : std::string_view());
-        if (!apply(args, name, value, options, read)) {
-            args.error(path + ":" + std::to_string(scanner.line_number()) + ": unknown setting '" + name + "'");
-            return false;
-        }
-        if (!args.ok()) return false;
-    }
-    return true;
 }
 
 // The training run as JSON: the model's sizes, what each stage saw and took.

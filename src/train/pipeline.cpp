@@ -51,7 +51,7 @@ void check_options(const TrainingOptions& o) {
     auto require = [](bool ok, const char* what) {
         if (!ok) throw std::invalid_argument(what);
     };
-    require(o.components >= 0 && o.components <= 4096, "components (J) must be between 0 (no GMM) and 4096");
+    require(o.components >= 0 && o.components <= 256, "components (J) must be between 0 (no GMM) and 256");
     require(o.neighbours >= 1 && o.neighbours <= static_cast<int>(max_neighbours), "k must be between 1 and 64");
     require(o.covariance_floor > 0, "the covariance floor must be positive");
     require(o.pca_dim >= 0, "the PCA dimension must be ≥ 0");

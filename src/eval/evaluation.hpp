@@ -1,0 +1,43 @@
+// actionstring host library — one evaluation run: what `actionstring eval`
+// computes and prints, and what the Python package's Model.evaluate returns.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "actionstring/annotator.hpp"
+#include "eval/clip_eval.hpp"
+#include "eval/online.hpp"
+#include "io/clip_list.hpp"
+#include "io/recordings.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// Everything one evaluation run computes.
+struct Evaluation {
+    std::vector<LabelledClip> clips;
+    bool recordings = false;            ///< The streams are whole recordings (a list with intervals).
+    std::vector<ClipResults> results;   ///< The model's first, then the baselines.
+    std::vector<double> frame_ns;       ///< The annotator's per-frame times, sorted.
+    bool online = false;
+    OnlineReport online_report;
+};
+
+/// Evaluates a model on labelled clips, conformed to its skeleton: the
+/// model's clip results, with `train` the baselines on the same split (1-NN
+/// over all training strings, the same with PCA-only characters, DTW 1-NN on
+/// poses), the annotator's per-frame time, and with `online` the streaming
+/// figures: over `recordings` whole when given, else over the clips
+/// concatenated per subject in a seeded order.
+Evaluation evaluate(const ModelView& model, std::vector<LabelledClip> clips, std::vector<LabelledClip> train,
+                    std::vector<LabelledRecording> recordings, bool online, std::uint32_t seed,
+                    const AnnotatorConfig& config);
+
+/// The run as the JSON object `actionstring eval --json` writes.
+std::string evaluation_json(const Evaluation& e, const std::string& model_name, std::uint32_t seed,
+                            const AnnotatorConfig& config);
+
+}  // namespace host
+}  // namespace actionstring

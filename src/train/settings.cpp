@@ -1,0 +1,139 @@
+// Training and online settings by name.
+#include "train/settings.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <stdexcept>
+
+#include "io/text.hpp"
+
+namespace actionstring {
+namespace host {
+
+std::optional<double> parse_real(const std::string& text, double low, double high) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || end == text.c_str() || *end != '\0' || !(v >= low && v <= high)) return std::nullopt;
+    return v;
+}
+
+std::string range_text(double low, double high) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "[%g, %g]", low, high);
+    return buffer;
+}
+
+namespace {
+
+double number(const std::string& name, const std::string& value, double low, double high) {
+    const std::optional<double> v = parse_real(value, low, high);
+    if (!v)
+        throw std::invalid_argument("option --" + name + " expects a number in " + range_text(low, high) + ", got '" +
+                                    value + "'");
+    return *v;
+}
+
+int choice(const std::string& name, const std::string& value, std::initializer_list<const char*> names) {
+    int i = 0;
+    for (const char* n : names) {
+        if (value == n) return i;
+        ++i;
+    }
+    throw std::invalid_argument("option --" + name + ": unknown value '" + value + "'");
+}
+
+bool flag(const std::string& value) { return value == "true" || value == "1" || value.empty(); }
+
+}  // namespace
+
+bool apply_segmenter_setting(const std::string& name, const std::string& value, SegmenterConfig& config) {
+    const double unbounded = std::numeric_limits<double>::infinity();
+    if (name == "settle")
+        config.settle_delay_us = static_cast<std::int64_t>(std::llround(number(name, value, 0, 60) * 1e6));
+    else if (name == "segment-penalty") config.segment_penalty = static_cast<float>(number(name, value, 0, 1e6));
+    else if (name == "stay-penalty") config.stay_penalty = static_cast<float>(number(name, value, 0, 1e6));
+    else if (name == "skip-penalty") config.skip_penalty = static_cast<float>(number(name, value, 0, 1e6));
+    else if (name == "unknown-cost") config.unknown_cost = static_cast<float>(number(name, value, 0, unbounded));
+    else return false;
+    return true;
+}
+
+RoleNames parse_role_names(const std::string& text) {
+    RoleNames names;
+    const std::size_t first = text.find(','), second = first == std::string::npos ? first : text.find(',', first + 1);
+    if (second == std::string::npos || text.find(',', second + 1) != std::string::npos)
+        throw std::invalid_argument("option --roles expects ROOT,LEFT_HIP,RIGHT_HIP, got '" + text + "'");
+    names.root = text.substr(0, first);
+    names.left_hip = text.substr(first + 1, second - first - 1);
+    names.right_hip = text.substr(second + 1);
+    return names;
+}
+
+bool apply_training_setting(const std::string& name, const std::string& value, TrainingOptions& o,
+                            ReadOptions& read) {
+    auto num = [&](double low, double high) { return number(name, value, low, high); };
+    if (name == "components") o.components = static_cast<int>(num(0, 256));
+    else if (name == "covariance") o.covariance = static_cast<Covariance>(choice(name, value, {"full", "diagonal"}));
+    else if (name == "covariance-floor") o.covariance_floor = num(1e-12, 1e6);
+    else if (name == "pca") o.pca_dim = static_cast<int>(num(0, 65535));
+    else if (name == "feature-rate") o.feature_rate_hz = num(0.1, 10000);
+    else if (name == "em-iterations") o.em_max_iterations = static_cast<int>(num(1, 100000));
+    else if (name == "em-tolerance") o.em_tolerance = num(0, 1);
+    else if (name == "em-restarts") o.em_restarts = static_cast<int>(num(1, 64));
+    else if (name == "scale") o.scale_mode = static_cast<ScaleMode>(choice(name, value, {"none", "hip-width", "bones"}));
+    else if (name == "mirror") o.mirror = flag(value);
+    else if (name == "velocity") o.velocity_weight = num(0, 1000);
+    else if (name == "velocity-span") o.velocity_span_s = num(0.01, 2);
+    else if (name == "epsilon") o.epsilon = num(1e-9, 1e9);
+    else if (name == "max-characters") o.max_characters = static_cast<int>(num(1, 4096));
+    else if (name == "string-rate") o.string_rate_hz = num(1, 1000);
+    else if (name == "variant")
+        o.variant = static_cast<MatchVariant>(choice(name, value, {"paper", "whole", "subsequence"}));
+    else if (name == "normalization")
+        o.normalization = static_cast<LengthNormalization>(choice(name, value, {"none", "path", "query"}));
+    else if (name == "sigma") o.sigma = num(0, 1e9);
+    else if (name == "keep-singletons") o.keep_singletons = flag(value);
+    else if (name == "neighbours") o.neighbours = static_cast<int>(num(1, 64));
+    else if (name == "window") o.window_seconds = num(0.01, 3600);
+    else if (name == "step") o.step_seconds = num(0.01, 3600);
+    else if (name == "unknown-distance") o.unknown_distance = num(0, 1e30);
+    else if (name == "seed") o.seed = static_cast<std::uint32_t>(num(0, 4294967295.0));
+    else if (apply_segmenter_setting(name, value, o.online)) return true;
+    else if (name == "rate") read.frame_rate_hz = num(0.001, 1e6);
+    else if (name == "roles") read.roles = parse_role_names(value);
+    else return false;
+    return true;
+}
+
+void read_training_config(const std::string& path, TrainingOptions& options, ReadOptions& read) {
+    const std::string text = read_file(path);
+    LineScanner scanner(path, text);
+    std::string_view line;
+    while (scanner.next_content(line, '#')) {
+        const std::vector<std::string_view> words = split_words(line);
+        const std::string name(words[0]), value(words.size() > 1 ? words[1] : std::string_view());
+        bool known = false;
+        try {
+            known = apply_training_setting(name, value, options, read);
+        } catch (const std::invalid_argument& error) {
+            scanner.fail(error.what());
+        }
+        if (!known) scanner.fail("unknown setting '" + name + "'");
+    }
+}
+
+const std::vector<std::string>& training_setting_names() {
+    static const std::vector<std::string> names{
+        "components", "covariance", "covariance-floor", "pca",        "feature-rate",     "em-iterations",
+        "em-tolerance", "em-restarts", "scale",         "mirror",     "velocity",         "velocity-span",
+        "epsilon",    "max-characters", "string-rate",  "variant",    "normalization",    "sigma",
+        "keep-singletons", "neighbours", "window",      "step",       "unknown-distance", "seed",
+        "settle",     "segment-penalty", "stay-penalty", "skip-penalty", "unknown-cost",  "rate",
+        "roles"};
+    return names;
+}
+
+}  // namespace host
+}  // namespace actionstring

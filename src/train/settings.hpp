@@ -1,0 +1,48 @@
+// actionstring host library — training and online settings by name: the names
+// `actionstring train` takes as options (without the dashes) and in config
+// files, and the Python package takes as keyword arguments. One table, so the
+// command line, config files and Python accept exactly the same settings.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "actionstring/segmenter.hpp"
+#include "io/clip.hpp"
+#include "train/options.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// The whole of `text` as a number in [low, high], or nothing.
+std::optional<double> parse_real(const std::string& text, double low, double high);
+/// "[low, high]" as the messages print a range.
+std::string range_text(double low, double high);
+
+/// Applies one of the segmenter's settings (settle, segment-penalty,
+/// stay-penalty, skip-penalty, unknown-cost). The settle delay is taken up to
+/// a minute here: the runtime holds up to 10 minutes, but a longer delay than
+/// a minute is a mistake in a labelling tool. Returns false when `name` is not
+/// one; throws std::invalid_argument ("option --NAME expects …") for a bad value.
+bool apply_segmenter_setting(const std::string& name, const std::string& value, SegmenterConfig& config);
+
+/// Applies one training setting (components, pca, velocity, sigma, …, the
+/// segmenter's, and the reading settings rate and roles). Returns false when
+/// `name` is not one; throws std::invalid_argument for a bad value.
+bool apply_training_setting(const std::string& name, const std::string& value, TrainingOptions& options,
+                            ReadOptions& read);
+
+/// Every name apply_training_setting() takes, in the order `train --help` lists them.
+const std::vector<std::string>& training_setting_names();
+
+/// Applies a config file: 'setting value' lines with the option names
+/// without dashes, # comments (what `train --config` reads). Throws ReadError
+/// naming the file and line of an unknown setting or a bad value.
+void read_training_config(const std::string& path, TrainingOptions& options, ReadOptions& read);
+
+/// "ROOT,LEFT_HIP,RIGHT_HIP" → role names; throws std::invalid_argument.
+RoleNames parse_role_names(const std::string& text);
+
+}  // namespace host
+}  // namespace actionstring
