@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The test command: installs what is missing, then builds and runs every test
-# twice — Release with g++ and warnings as errors, and Debug with clang under
+# twice — Release with g++ and warnings as errors (with the Python package and
+# its pytest suite), and Debug with clang under
 # AddressSanitizer + UndefinedBehaviorSanitizer, where each reader is also
 # fuzzed for ACTIONSTRING_FUZZ_SECONDS (default 30) seconds.
 set -euo pipefail
@@ -27,7 +28,9 @@ run_suite() {
 }
 
 start=$(date +%s)
-run_suite release -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DCMAKE_C_COMPILER=gcc
+# The Python package is built and tested against Debian's interpreter (its packages are there).
+run_suite release -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=g++ -DCMAKE_C_COMPILER=gcc \
+    -DACTIONSTRING_BUILD_PYTHON=ON -DPython_EXECUTABLE=/usr/bin/python3
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
     run_suite asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DACTIONSTRING_SANITIZE=ON \
         -DACTIONSTRING_FUZZ=ON -DACTIONSTRING_FUZZ_SECONDS="${ACTIONSTRING_FUZZ_SECONDS:-30}"

@@ -1,0 +1,275 @@
+"""actionstring: real-time action recognition from skeleton motion.
+
+The C++ library, bound: reading motion files, training a model of action
+strings, evaluating it, and streaming frames through the same allocation-free
+annotator a device runs. Nothing is reimplemented in Python.
+
+    >>> import actionstring
+    >>> clips = actionstring.read_clip_list("hdm05/train.tsv")
+    >>> model = actionstring.train(clips, pca=24, velocity=1.0)
+    >>> model.evaluate(actionstring.read_clip_list("hdm05/val.tsv"))["clip_accuracy"]
+    >>> annotator = actionstring.Annotator(model)
+    >>> result = annotator.push_frame(0.0, frame)   # frame: (joints, 3) float32, metres
+"""
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _actionstring as _native
+from ._actionstring import Clip, ReadError
+
+__all__ = [
+    "Clip",
+    "ReadError",
+    "Model",
+    "Annotator",
+    "Classification",
+    "read_clip",
+    "read_clip_list",
+    "train",
+    "training_settings",
+    "ActionStringClassifier",
+]
+
+__version__ = "0.1.0"
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def read_clip(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis: int = -1,
+              roles: Optional[Sequence[str]] = None, skeleton: str = "") -> Clip:
+    """Reads one motion file (ASF/AMC with ``skeleton``, BVH, Kinect text, joint CSV).
+
+    ``rate`` is the frame rate of files without timing (0: the format's default),
+    ``scale`` metres per file unit (0: the format's rule), ``up_axis`` 0/1/2 (-1:
+    the format's rule), ``roles`` the (root, left hip, right hip) joint names.
+    Raises ReadError naming the file, the line and what was expected.
+    """
+    return _native._read_clip(os.fspath(path), rate, scale, up_axis, roles, skeleton)
+
+
+def read_clip_list(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis: int = -1,
+                   roles: Optional[Sequence[str]] = None) -> List[Clip]:
+    """Reads a clip list (TSV with path, label, subject columns) and every clip it names,
+    each with its ``label`` and ``subject``."""
+    return _native._read_clip_list(os.fspath(path), rate, scale, up_axis, roles)
+
+
+def training_settings() -> List[str]:
+    """Names ``train`` accepts as keywords (dashes as underscores), as ``actionstring train`` takes them."""
+    return [name.replace("-", "_") for name in _native._training_setting_names()
+            if name not in ("rate", "roles")]
+
+
+class Classification(tuple):
+    """(label, distance, confidence): label is None when the clip is unknown."""
+
+    __slots__ = ()
+
+    def __new__(cls, label: Optional[str], distance: float, confidence: float):
+        return super().__new__(cls, (label, distance, confidence))
+
+    def __repr__(self) -> str:
+        return f"Classification(label={self[0]!r}, distance={self[1]:.4g}, confidence={self[2]:.3f})"
+
+    @property
+    def label(self) -> Optional[str]:
+        return self[0]
+
+    @property
+    def distance(self) -> float:
+        return self[1]
+
+    @property
+    def confidence(self) -> float:
+        return self[2]
+
+
+class Model:
+    """A trained model: its tables, labels and skeleton, and what can be done with them."""
+
+    def __init__(self, native: "_native._Model", report: Optional[Dict[str, Any]] = None):
+        self._native = native
+        #: What training reported (representatives, characters, frames, the settings used).
+        self.training_report: Dict[str, Any] = dict(report or {})
+
+    # -- files ---------------------------------------------------------------
+    @classmethod
+    def load(cls, path: PathLike) -> "Model":
+        """Loads a model artifact or blob (``actionstring train`` / ``codegen --blob``)."""
+        return cls(_native._Model.load(os.fspath(path)))
+
+    @classmethod
+    def from_blob(cls, blob: bytes) -> "Model":
+        """A model from blob bytes (checked by the runtime's own reader)."""
+        return cls(_native._Model.from_blob(bytes(blob)))
+
+    def save(self, path: PathLike) -> None:
+        """Writes the model artifact (checksummed text) that every tool reads."""
+        self._native.save(os.fspath(path))
+
+    def save_blob(self, path: PathLike) -> None:
+        """Writes the binary blob a program loads at run time (C API, C#)."""
+        self._native.save_blob(os.fspath(path))
+
+    def to_blob(self) -> bytes:
+        return self._native.to_blob()
+
+    def write_header(self, path: PathLike, namespace: str = "actionstring_model") -> None:
+        """Writes a C++ header of constexpr tables for firmware (as ``actionstring codegen``)."""
+        self._native.write_header(os.fspath(path), namespace)
+
+    # -- what it is ------------------------------------------------------------
+    @property
+    def label_names(self) -> List[str]:
+        return list(self._native.label_names)
+
+    @property
+    def joint_names(self) -> List[str]:
+        """The input skeleton, in frame order."""
+        return list(self._native.joint_names)
+
+    @property
+    def representative_count(self) -> int:
+        return int(self._native.representative_count)
+
+    @property
+    def character_count(self) -> int:
+        return int(self._native.character_count)
+
+    @property
+    def component_count(self) -> int:
+        return int(self._native.component_count)
+
+    @property
+    def feature_dim(self) -> int:
+        return int(self._native.feature_dim)
+
+    @property
+    def string_rate_hz(self) -> float:
+        return float(self._native.string_rate_hz)
+
+    @property
+    def table_bytes(self) -> int:
+        return int(self._native.table_bytes)
+
+    @property
+    def online_settings(self) -> Dict[str, float]:
+        """The segmenter's settings the model carries (settle in seconds)."""
+        return dict(self._native.online_settings)
+
+    def state_bytes(self, **online: Any) -> int:
+        """Bytes of annotator state this model needs with these settings (firmware sizing)."""
+        return int(self._native.state_bytes(online))
+
+    # -- use -------------------------------------------------------------------
+    def classify(self, clip: Clip) -> Classification:
+        """Classifies one clip by its action string (the runtime's kNN over representatives)."""
+        return Classification(*self._native.classify(clip))
+
+    def predict(self, clips: Iterable[Clip]) -> List[Optional[str]]:
+        return [self.classify(clip).label for clip in clips]
+
+    def evaluate(self, clips: Sequence[Clip], *, train: Optional[Sequence[Clip]] = None, online: bool = False,
+                 seed: int = 1, name: str = "<python>", **online_settings: Any) -> Dict[str, Any]:
+        """The figures ``actionstring eval --json`` reports, computed by the same code:
+        clip accuracy, per-class precision and recall, confusion, predictions; with
+        ``train`` the baselines on the same split (DTW 1-NN among them); with
+        ``online`` the streaming figures over the clips concatenated per subject."""
+        text = self._native._evaluate_json(list(clips), list(train or []), online, seed, online_settings, name)
+        return json.loads(text)
+
+    def annotate(self, clip: Clip, **online_settings: Any) -> List[Dict[str, Any]]:
+        """The timeline of settled labels of a clip streamed frame by frame, as
+        ``actionstring annotate --json`` prints it (start, end, label, confidence)."""
+        return list(self._native.annotate(clip, online_settings))
+
+    def __repr__(self) -> str:
+        return (f"<Model: {len(self.label_names)} labels, {len(self.joint_names)} joints, "
+                f"{self.representative_count} representatives, {self.character_count} characters>")
+
+
+def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Optional[bool] = None,
+          **settings: Any) -> Model:
+    """Trains a model on labelled clips with the C++ training pipeline.
+
+    Settings are those of ``actionstring train`` with underscores for dashes
+    (``pca=24, velocity=1.0, string_rate=15, scale="bones"``; see
+    ``training_settings()``); ``config`` is a settings file as ``train --config``
+    reads it (``models/*.config``), applied first. With neither given and
+    ``tune`` left None, training tunes itself: the settings that matter most are
+    chosen by leave-one-subject-out cross-validation over the clips' subjects
+    (as ``actionstring train`` does).
+    """
+    clips = list(clips)
+    if not clips:
+        raise ValueError("no clips to train on")
+    for clip in clips:
+        if not isinstance(clip, Clip):
+            raise ValueError(f"train expects Clip objects, got {type(clip).__name__}")
+        if not clip.label:
+            raise ValueError(f"{clip.source}: no label")
+    if tune is None:
+        tune = not settings and config is None
+    native, report = _native._train(clips, settings, bool(tune), "" if config is None else os.fspath(config))
+    return Model(native, report)
+
+
+class Annotator:
+    """The runtime's per-frame annotator on a model: frames in, labels out.
+
+    ``push_frame(time_s, positions)`` takes a frame's time in seconds and its
+    (joints, 3) positions in metres in the model's joint order; a C-contiguous
+    float32 array is read in place. It returns a dict: ``status`` (``ok``,
+    ``stream_restarted`` or why the frame was rejected: ``non_finite_input``,
+    ``tracking_lost``, ...), ``accepted``, ``characters``, ``settled`` (a list of
+    (character, time_s, label) for every character whose label became final with
+    this frame; label None for no action) and ``live_label`` (the newest guess).
+    Online settings (``settle``, ``segment_penalty``, ``unknown_cost``, ...)
+    override the model's own; ``window_rule=True`` also runs the paper's rule
+    (``label``, ``confidence``).
+    """
+
+    def __init__(self, model: Model, **online_settings: Any):
+        self.model = model
+        self._native = _native._Annotator(model._native, online_settings)
+
+    def push_frame(self, time_s: float, positions: np.ndarray) -> Dict[str, Any]:
+        return self._native.push_frame(float(time_s), positions)
+
+    def reset(self) -> None:
+        """Starts another stream."""
+        self._native.reset()
+
+    @property
+    def live_label(self) -> Optional[str]:
+        return self._native.live_label
+
+    @property
+    def label(self) -> Optional[str]:
+        """The paper's window rule (needs window_rule=True)."""
+        return self._native.label
+
+    @property
+    def confidence(self) -> float:
+        return float(self._native.confidence)
+
+    @property
+    def characters(self) -> int:
+        return int(self._native.characters)
+
+    @property
+    def settle_chars(self) -> int:
+        return int(self._native.settle_chars)
+
+    @property
+    def state_bytes(self) -> int:
+        """Bytes of state the annotator holds for its model (what a device would reserve)."""
+        return int(self._native.state_bytes)
+
+
+from .estimator import ActionStringClassifier  # noqa: E402  (needs the names above)

@@ -1,0 +1,98 @@
+"""Training, saving and loading, classification and evaluation: the same as the CLI."""
+import json
+
+import numpy as np
+import pytest
+
+import actionstring
+from conftest import ROOT, TOY_SETTINGS, run_cli
+
+
+def test_training_on_toy_clips(toy_model, toy_clips):
+    assert toy_model.label_names == ["raise_both", "spread", "wave_left", "wave_right"]
+    assert toy_model.joint_names == ["root", "lhipjoint", "rhipjoint", "lhand", "rhand"]
+    assert toy_model.representative_count >= 4
+    assert toy_model.component_count == 0 and toy_model.feature_dim == 8
+    assert toy_model.string_rate_hz == pytest.approx(10.0)
+    assert toy_model.training_report["representatives"] == toy_model.representative_count
+    assert "pca 8" in toy_model.training_report["settings"]
+    result = toy_model.classify(toy_clips[5])
+    assert result.label == toy_clips[5].label
+    assert 0.0 <= result.confidence <= 1.0
+
+
+def test_settings_are_checked(toy_clips):
+    with pytest.raises(ValueError, match="unknown training setting 'pcaa'"):
+        actionstring.train(toy_clips, pcaa=3)
+    with pytest.raises(ValueError, match="option --pca expects a number"):
+        actionstring.train(toy_clips, pca=-2)
+    with pytest.raises(ValueError, match="no clips"):
+        actionstring.train([])
+    assert "string_rate" in actionstring.training_settings()
+
+
+def test_save_load_blob_and_header_round_trip(toy_model, tmp_path):
+    toy_model.save(tmp_path / "toy.model")
+    loaded = actionstring.Model.load(tmp_path / "toy.model")
+    assert loaded._native.artifact() == toy_model._native.artifact()
+    toy_model.save_blob(tmp_path / "toy.blob")
+    from_file = actionstring.Model.load(tmp_path / "toy.blob")
+    from_bytes = actionstring.Model.from_blob(toy_model.to_blob())
+    assert from_file._native.artifact() == toy_model._native.artifact()
+    assert from_bytes._native.artifact() == toy_model._native.artifact()
+    toy_model.write_header(tmp_path / "toy_model.hpp", "toy")
+    header = (tmp_path / "toy_model.hpp").read_text()
+    assert header.startswith("// DO NOT EDIT.") and "namespace toy" in header
+    damaged = bytearray(toy_model.to_blob())
+    damaged[len(damaged) // 2] ^= 0x20
+    with pytest.raises(actionstring.ReadError, match="checksum"):
+        actionstring.Model.from_blob(bytes(damaged))
+
+
+def test_evaluate_on_toy_clips(toy_model, toy_clips):
+    report = toy_model.evaluate(toy_clips, train=toy_clips, online=True)
+    assert report["clip_accuracy"] == pytest.approx(1.0)
+    assert len(report["baselines"]) == 3
+    assert 0.0 <= report["online"]["settled"]["frame_accuracy"] <= 1.0
+
+
+@pytest.fixture(scope="module")
+def hdm05_model(hdm05, cli, tmp_path_factory):
+    """The committed model's settings, trained by the CLI and by Python."""
+    folder = tmp_path_factory.mktemp("hdm05")
+    config = ROOT / "models" / "hdm05.config"
+    run_cli(cli, "train", "--clips", hdm05 / "train.tsv", "--config", config, "--out", folder / "cli.model")
+    return folder, config
+
+
+def test_python_training_equals_the_cli_bit_for_bit(hdm05, hdm05_model):
+    folder, config = hdm05_model
+    model = actionstring.train(actionstring.read_clip_list(hdm05 / "train.tsv"), config=config)
+    assert model._native.artifact() == (folder / "cli.model").read_text()
+
+
+def test_evaluation_equals_the_cli(hdm05, cli, hdm05_model):
+    folder, _ = hdm05_model
+    run_cli(cli, "eval", "--model", folder / "cli.model", "--clips", hdm05 / "val.tsv", "--json", folder / "eval.json")
+    expected = json.loads((folder / "eval.json").read_text())
+    model = actionstring.Model.load(folder / "cli.model")
+    got = model.evaluate(actionstring.read_clip_list(hdm05 / "val.tsv"))
+    for key in ("clip_accuracy", "unknown_rate", "labels", "confusion", "per_class", "clips"):
+        assert got[key] == expected[key], key
+    assert got["clip_accuracy"] > 0.8
+    # classify() gives each clip the label the evaluation counted.
+    clips = actionstring.read_clip_list(hdm05 / "val.tsv")
+    predicted = [model.classify(clip).label for clip in clips]
+    accuracy = np.mean([p == clip.label for p, clip in zip(predicted, clips)])
+    assert accuracy == pytest.approx(expected["clip_accuracy"])
+
+
+def test_annotate_equals_the_cli(hdm05, cli, hdm05_model):
+    folder, _ = hdm05_model
+    amc = hdm05 / "val/squat1Reps/HDM_mm_squat1Reps_037_120.amc"
+    asf = hdm05 / "asf/HDM_mm.asf"
+    expected = json.loads(run_cli(cli, "annotate", "--model", folder / "cli.model", amc, "--skeleton", asf, "--json"))
+    model = actionstring.Model.load(folder / "cli.model")
+    got = model.annotate(actionstring.read_clip(amc, skeleton=str(asf)))
+    assert got == expected["segments"]
+    assert got[-1]["label"] == "squat1Reps"

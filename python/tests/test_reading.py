@@ -1,0 +1,90 @@
+"""Reading motion files and building clips from arrays."""
+import re
+
+import numpy as np
+import pytest
+
+import actionstring
+
+
+def test_read_clip_list_gives_labelled_float32_clips(hdm05):
+    clips = actionstring.read_clip_list(hdm05 / "val.tsv")
+    assert len(clips) == 44
+    clip = clips[0]
+    assert clip.label == "depositFloorR" and clip.subject == "mm"
+    assert clip.positions.shape == (clip.frame_count, 31, 3)
+    assert clip.positions.dtype == np.float32
+    assert clip.times.shape == (clip.frame_count,)
+    assert np.all(np.diff(clip.times) > 0)
+    assert clip.joint_names[0] == "root" and len(clip.joint_names) == 31
+    assert abs(clip.times[1] - clip.times[0] - 1 / 120) < 1e-9
+
+
+def test_read_clip_reads_one_file(hdm05):
+    clip = actionstring.read_clip(hdm05 / "val/squat1Reps/HDM_mm_squat1Reps_037_120.amc",
+                                  skeleton=str(hdm05 / "asf/HDM_mm.asf"))
+    assert clip.joint_count == 31 and clip.frame_count > 100
+    assert clip.label == ""
+
+
+def test_positions_are_a_read_only_view_that_keeps_the_clip_alive(toy_clips):
+    clip = toy_clips[0].relabelled("x", "y")
+    positions = clip.positions
+    assert not positions.flags.writeable
+    first = positions[3, 2].copy()
+    del clip
+    assert np.array_equal(positions[3, 2], first)  # the view holds the clip
+    with pytest.raises(ValueError):
+        positions[0, 0, 0] = 1.0
+
+
+def test_clip_from_arrays():
+    frames = np.zeros((30, 20, 3), dtype=np.float64)  # 20 joints: Kinect v1 names
+    frames[:, :, 1] = np.linspace(0, 1.6, 20)
+    frames[:, 12, 0] = -0.1  # HipLeft
+    frames[:, 16, 0] = 0.1  # HipRight
+    clip = actionstring.Clip(frames, frame_rate=30.0, label="stand", subject="s1")
+    assert clip.positions.dtype == np.float32 and clip.positions.shape == (30, 20, 3)
+    assert clip.joint_names[0] == "HipCenter"
+    assert clip.times[-1] == pytest.approx(29 / 30)
+    assert clip.label == "stand" and clip.subject == "s1"
+
+
+@pytest.mark.parametrize(
+    "positions, kwargs, message",
+    [
+        (np.zeros((10, 20)), {"frame_rate": 30}, "shape (frames, joints, 3)"),
+        (np.zeros((10, 20, 2)), {"frame_rate": 30}, "shape (frames, joints, 3)"),
+        (np.zeros((10, 20, 3), dtype=np.int32), {"frame_rate": 30}, "expected floats"),
+        (np.array([["a"]]), {"frame_rate": 30}, "expected floats"),
+        (np.zeros((10, 7, 3)), {"frame_rate": 30}, "joint_names"),
+        (np.zeros((10, 20, 3)), {}, "frame_rate"),
+        (np.zeros((10, 20, 3)), {"times": np.arange(9.0)}, "one time in seconds per frame"),
+        (np.zeros((10, 20, 3)), {"times": np.arange(10.0)[::-1].copy()}, "non-decreasing"),
+        (np.zeros((0, 20, 3)), {"frame_rate": 30}, "no frames"),
+    ],
+)
+def test_bad_arrays_are_refused_with_a_value_error(positions, kwargs, message):
+    with pytest.raises(ValueError, match=re.escape(message)):
+        actionstring.Clip(positions, **kwargs)
+
+
+def test_nan_positions_are_refused_with_their_place():
+    frames = np.zeros((10, 20, 3), dtype=np.float32)
+    frames[4, 7, 1] = np.nan
+    with pytest.raises(ValueError, match="frame 4, joint 7 is NaN"):
+        actionstring.Clip(frames, frame_rate=30)
+
+
+def test_unreadable_files_raise_read_error_with_file_and_line(tmp_path):
+    with pytest.raises(actionstring.ReadError, match="missing.bvh"):
+        actionstring.read_clip(tmp_path / "missing.bvh")
+    bad = tmp_path / "bad.csv"
+    bad.write_text("time,HipCenter_x,HipCenter_y\n0.0,1.0,2.0\nnot-a-number,1,2\n")
+    with pytest.raises(actionstring.ReadError, match=r"bad\.csv:\d+: "):
+        actionstring.read_clip(bad)
+    assert issubclass(actionstring.ReadError, ValueError)
+    bad_list = tmp_path / "list.tsv"
+    bad_list.write_text("path\tlabel\n")
+    with pytest.raises(actionstring.ReadError, match=r"list\.tsv"):
+        actionstring.read_clip_list(bad_list)

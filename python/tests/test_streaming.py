@@ -1,0 +1,67 @@
+"""The per-frame annotator from Python."""
+import numpy as np
+import pytest
+
+import actionstring
+
+
+def test_streaming_a_clip_settles_its_label(toy_model, toy_clips):
+    annotator = actionstring.Annotator(toy_model, settle=0.5)
+    clip = toy_clips[0]
+    settled = []
+    for time_s, frame in zip(clip.times, clip.positions):
+        result = annotator.push_frame(time_s, frame)
+        assert result["status"] == "ok" and result["accepted"]
+        settled += result["settled"]
+    assert annotator.characters == len(settled) + annotator.settle_chars
+    assert annotator.settle_chars == 5  # 0.5 s at 10 characters per second
+    labels = [label for _, _, label in settled]
+    assert labels.count(clip.label) > len(labels) / 2
+    times = [t for _, t, _ in settled]
+    assert times == sorted(times)
+    assert [c for c, _, _ in settled] == list(range(len(settled)))
+    assert annotator.live_label in toy_model.label_names
+    assert annotator.state_bytes == toy_model.state_bytes(settle=0.5)
+
+
+def test_timelines_agree_with_annotate(toy_model, toy_clips):
+    """The settled labels streamed from Python are the timeline annotate() reports."""
+    clip = toy_clips[2]
+    annotator = actionstring.Annotator(toy_model)
+    settled = []
+    for time_s, frame in zip(clip.times, clip.positions):
+        settled += annotator.push_frame(time_s, frame)["settled"]
+    spans = toy_model.annotate(clip)
+    for _, time_s, label in settled:
+        span = next(s for s in spans if s["start"] - 1e-3 <= time_s <= s["end"] + 0.15)
+        assert span["label"] == (label or "unknown")
+
+
+def test_frames_of_any_float_layout_and_rejected_frames(toy_model, toy_clips):
+    annotator = actionstring.Annotator(toy_model, window_rule=True)
+    frame = toy_clips[0].positions[10]
+    assert annotator.push_frame(0.0, frame)["status"] == "ok"
+    assert annotator.push_frame(0.1, frame.astype(np.float64))["status"] == "ok"
+    assert annotator.push_frame(0.2, frame.reshape(-1))["status"] == "ok"
+    assert annotator.push_frame(0.3, np.asfortranarray(frame))["status"] == "ok"
+    nan = frame.copy()
+    nan[2, 1] = np.nan
+    assert annotator.push_frame(0.4, nan)["status"] == "non_finite_input"  # a sensor glitch: skipped, not fatal
+    assert annotator.push_frame(0.45, np.zeros_like(frame))["status"] == "tracking_lost"
+    assert annotator.push_frame(0.25, frame)["status"] == "time_went_backwards"
+    with pytest.raises(ValueError, match=r"expected shape \(5, 3\)"):
+        annotator.push_frame(0.5, np.zeros((4, 3), dtype=np.float32))
+    with pytest.raises(ValueError, match="expected floats"):
+        annotator.push_frame(0.5, np.zeros((5, 3), dtype=np.int64))
+    with pytest.raises(ValueError, match="finite"):
+        annotator.push_frame(float("nan"), frame)
+    annotator.reset()
+    assert annotator.characters == 0 and annotator.live_label is None
+
+
+def test_online_settings_are_checked(toy_model):
+    with pytest.raises(ValueError, match="unknown online setting 'settel'"):
+        actionstring.Annotator(toy_model, settel=1.0)
+    with pytest.raises(ValueError, match="option --segment-penalty expects"):
+        actionstring.Annotator(toy_model, segment_penalty=-1)
+    assert actionstring.Annotator(toy_model, settle=8.0).state_bytes > actionstring.Annotator(toy_model).state_bytes
