@@ -1,9 +1,11 @@
 // `actionstring annotate MODEL FILE`: the label timeline of a recording.
+#include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "commands.hpp"
 #include "common/json.hpp"
+#include "common/time.hpp"
 #include "io/formats.hpp"
 #include "model/artifact.hpp"
 #include "options.hpp"
@@ -15,7 +17,8 @@ namespace cli {
 
 int run_annotate(int argc, char** argv) {
     std::string model_path, file, skeleton;
-    bool json = false;
+    bool json = false, events = false;
+    double min_action_s = 0.25;
     host::ReadOptions read;
     SegmenterOverrides overrides;
     ArgumentReader args("annotate", argc, argv);
@@ -23,13 +26,18 @@ int run_annotate(int argc, char** argv) {
         const std::string arg = args.next();
         if (arg == "--help" || arg == "-h") {
             std::printf(
-                "usage: actionstring annotate --model MODEL FILE [--skeleton ASF] [--rate HZ] [--roles R,L,R] [--json]\n"
+                "usage: actionstring annotate --model MODEL FILE [--skeleton ASF] [--rate HZ] [--roles R,L,R]\n"
+                "                             [--json | --events] [--min-action S]\n"
                 "                             [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
                 "                             [--skip-penalty X] [--unknown-cost X]\n\n"
                 "Streams FILE frame by frame through the annotator, as a device would, and prints\n"
                 "the timeline of settled labels: start and end time in seconds, label (or\n"
                 "'unknown') and the confidence, the share of the span's frames whose live label\n"
                 "(decided without the settle delay) already said so; as TSV (default) or JSON.\n"
+                "--events prints the action events instead, one JSON object per line: each\n"
+                "action once when it starts and once when it ends (label, start and end time,\n"
+                "confidence); an action shorter than --min-action seconds [0.25] is flicker and\n"
+                "is not reported, and the end of the file ends a running action.\n"
                 "The segmenter options are those of 'actionstring eval'.\n");
             return 0;
         }
@@ -38,6 +46,8 @@ int run_annotate(int argc, char** argv) {
         else if (arg == "--rate") read.frame_rate_hz = args.number(arg, 0.001, 1e6);
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
         else if (arg == "--json") json = true;
+        else if (arg == "--events") events = true;
+        else if (arg == "--min-action") min_action_s = args.number(arg, 0, 60);
         else if (parse_segmenter_option(args, arg, overrides)) continue;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;
@@ -51,6 +61,25 @@ int run_annotate(int argc, char** argv) {
         const ModelView view = model.view();
         host::Clip clip = host::read_clip(file, read, skeleton);
         host::conform_to_model(view, clip);
+        if (events) {
+            AnnotatorConfig config = overrides.over(view, args);
+            config.min_action_us = static_cast<std::int64_t>(std::llround(min_action_s * 1e6));
+            for (const ActionEvent& e : host::stream_events(view, clip, config)) {
+                host::JsonWriter out;
+                out.begin_object()
+                    .field("event", e.kind == ActionEvent::Kind::started ? "started" : "ended")
+                    .field("label", model.label_names[e.label])
+                    .field("start", host::us_to_seconds(e.start_time_us))
+                    .field("end", host::us_to_seconds(e.end_time_us))
+                    .field("confidence", static_cast<double>(e.confidence))
+                    .end_object();
+                std::string line = out.str();
+                while (!line.empty() && line.back() == '\n') line.pop_back();
+                std::printf("%s\n", line.c_str());  // one event per line, out the moment it is known
+                std::fflush(stdout);
+            }
+            return 0;
+        }
         const auto spans = host::annotate_clip(view, clip, overrides.over(view, args));
         auto name = [&](int label) {
             return label < 0 ? std::string("unknown") : model.label_names[static_cast<std::size_t>(label)];

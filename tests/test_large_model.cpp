@@ -80,6 +80,8 @@ TEST_CASE("a 58-class model of over 500 representatives trains, evaluates and st
 
     // The same model as a blob, read in place, labels the same.
     const std::string bytes = host::write_blob(model);
+    MESSAGE("blob: " << bytes.size() << " bytes; annotator storage with the segmenter alone: "
+                     << Annotator::required_bytes(view, annotator_config(view)) << " bytes");
     struct Block {
         alignas(blob_alignment) unsigned char bytes[blob_alignment];
     };

@@ -15,6 +15,7 @@
 #include "actionstring/tree.hpp"
 #include "actionstring/sampler.hpp"
 #include "actionstring/encoder.hpp"
+#include "actionstring/events.hpp"
 #include "actionstring/string_distance.hpp"
 #include "actionstring/matcher.hpp"
 #include "actionstring/classify.hpp"

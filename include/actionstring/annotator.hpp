@@ -15,6 +15,7 @@
 
 #include "actionstring/classify.hpp"
 #include "actionstring/encoder.hpp"
+#include "actionstring/events.hpp"
 #include "actionstring/matcher.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/segmenter.hpp"
@@ -44,6 +45,9 @@ struct AnnotatorConfig {
     bool window_rule = false;
     /// Settings of the segmenter (settle delay, penalties, unknown cost).
     SegmenterConfig segmenter;
+    /// Action events (events.hpp): a settled run of one label shorter than
+    /// this is flicker and is never reported.
+    std::int64_t min_action_us = 250000;
 };
 
 /// The default timing with the model's own online settings.
@@ -68,6 +72,8 @@ struct FrameResult {
     /// last one is settled_character(); one per character once the stream is
     /// settle_chars() long).
     std::uint32_t characters_settled = 0;
+    /// Action events (started, ended) this frame produced: event(0 … events − 1).
+    std::uint32_t events = 0;
 };
 
 /// One completed sliding window and the label it voted for.
@@ -102,6 +108,7 @@ public:
         // Settings first, so a bad one is reported as such rather than as a size.
         Status status = ActionSegmenter::check(model, config.segmenter);
         if (status != Status::ok) return status;
+        if (!(config.min_action_us >= 0 && config.min_action_us <= max_settle_delay_us)) return Status::invalid_argument;
         const Plan p = plan(model, config);
         if (!detail::storage_fits(storage, bytes, p.bytes)) {
             // Report a broken model before a size computed from it.
@@ -116,6 +123,10 @@ public:
             status = encoder_.init(model, EncoderConfig{config.max_gap_us, config.max_backward_us}, base + p.encoder,
                                    p.encoder_bytes);
         if (status != Status::ok) return status;
+        live_ = reinterpret_cast<LabelId*>(base + p.live);
+        live_ring_ = p.live_count;
+        const std::int64_t period = model.string_period_us;
+        min_action_chars_ = static_cast<std::uint32_t>((config.min_action_us + period - 1) / period);
         config_ = config;
         model_ = &model;
         reset();
@@ -125,15 +136,23 @@ public:
     /// The settings given to the last successful init().
     const AnnotatorConfig& config() const noexcept { return config_; }
 
-    /// Starts another stream: forgets the string, the windows and the label.
+    /// Starts another stream: forgets the string, the windows, the label and the events.
     void reset() noexcept {
-        encoder_.reset();
-        if (window_rule_) matcher_.reset();
-        segmenter_.reset();
-        has_window_ = false;
-        window_ = WindowResult{};
-        last_character_ = 0;
-        pushed_ = 0;
+        clear_stream();
+        events_.reset(min_action_chars_);
+    }
+
+    /// Ends the stream: the characters not settled yet take the label the
+    /// best explanation gives them now, an action still running ends, and the
+    /// events this produces are in event(…) (a clip shorter than the settle
+    /// delay still gets its label). The next frame starts a new stream.
+    /// Returns the number of events.
+    std::uint32_t flush() noexcept {
+        events_.begin_frame();
+        if (model_ == nullptr) return 0;
+        finish_stream(pushed_ > 0 ? encoder_.tick_time_us(0) : 0);
+        clear_stream();
+        return static_cast<std::uint32_t>(events_.event_count());
     }
 
     /// Feeds one frame.
@@ -147,10 +166,14 @@ public:
             result.status = Status::not_initialized;
             return result;
         }
+        events_.begin_frame();
+        // The old stream's clock, for events of its tail should this frame restart it.
+        const std::int64_t origin_us = pushed_ > 0 ? encoder_.tick_time_us(0) : 0;
         const EncodedFrame encoded = encoder_.push_frame(time_us, positions);
         result.status = encoded.status;
         if (!encoded.accepted()) return result;
         if (encoded.status == Status::stream_restarted) {
+            finish_stream(origin_us);  // the old stream ends: its tail settles, its action ends
             if (window_rule_) matcher_.reset();
             segmenter_.reset();
             has_window_ = false;
@@ -158,6 +181,7 @@ public:
         }
         emit(encoded.previous, encoded.from_previous, result);
         emit(encoded.current, encoded.from_current, result);
+        result.events = static_cast<std::uint32_t>(events_.event_count());
         return result;
     }
 
@@ -193,6 +217,14 @@ public:
     LabelId provisional_label(std::uint64_t character) const noexcept {
         return segmenter_.provisional_label(character);
     }
+    /// Action events of the last push_frame() or flush() (i < FrameResult::events).
+    std::size_t event_count() const noexcept { return events_.event_count(); }
+    const ActionEvent& event(std::size_t i) const noexcept { return events_.event(i); }
+    /// Events dropped because one frame produced more than ActionEventTracker::max_events.
+    std::uint32_t events_dropped() const noexcept { return events_.dropped(); }
+    /// Whether an action event has started and not yet ended.
+    bool in_action() const noexcept { return events_.in_action(); }
+
     /// Characters between a character and its settled label.
     std::uint32_t settle_chars() const noexcept { return segmenter_.settle_chars(); }
     /// Time of a character's tick (any character of the current stream).
@@ -211,7 +243,14 @@ private:
             const std::uint64_t index = pushed_++;
             last_character_ = character;
             ++result.characters;
-            if (segmenter_.push(character)) ++result.characters_settled;
+            const bool settled = segmenter_.push(character);
+            live_[index % live_ring_] = segmenter_.live_label();
+            if (settled) {
+                ++result.characters_settled;
+                const std::uint64_t s = segmenter_.settled_character();
+                const LabelId label = segmenter_.settled_label();
+                events_.settle(s, label, live_[s % live_ring_] == label, encoder_.tick_time_us(s));
+            }
             if (!window_rule_ || !matcher_.push(character)) continue;
             ++result.windows_completed;
             has_window_ = true;
@@ -223,11 +262,36 @@ private:
         }
     }
 
+    // The unsettled tail of a stream (whose character 0 ticked at origin_us)
+    // takes its provisional labels, and a running action ends.
+    void finish_stream(std::int64_t origin_us) noexcept {
+        const std::uint64_t first = segmenter_.has_settled() ? segmenter_.settled_character() + 1 : 0;
+        const std::int64_t period = model_->string_period_us;
+        for (std::uint64_t c = first; c < pushed_; ++c) {
+            const LabelId label = segmenter_.provisional_label(c);
+            events_.settle(c, label, live_[c % live_ring_] == label,
+                           static_cast<std::int64_t>(static_cast<std::uint64_t>(origin_us) + c * static_cast<std::uint64_t>(period)));
+        }
+        events_.close();
+    }
+
+    // Forgets the stream but not the events just produced.
+    void clear_stream() noexcept {
+        encoder_.reset();
+        if (window_rule_) matcher_.reset();
+        segmenter_.reset();
+        has_window_ = false;
+        window_ = WindowResult{};
+        last_character_ = 0;
+        pushed_ = 0;
+    }
+
     // One block: the encoder's, the window matcher's (with the window rule)
-    // and the segmenter's storage, each aligned.
+    // and the segmenter's storage, each aligned, and a live label per
+    // character the segmenter remembers (for the events' confidence).
     struct Plan {
         std::size_t encoder = 0, encoder_bytes = 0, matcher = 0, matcher_bytes = 0, segmenter = 0,
-                    segmenter_bytes = 0, bytes = 0;
+                    segmenter_bytes = 0, live = 0, live_count = 0, bytes = 0;
     };
     static constexpr Plan plan(const ModelView& model, const AnnotatorConfig& config) noexcept {
         Plan p;
@@ -238,6 +302,8 @@ private:
         p.encoder = layout.add<unsigned char>(p.encoder_bytes);
         p.matcher = layout.add<unsigned char>(p.matcher_bytes);
         p.segmenter = layout.add<unsigned char>(p.segmenter_bytes);
+        p.live_count = ActionSegmenter::settled_history(model, config.segmenter);
+        p.live = layout.add<LabelId>(p.live_count);
         p.bytes = p.encoder_bytes == unsatisfiable_bytes || p.matcher_bytes == unsatisfiable_bytes ||
                           p.segmenter_bytes == unsatisfiable_bytes
                       ? unsatisfiable_bytes
@@ -252,6 +318,10 @@ private:
     ActionSegmenter segmenter_;
     bool window_rule_ = false;
     std::uint64_t pushed_ = 0;
+    ActionEventTracker events_;
+    LabelId* live_ = nullptr;  // live label of each remembered character, by index mod live_ring_
+    std::size_t live_ring_ = 1;
+    std::uint32_t min_action_chars_ = 1;
     bool has_window_ = false;
     WindowResult window_;
     Character last_character_ = 0;

@@ -202,6 +202,10 @@ public:
     }
     /// How many settled labels settled_label(index) remembers.
     std::size_t settled_history() const noexcept { return ring_size_; }
+    /// settled_history() for a model and settings, before init() (0 for settings check() refuses).
+    static constexpr std::size_t settled_history(const ModelView& model, const SegmenterConfig& config) noexcept {
+        return plan(model, config).ring_size;
+    }
     /// What the current best explanation says of a character that is not yet
     /// settled (index within the last settle_chars() + 1): to flush the end of
     /// a stream. Returns unknown_label for other indices.

@@ -86,6 +86,7 @@ AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) 
     config.max_gap_us = c->max_gap_us;
     config.max_backward_us = c->max_backward_us;
     config.window_rule = c->window_rule != 0;
+    config.min_action_us = c->min_action_us;
     config.segmenter.settle_delay_us = c->online.settle_delay_us;
     config.segmenter.segment_penalty = c->online.segment_penalty;
     config.segmenter.stay_penalty = c->online.stay_penalty;
@@ -99,7 +100,8 @@ bool config_ok(const ModelView& model, const AnnotatorConfig& config) {
     return actionstring::ActionSegmenter::check(model, config.segmenter) == Status::ok &&
            actionstring::StringSampler::settings_ok(model.string_period_us, config.max_gap_us,
                                                     config.max_backward_us) &&
-           Annotator::required_bytes(model, config) != actionstring::unsatisfiable_bytes;
+           Annotator::required_bytes(model, config) != actionstring::unsatisfiable_bytes &&
+           config.min_action_us >= 0 && config.min_action_us <= actionstring::max_settle_delay_us;
 }
 
 void set_model(actionstring_model* handle, const ModelView& view, const char* checksum) {
@@ -176,6 +178,7 @@ actionstring_status actionstring_default_config(const actionstring_model* handle
     config->max_gap_us = c.max_gap_us;
     config->max_backward_us = c.max_backward_us;
     config->window_rule = c.window_rule ? 1 : 0;
+    config->min_action_us = c.min_action_us;
     return ACTIONSTRING_OK;
 }
 
@@ -218,7 +221,7 @@ actionstring_status actionstring_init(const actionstring_model* handle, const ac
 
 actionstring_status actionstring_push_frame(actionstring_state* handle, int64_t time_us, const float* positions,
                                             size_t position_count, actionstring_frame_result* result) {
-    actionstring_frame_result out{ACTIONSTRING_OK, 0, 0, 0};
+    actionstring_frame_result out{ACTIONSTRING_OK, 0, 0, 0, 0};
     State* state = live(handle);
     if (state == nullptr) out.status = ACTIONSTRING_NOT_INITIALIZED;
     else if (positions == nullptr || position_count != static_cast<size_t>(state->model->view.joint_count) * 3u)
@@ -229,9 +232,34 @@ actionstring_status actionstring_push_frame(actionstring_state* handle, int64_t 
         out.characters = frame.characters;
         out.windows_completed = frame.windows_completed;
         out.characters_settled = frame.characters_settled;
+        out.events = frame.events;
     }
     if (result != nullptr) *result = out;
     return out.status;
+}
+
+actionstring_status actionstring_event_at(const actionstring_state* handle, uint32_t index, actionstring_event* event) {
+    const State* state = live(handle);
+    if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    if (event == nullptr || index >= state->annotator.event_count()) return ACTIONSTRING_INVALID_ARGUMENT;
+    const actionstring::ActionEvent& e = state->annotator.event(index);
+    event->started = e.kind == actionstring::ActionEvent::Kind::started ? 1 : 0;
+    event->label = static_cast<int32_t>(e.label);
+    event->start_time_us = e.start_time_us;
+    event->end_time_us = e.end_time_us;
+    event->first_character = static_cast<int64_t>(e.first_character);
+    event->last_character = static_cast<int64_t>(e.last_character);
+    event->confidence = e.confidence;
+    return ACTIONSTRING_OK;
+}
+
+actionstring_status actionstring_flush(actionstring_state* handle, uint32_t* events) {
+    State* state = live(handle);
+    if (events != nullptr) *events = 0;
+    if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    const std::uint32_t count = state->annotator.flush();
+    if (events != nullptr) *events = count;
+    return ACTIONSTRING_OK;
 }
 
 actionstring_status actionstring_reset(actionstring_state* handle) {

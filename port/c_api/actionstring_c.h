@@ -82,6 +82,7 @@ typedef struct actionstring_config {
     int64_t max_gap_us;      /**< a longer gap between accepted frames restarts the stream (default 1 s) */
     int64_t max_backward_us; /**< a frame this much earlier than the last is rejected as jitter (100 ms) */
     int32_t window_rule;     /**< nonzero: also run the paper's window rule (actionstring_label()); default 0 */
+    int64_t min_action_us;   /**< events: a shorter action is flicker and not reported (250 ms) */
 } actionstring_config;
 
 /** What one actionstring_push_frame() did. */
@@ -90,7 +91,20 @@ typedef struct actionstring_frame_result {
     uint32_t characters;         /**< characters appended to the action string */
     uint32_t windows_completed;  /**< windows that completed (with the window rule) */
     uint32_t characters_settled; /**< characters whose final label the segmenter decided */
+    uint32_t events;             /**< action events this frame produced (actionstring_event()) */
 } actionstring_frame_result;
+
+/** An action event: each detected action is reported once when it starts and
+ *  once when it ends (runs shorter than config.min_action_us are not reported). */
+typedef struct actionstring_event {
+    int32_t started;          /**< 1: the action started; 0: it ended */
+    int32_t label;            /**< label index */
+    int64_t start_time_us;    /**< time of its first character, on the frames' clock */
+    int64_t end_time_us;      /**< time of its last character (so far, for a start) */
+    int64_t first_character;  /**< stream index of its first character */
+    int64_t last_character;
+    float confidence;         /**< share of its characters whose live label already said this label */
+} actionstring_event;
 
 /* ---- models ------------------------------------------------------------------------ */
 
@@ -138,6 +152,15 @@ ACTIONSTRING_C_API actionstring_status actionstring_init(const actionstring_mode
 ACTIONSTRING_C_API actionstring_status actionstring_push_frame(actionstring_state* state, int64_t time_us,
                                                                const float* positions, size_t position_count,
                                                                actionstring_frame_result* result);
+
+/** Event `index` (< result.events) of the last push_frame() or flush(); INVALID_ARGUMENT
+ *  when there is no such event, NOT_INITIALIZED for a bad state. */
+ACTIONSTRING_C_API actionstring_status actionstring_event_at(const actionstring_state* state, uint32_t index,
+                                                             actionstring_event* event);
+/** Ends the stream: characters not settled yet take their labels and a running action
+ *  ends; *events (if not NULL) receives how many events that made (read them with
+ *  actionstring_event_at()). The next frame starts a new stream. */
+ACTIONSTRING_C_API actionstring_status actionstring_flush(actionstring_state* state, uint32_t* events);
 
 /** Forgets the stream (string, windows, label); the model stays bound. */
 ACTIONSTRING_C_API actionstring_status actionstring_reset(actionstring_state* state);

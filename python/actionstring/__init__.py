@@ -228,7 +228,11 @@ class Annotator:
     ``stream_restarted`` or why the frame was rejected: ``non_finite_input``,
     ``tracking_lost``, ...), ``accepted``, ``characters``, ``settled`` (a list of
     (character, time_s, label) for every character whose label became final with
-    this frame; label None for no action) and ``live_label`` (the newest guess).
+    this frame; label None for no action), ``live_label`` (the newest guess) and
+    ``events``: each action once when it starts and once when it ends (dicts
+    with ``event``, ``label``, ``start``, ``end`` in seconds and ``confidence``;
+    an action shorter than ``min_action`` seconds, 0.25 by default, is flicker
+    and never reported). ``flush()`` ends the stream and returns the last events.
     Online settings (``settle``, ``segment_penalty``, ``unknown_cost``, ...)
     override the model's own; ``window_rule=True`` also runs the paper's rule
     (``label``, ``confidence``).
@@ -240,6 +244,11 @@ class Annotator:
 
     def push_frame(self, time_s: float, positions: np.ndarray) -> Dict[str, Any]:
         return self._native.push_frame(float(time_s), positions)
+
+    def flush(self) -> List[Dict[str, Any]]:
+        """Ends the stream: characters not yet settled take their labels, a running
+        action ends; returns those events. The next frame starts a new stream."""
+        return list(self._native.flush())
 
     def reset(self) -> None:
         """Starts another stream."""

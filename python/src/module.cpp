@@ -204,10 +204,11 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
         if (key == "window_rule") config.window_rule = item.second.cast<bool>();
         else if (key == "max_gap") config.max_gap_us = std::llround(item.second.cast<double>() * 1e6);
         else if (key == "max_backward") config.max_backward_us = std::llround(item.second.cast<double>() * 1e6);
+        else if (key == "min_action") config.min_action_us = std::llround(item.second.cast<double>() * 1e6);
         else if (!host::apply_segmenter_setting(setting_name(key), setting_value(item.second), config.segmenter))
             throw py::value_error("unknown online setting '" + key +
                                   "' (settle, segment_penalty, stay_penalty, skip_penalty, unknown_cost, "
-                                  "window_rule, max_gap, max_backward)");
+                                  "window_rule, max_gap, max_backward, min_action)");
     }
     return config;
 }
@@ -277,6 +278,7 @@ public:
                                               label_object(*model_, annotator_->settled_label(c))));
         }
         py::dict out;
+        out["events"] = events();
         out["status"] = status_name(r.status);
         out["accepted"] = r.status == Status::ok || r.status == Status::stream_restarted;
         out["characters"] = r.characters;
@@ -284,6 +286,12 @@ public:
         out["settled"] = settled;
         out["live_label"] = label_object(*model_, annotator_->live_label());
         return out;
+    }
+
+    /// Ends the stream: the unsettled tail takes its labels, a running action ends.
+    py::list flush() {
+        annotator_->flush();
+        return events();
     }
 
     void reset() { annotator_->reset(); }
@@ -296,6 +304,22 @@ public:
     ModelPtr model() const { return model_; }
 
 private:
+    // The events of the last push_frame() or flush(), as dicts.
+    py::list events() const {
+        py::list out;
+        for (std::size_t i = 0; i < annotator_->event_count(); ++i) {
+            const ActionEvent& e = annotator_->event(i);
+            py::dict d;
+            d["event"] = e.kind == ActionEvent::Kind::started ? "started" : "ended";
+            d["label"] = model_->label_names[e.label];
+            d["start"] = static_cast<double>(e.start_time_us) * 1e-6;
+            d["end"] = static_cast<double>(e.end_time_us) * 1e-6;
+            d["confidence"] = e.confidence;
+            out.append(d);
+        }
+        return out;
+    }
+
     ModelPtr model_;
     ModelView view_;
     AnnotatorConfig config_;
@@ -451,6 +475,7 @@ PYBIND11_MODULE(_actionstring, m) {
         .def(py::init<ModelPtr, const py::dict&>())
         .def("push_frame", &StreamAnnotator::push_frame, py::arg("time_s"), py::arg("positions"))
         .def("reset", &StreamAnnotator::reset)
+        .def("flush", &StreamAnnotator::flush)
         .def_property_readonly("live_label", &StreamAnnotator::live_label)
         .def_property_readonly("label", &StreamAnnotator::label)
         .def_property_readonly("confidence", &StreamAnnotator::confidence)

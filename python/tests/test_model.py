@@ -96,3 +96,24 @@ def test_annotate_equals_the_cli(hdm05, cli, hdm05_model):
     got = model.annotate(actionstring.read_clip(amc, skeleton=str(asf)))
     assert got == expected["segments"]
     assert got[-1]["label"] == "squat1Reps"
+
+
+def test_streamed_events_equal_annotate_events(hdm05, cli, hdm05_model):
+    folder, _ = hdm05_model
+    amc = hdm05 / "val/squat1Reps/HDM_mm_squat1Reps_037_120.amc"
+    asf = hdm05 / "asf/HDM_mm.asf"
+    lines = run_cli(cli, "annotate", "--model", folder / "cli.model", amc, "--skeleton", asf, "--events")
+    expected = [json.loads(line) for line in lines.splitlines()]
+    model = actionstring.Model.load(folder / "cli.model")
+    clip = actionstring.read_clip(amc, skeleton=str(asf))
+    annotator = actionstring.Annotator(model)
+    got = []
+    for time_s, frame in zip(clip.times, clip.positions):
+        got += annotator.push_frame(time_s, frame)["events"]
+    got += annotator.flush()
+    assert [(e["event"], e["label"]) for e in got] == [(e["event"], e["label"]) for e in expected]
+    for a, b in zip(got, expected):
+        assert a["start"] == pytest.approx(b["start"], abs=1e-9)
+        assert a["end"] == pytest.approx(b["end"], abs=1e-9)
+        assert a["confidence"] == pytest.approx(b["confidence"], rel=1e-6)
+    assert expected[0]["label"] == "squat1Reps"

@@ -65,3 +65,18 @@ def test_online_settings_are_checked(toy_model):
     with pytest.raises(ValueError, match="option --segment-penalty expects"):
         actionstring.Annotator(toy_model, segment_penalty=-1)
     assert actionstring.Annotator(toy_model, settle=8.0).state_bytes > actionstring.Annotator(toy_model).state_bytes
+
+
+def test_events_once_per_action_and_the_flush(toy_model, toy_clips):
+    """Each action of a stream starts and ends once; the flush ends the last one."""
+    clip = toy_clips[1]
+    annotator = actionstring.Annotator(toy_model, settle=0.5)
+    events = []
+    for time_s, frame in zip(clip.times, clip.positions):
+        events += annotator.push_frame(time_s, frame)["events"]
+    events += annotator.flush()
+    assert [e["event"] for e in events] == ["started", "ended"]
+    assert {e["label"] for e in events} == {clip.label}
+    assert events[1]["end"] > events[1]["start"]
+    assert annotator.characters == 0
+    assert annotator.flush() == []  # nothing left

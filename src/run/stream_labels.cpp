@@ -109,6 +109,21 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
     return out;
 }
 
+std::vector<ActionEvent> stream_events(const ModelView& model, const Clip& clip, const AnnotatorConfig& config) {
+    require_joint_count(model, clip.joint_count(), clip.source);
+    Stateful<Annotator> annotator;
+    const Status status = annotator.init(model, config);
+    if (status != Status::ok) throw std::invalid_argument(annotator_refusal(model, config, status));
+    std::vector<ActionEvent> events;
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        const FrameResult r = annotator->push_frame(seconds_to_us(clip.times[f]), clip.frame(f));
+        for (std::size_t i = 0; i < r.events; ++i) events.push_back(annotator->event(i));
+    }
+    const std::uint32_t flushed = annotator->flush();
+    for (std::size_t i = 0; i < flushed; ++i) events.push_back(annotator->event(i));
+    return events;
+}
+
 std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip, const AnnotatorConfig& config) {
     const StreamLabels labels = label_stream(model, config, clip.times, clip.positions.data(), clip.joint_count());
     std::vector<LabelSpan> spans;

@@ -54,6 +54,10 @@ struct LabelSpan {
     std::size_t frames = 0;
 };
 
+/// Streams a clip frame by frame through the annotator, flushes it at the
+/// end, and returns every action event in order (started, ended).
+std::vector<ActionEvent> stream_events(const ModelView& model, const Clip& clip, const AnnotatorConfig& config);
+
 /// Streams a clip frame by frame through the annotator and returns the
 /// timeline of settled labels: consecutive frames with the same label form one span.
 std::vector<LabelSpan> annotate_clip(const ModelView& model, const Clip& clip, const AnnotatorConfig& config);

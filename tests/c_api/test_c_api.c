@@ -176,6 +176,25 @@ static void contract_checks(const actionstring_model* model) {
     CHECK(actionstring_settled_label(NULL, 0) == -1);
     CHECK(actionstring_settled_character(NULL) == -1);
 
+    /* Events: pairs, started before ended; the flush ends a running action. */
+    actionstring_event event;
+    CHECK(actionstring_event_at(state, 99, &event) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_event_at(NULL, 0, &event) == ACTIONSTRING_NOT_INITIALIZED);
+    uint32_t flushed = 99;
+    CHECK(actionstring_flush(state, &flushed) == ACTIONSTRING_OK);
+    CHECK(flushed <= 16);
+    for (uint32_t i = 0; i < flushed; ++i) {
+        CHECK(actionstring_event_at(state, i, &event) == ACTIONSTRING_OK);
+        CHECK(event.label >= 0 && event.label < (int32_t)actionstring_model_label_count(model));
+        CHECK(event.end_time_us >= event.start_time_us);
+        CHECK(event.confidence >= 0.0f && event.confidence <= 1.0f);
+    }
+    if (flushed > 0) {
+        CHECK(actionstring_event_at(state, flushed - 1, &event) == ACTIONSTRING_OK);
+        CHECK(event.started == 0); /* the last event of a flush ends the action */
+    }
+    CHECK(actionstring_flush(NULL, &flushed) == ACTIONSTRING_NOT_INITIALIZED && flushed == 0);
+
     CHECK(actionstring_reset(state) == ACTIONSTRING_OK);
     CHECK(actionstring_label(state) == -1);
     CHECK(actionstring_live_label(state) == -1);
@@ -236,12 +255,14 @@ static void blob_checks(const char* const* paths, int count) {
         CHECK(actionstring_model_from_blob(blobs[0], sizes[0] - 16, &damaged) == ACTIONSTRING_INVALID_MODEL);
     }
     /* Every state fed at once, each with its own model's skeleton. */
-    uint32_t labelled[kMaxBlobs] = {0};
+    uint32_t labelled[kMaxBlobs] = {0}, events[kMaxBlobs] = {0};
     for (int f = 0; f < 900; ++f)
         for (int b = 0; b < count; ++b) {
             const uint32_t joints = actionstring_model_joint_count(&models[b]);
             synthetic_frame(joints, f + 37 * b, frame);
-            CHECK(actionstring_push_frame(states[b], (int64_t)f * 16667, frame, 3 * joints, NULL) == ACTIONSTRING_OK);
+            actionstring_frame_result result;
+            CHECK(actionstring_push_frame(states[b], (int64_t)f * 16667, frame, 3 * joints, &result) == ACTIONSTRING_OK);
+            events[b] += result.events;
             const int32_t live = actionstring_live_label(states[b]);
             CHECK(live >= -1 && live < (int32_t)actionstring_model_label_count(&models[b]));
             if (live >= 0) ++labelled[b];
@@ -252,6 +273,10 @@ static void blob_checks(const char* const* paths, int count) {
                       ACTIONSTRING_INVALID_ARGUMENT);
         }
     for (int b = 0; b < count; ++b) {
+        uint32_t flushed = 0;
+        CHECK(actionstring_flush(states[b], &flushed) == ACTIONSTRING_OK);
+        events[b] += flushed;
+        CHECK(events[b] >= 2 && events[b] % 2 == 0); /* whole actions: a start and an end each */
         CHECK(labelled[b] > 0);
         CHECK(actionstring_state_model(states[b]) == &models[b]);
         printf("blob %s: %u joints, %u labels, state %zu bytes, live label on %u of 900 frames\n", paths[b],
