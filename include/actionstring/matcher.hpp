@@ -79,8 +79,13 @@ public:
         if (model_ == nullptr || character >= model_->character_count) return false;
         const ModelView& m = *model_;
         if (pushed_ % m.step_chars == 0) open_window(static_cast<std::size_t>((pushed_ / m.step_chars) % lanes_));
-        if (track_paths_) advance<true>(character);
-        else advance<false>(character);
+        // The lane count as a compile-time constant for the usual windows
+        // (4 or 8 steps), so the lanes sit in SIMD registers; any other
+        // count takes the same code with a run-time count.
+        if (track_paths_) advance<true, 0>(character);
+        else if (lanes_ == 4) advance<false, 4>(character);
+        else if (lanes_ == 8) advance<false, 8>(character);
+        else advance<false, 0>(character);
         bool completed = false;
         for (std::size_t lane = 0; lane < lanes_; ++lane) {
             Window& window = windows_[lane];
@@ -169,7 +174,7 @@ private:
         }
     }
 
-    template <bool Paths>
+    template <bool Paths, std::size_t Lanes>
     void advance(Character c) noexcept {
         const ModelView& m = *model_;
         const CharacterWeights w = character_weights(m);
@@ -186,16 +191,16 @@ private:
                         store(base + i, lane, detail::dp_col0(m.variant, w(rep[i - 1], c)));
                 }
             }
-            if (window_is_a1(r)) advance_row<Paths>(base, rep, len, c, w);
-            else advance_column<Paths>(r, base, rep, len, c, w);
+            if (window_is_a1(r)) advance_row<Paths, Lanes>(base, rep, len, c, w);
+            else advance_column<Paths, Lanes>(r, base, rep, len, c, w);
         }
     }
 
     // The incoming character is row i of a window that is A1; the stored row holds D[i−1][·].
-    template <bool Paths>
+    template <bool Paths, std::size_t Lanes>
     void advance_row(std::size_t base, const Character* rep, std::size_t len, Character c,
                      CharacterWeights w) noexcept {
-        const std::size_t lanes = lanes_;
+        const std::size_t lanes = Lanes != 0 ? Lanes : lanes_;
         const detail::Cell boundary = detail::dp_col0(model_->variant, w(c, rep[0]));
         if (Paths) {
             detail::Cell* diagonal = lane_cells_;
@@ -216,8 +221,11 @@ private:
             }
             return;
         }
-        float* diagonal = lane_costs_;
-        float* left = lane_costs_ + lanes;
+        // Local arrays when the lane count is known: they cannot alias the
+        // cells, so the compiler keeps them in registers.
+        float local_diagonal[Lanes != 0 ? Lanes : 1], local_left[Lanes != 0 ? Lanes : 1];
+        float* diagonal = Lanes != 0 ? local_diagonal : lane_costs_;
+        float* left = Lanes != 0 ? local_left : lane_costs_ + lanes;
         float* first = costs_ + base * lanes;
         for (std::size_t lane = 0; lane < lanes; ++lane) {
             diagonal[lane] = first[lane];
@@ -237,10 +245,10 @@ private:
     }
 
     // The incoming character is column j of a window that is A2; the stored column holds D[·][j−1].
-    template <bool Paths>
+    template <bool Paths, std::size_t Lanes>
     void advance_column(std::size_t r, std::size_t base, const Character* rep, std::size_t len, Character c,
                         CharacterWeights w) noexcept {
-        const std::size_t lanes = lanes_;
+        const std::size_t lanes = Lanes != 0 ? Lanes : lanes_;
         const ModelView& m = *model_;
         const detail::Cell boundary = detail::dp_row0(m.variant);
         const bool subsequence = m.variant == MatchVariant::subsequence;
@@ -265,8 +273,9 @@ private:
                 for (std::size_t lane = 0; lane < lanes; ++lane) track_best(r, lane, above[lane]);
             return;
         }
-        float* diagonal = lane_costs_;
-        float* above = lane_costs_ + lanes;
+        float local_diagonal[Lanes != 0 ? Lanes : 1], local_above[Lanes != 0 ? Lanes : 1];
+        float* diagonal = Lanes != 0 ? local_diagonal : lane_costs_;
+        float* above = Lanes != 0 ? local_above : lane_costs_ + lanes;
         float* first = costs_ + base * lanes;
         for (std::size_t lane = 0; lane < lanes; ++lane) {
             diagonal[lane] = first[lane];
