@@ -55,8 +55,15 @@ void print_online(const char* rule, const host::OnlineResults& r) {
     std::printf("  %-28s frame accuracy %.3f", rule, r.frame_accuracy);
     if (r.no_action_frames > 0)
         std::printf(" (in actions %.3f, no action %.3f)", r.action_frame_accuracy, r.no_action_accuracy);
-    std::printf(", segment F1 %.3f (P %.3f, R %.3f), mean delay %.2f s, %d missed, flicker %.1f/min\n", r.segment_f1,
-                r.segment_precision, r.segment_recall, r.mean_delay_s, r.missed_segments, r.flicker_per_min);
+    std::printf(", frame F1 %.3f, segment F1 %.3f (P %.3f, R %.3f), mean delay %.2f s, %d missed, flicker %.1f/min\n",
+                r.frame_f1, r.segment_f1, r.segment_precision, r.segment_recall, r.mean_delay_s, r.missed_segments,
+                r.flicker_per_min);
+    if (r.has_events)
+        std::printf("  %-28s %zu actions reported, %zu matched (event F1 %.3f), detection latency %.2f s,\n"
+                    "  %-28s start error %.2f s, end error %.2f s, %.2f false events per %s\n",
+                    "  events (once per action)", r.events, r.matched_events, r.event_f1, r.detection_latency_s, "",
+                    r.start_error_s, r.end_error_s, r.false_events_per_min,
+                    r.false_events_per_stream_min ? "minute of stream" : "minute of no action");
 }
 
 void print_results(const host::ClipResults& r) {
@@ -104,6 +111,8 @@ void print_evaluation(const Evaluation& e, const std::string& clips_path, std::u
         else
             std::printf("\nonline: clips concatenated per subject (seed %u), %zu frames, %.1f true label changes/min\n",
                         seed, stream.frames, stream.true_changes_per_min);
+        std::printf("  %-28s frame accuracy %.3f\n", "baseline: unknown everywhere",
+                    e.online_report.settled.unknown_everywhere_accuracy);
         print_online("segmenter, settled labels", e.online_report.settled);
         print_online("segmenter, live labels", e.online_report.live);
         print_online("paper: latest window wins", e.online_report.window);

@@ -190,3 +190,47 @@ TEST_CASE("annotate_clip returns a contiguous label timeline covering the clip")
     CHECK(frames_covered == clip.frame_count());
     CHECK(spans.size() >= 4);  // the four actions show up
 }
+
+TEST_CASE("frame F1, the trivial baseline and the event metrics on a timeline scored by hand") {
+    // 20 frames at 1 s: no action, action 0 (frames 4-9), no action, action 1 (14-17), no action.
+    std::vector<int> truth(20, unknown_frame);
+    for (int f = 4; f < 10; ++f) truth[static_cast<std::size_t>(f)] = 0;
+    for (int f = 14; f < 18; ++f) truth[static_cast<std::size_t>(f)] = 1;
+    std::vector<int> predicted(20, unknown_frame);
+    for (int f = 5; f < 10; ++f) predicted[static_cast<std::size_t>(f)] = 0;  // 5 of 6 frames of action 0
+    predicted[12] = 1;                                                        // a false alarm
+    std::vector<double> times;
+    for (int f = 0; f < 20; ++f) times.push_back(f);
+    const std::vector<std::size_t> starts{0, 20};
+    host::OnlineResults r = host::score_timeline(truth, predicted, times, starts);
+    CHECK(r.unknown_everywhere_accuracy == doctest::Approx(10.0 / 20.0));
+    // Class 0: TP 5, FN 1, FP 0 → F1 10/11. Class 1: TP 0, FP 1, FN 4 → 0.
+    CHECK(r.frame_f1 == doctest::Approx((10.0 / 11.0 + 0.0) / 2.0));
+
+    // Events: action 0 reported at 5-9 (reported at 7 s), a false action 1 at 11-12, action 1 missed.
+    auto event = [](ActionEvent::Kind kind, LabelId label, double start, double end, double reported) {
+        ActionEvent e;
+        e.kind = kind;
+        e.label = label;
+        e.start_time_us = static_cast<std::int64_t>(start * 1e6);
+        e.end_time_us = static_cast<std::int64_t>(end * 1e6);
+        return host::ReportedEvent{e, reported};
+    };
+    const std::vector<std::vector<host::ReportedEvent>> events{{
+        event(ActionEvent::Kind::started, 0, 5, 6, 7),
+        event(ActionEvent::Kind::ended, 0, 5, 9, 11),
+        event(ActionEvent::Kind::started, 1, 11, 12, 13),
+        event(ActionEvent::Kind::ended, 1, 11, 12, 14),
+    }};
+    host::score_events(r, truth, times, starts, events);
+    CHECK(r.events == 2);
+    CHECK(r.matched_events == 1);
+    CHECK(r.event_precision == doctest::Approx(0.5));
+    CHECK(r.event_recall == doctest::Approx(0.5));
+    CHECK(r.detection_latency_s == doctest::Approx(3.0));  // true start 4 s, reported at 7 s
+    CHECK(r.start_error_s == doctest::Approx(1.0));
+    CHECK(r.end_error_s == doctest::Approx(0.0));
+    // One false event in 9 s of no action (frame steps whose first frame is no action).
+    CHECK_FALSE(r.false_events_per_stream_min);
+    CHECK(r.false_events_per_min == doctest::Approx(60.0 / 9.0));
+}

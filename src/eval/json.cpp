@@ -45,7 +45,24 @@ void write_json(JsonWriter& out, const OnlineResults& r) {
         .field("flicker_per_min", r.flicker_per_min)
         .field("label_changes_per_min", r.label_changes_per_min)
         .field("true_changes_per_min", r.true_changes_per_min)
-        .end_object();
+        .field("frame_f1", r.frame_f1)
+        .field("unknown_everywhere_accuracy", r.unknown_everywhere_accuracy);
+    if (r.has_events) {
+        out.key("events")
+            .begin_object()
+            .field("reported", r.events)
+            .field("matched", r.matched_events)
+            .field("precision", r.event_precision)
+            .field("recall", r.event_recall)
+            .field("f1", r.event_f1)
+            .field("detection_latency_s", r.detection_latency_s)
+            .field("start_error_s", r.start_error_s)
+            .field("end_error_s", r.end_error_s)
+            .field("false_events_per_min", r.false_events_per_min)
+            .field("false_events_per", r.false_events_per_stream_min ? "minute of stream" : "minute of no action")
+            .end_object();
+    }
+    out.end_object();
 }
 
 }  // namespace host

@@ -2,6 +2,8 @@
 #include "eval/online.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <map>
 #include <random>
 
@@ -104,12 +106,103 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
                        ? 2 * r.segment_precision * r.segment_recall / (r.segment_precision + r.segment_recall)
                        : 0.0;
     r.mean_delay_s = found > 0 ? delay_sum / found : 0.0;
+    r.unknown_everywhere_accuracy = static_cast<double>(no_action) / static_cast<double>(r.frames);
+    // Frame F1 per action class present in the truth, then their mean.
+    std::map<int, std::array<std::size_t, 3>> counts;  // label → true positives, false positives, false negatives
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+        if (truth[i] >= 0) counts[truth[i]];
+    }
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+        if (truth[i] >= 0 && predicted[i] == truth[i]) ++counts[truth[i]][0];
+        else {
+            if (predicted[i] >= 0 && counts.count(predicted[i]) > 0) ++counts[predicted[i]][1];
+            if (truth[i] >= 0) ++counts[truth[i]][2];
+        }
+    }
+    double f1_sum = 0;
+    for (const auto& [label, c] : counts) {
+        const double denominator = static_cast<double>(2 * c[0] + c[1] + c[2]);
+        f1_sum += denominator > 0 ? 2.0 * static_cast<double>(c[0]) / denominator : 0.0;
+    }
+    r.frame_f1 = counts.empty() ? 0.0 : f1_sum / static_cast<double>(counts.size());
     if (minutes > 0) {
         r.label_changes_per_min = predicted_changes / minutes;
         r.true_changes_per_min = true_changes / minutes;
         r.flicker_per_min = std::max(0.0, r.label_changes_per_min - r.true_changes_per_min);
     }
     return r;
+}
+
+void score_events(OnlineResults& r, const std::vector<int>& truth, const std::vector<double>& times,
+                  const std::vector<std::size_t>& stream_starts,
+                  const std::vector<std::vector<ReportedEvent>>& stream_events) {
+    r.has_events = true;
+    struct Action {
+        int label;
+        double start_s, end_s, reported_s;
+        bool used = false;
+    };
+    std::size_t true_actions = 0, matched = 0, reported = 0;
+    double latency = 0, start_error = 0, end_error = 0, no_action_s = 0, stream_s = 0;
+    for (std::size_t s = 0; s + 1 < stream_starts.size() && s < stream_events.size(); ++s) {
+        const std::size_t begin = stream_starts[s], end = stream_starts[s + 1];
+        if (end <= begin) continue;
+        // Reported actions: each started event with the end its ended event gives.
+        std::vector<Action> actions;
+        for (const ReportedEvent& e : stream_events[s]) {
+            const double start = us_to_seconds(e.event.start_time_us), stop = us_to_seconds(e.event.end_time_us);
+            if (e.event.kind == ActionEvent::Kind::started) {
+                actions.push_back({static_cast<int>(e.event.label), start, stop, e.reported_s});
+            } else {
+                for (auto a = actions.rbegin(); a != actions.rend(); ++a)
+                    if (a->label == static_cast<int>(e.event.label) && a->start_s == start) {
+                        a->end_s = stop;
+                        break;
+                    }
+            }
+        }
+        reported += actions.size();
+        for (std::size_t i = begin; i + 1 < end; ++i) {
+            const double step = times[i + 1] - times[i];
+            stream_s += step;
+            if (truth[i] == unknown_frame) no_action_s += step;
+        }
+        // True actions: runs of one label.
+        for (std::size_t i = begin; i < end;) {
+            std::size_t j = i;
+            while (j < end && truth[j] == truth[i]) ++j;
+            if (truth[i] >= 0) {
+                ++true_actions;
+                const double t_begin = times[i], t_end = times[j - 1];
+                for (Action& a : actions) {
+                    if (a.used || a.label != truth[i] || a.start_s > t_end || a.end_s < t_begin) continue;
+                    a.used = true;
+                    ++matched;
+                    latency += a.reported_s - t_begin;
+                    start_error += std::fabs(a.start_s - t_begin);
+                    end_error += std::fabs(a.end_s - t_end);
+                    break;
+                }
+            }
+            i = j;
+        }
+    }
+    r.events = reported;
+    r.matched_events = matched;
+    r.event_precision = reported > 0 ? static_cast<double>(matched) / static_cast<double>(reported) : 0.0;
+    r.event_recall = true_actions > 0 ? static_cast<double>(matched) / static_cast<double>(true_actions) : 0.0;
+    r.event_f1 = r.event_precision + r.event_recall > 0
+                     ? 2 * r.event_precision * r.event_recall / (r.event_precision + r.event_recall)
+                     : 0.0;
+    if (matched > 0) {
+        r.detection_latency_s = latency / static_cast<double>(matched);
+        r.start_error_s = start_error / static_cast<double>(matched);
+        r.end_error_s = end_error / static_cast<double>(matched);
+    }
+    const std::size_t false_events = reported - matched;
+    r.false_events_per_stream_min = no_action_s <= 0.0;
+    const double minutes = (r.false_events_per_stream_min ? stream_s : no_action_s) / 60.0;
+    r.false_events_per_min = minutes > 0 ? static_cast<double>(false_events) / minutes : 0.0;
 }
 
 namespace {
@@ -119,6 +212,7 @@ struct PooledTimelines {
     std::vector<int> truth, window, live, settled;
     std::vector<double> times, settled_at;
     std::vector<std::size_t> stream_starts;
+    std::vector<std::vector<ReportedEvent>> events;
 
     void add(const StreamTimeline& timeline) {
         stream_starts.push_back(truth.size());
@@ -128,10 +222,12 @@ struct PooledTimelines {
         live.insert(live.end(), timeline.labels.live.begin(), timeline.labels.live.end());
         settled.insert(settled.end(), timeline.labels.settled.begin(), timeline.labels.settled.end());
         settled_at.insert(settled_at.end(), timeline.labels.settled_at_s.begin(), timeline.labels.settled_at_s.end());
+        events.push_back(timeline.labels.events);
     }
     void score(OnlineReport& report) {
         stream_starts.push_back(truth.size());
         report.settled = score_timeline(truth, settled, times, stream_starts, &settled_at);
+        score_events(report.settled, truth, times, stream_starts, events);
         report.live = score_timeline(truth, live, times, stream_starts);
         report.window = score_timeline(truth, window, times, stream_starts);
     }
@@ -182,6 +278,7 @@ OnlineReport evaluate_recordings(const ModelView& model, const std::vector<Label
                                  const AnnotatorConfig& config) {
     const std::vector<std::string> names = name_strings(model.label_names, model.label_count);
     OnlineReport report;
+    report.recordings = true;
     PooledTimelines pooled;
     for (const LabelledRecording& recording : recordings) {
         const Clip& clip = recording.clip;

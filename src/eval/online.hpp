@@ -30,6 +30,25 @@ struct OnlineResults {
     int missed_segments = 0;  ///< True segments never labelled correctly.
     double label_changes_per_min = 0, true_changes_per_min = 0;
     double flicker_per_min = 0;  ///< Label changes per minute beyond the true ones (≥ 0).
+    /// Frame-level F1 over the action classes, macro-averaged over the classes
+    /// present in the truth ("no action" is not a class: an action called
+    /// unknown is a miss, unknown called an action a false alarm).
+    double frame_f1 = 0;
+    /// "Unknown everywhere" on the same frames: its frame accuracy (the share of no-action frames).
+    double unknown_everywhere_accuracy = 0;
+
+    /// From the action events (the settled rule only; zero for the others).
+    bool has_events = false;
+    std::size_t events = 0;          ///< Actions reported (started events).
+    std::size_t matched_events = 0;  ///< Matched one-to-one to a true action of the same label that they overlap.
+    double event_precision = 0, event_recall = 0, event_f1 = 0;
+    double detection_latency_s = 0;  ///< Mean, true start → the matched action's `started` report.
+    double start_error_s = 0;        ///< Mean |reported start − true start| over matched actions.
+    double end_error_s = 0;          ///< Mean |reported end − true end| over matched actions.
+    /// Unmatched actions per minute of no action; per minute of stream when
+    /// the streams have no no-action frames (concatenated clips).
+    double false_events_per_min = 0;
+    bool false_events_per_stream_min = false;  ///< Which of the two minutes divides.
 };
 
 /// Scores a labelled timeline: per frame the true and predicted label (−1
@@ -42,6 +61,13 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
                              const std::vector<double>& times, const std::vector<std::size_t>& stream_starts,
                              const std::vector<double>* emitted = nullptr);
 
+/// Scores action events against the timeline (fills the event fields of
+/// `results`): per stream, each true action (a run of one label) is matched to
+/// the first unmatched reported action of its label that overlaps it in time.
+void score_events(OnlineResults& results, const std::vector<int>& truth, const std::vector<double>& times,
+                  const std::vector<std::size_t>& stream_starts,
+                  const std::vector<std::vector<ReportedEvent>>& stream_events);
+
 /// One evaluated stream, for reports and pictures.
 struct StreamTimeline {
     std::string name;
@@ -52,6 +78,9 @@ struct StreamTimeline {
 
 /// Scores of the three rules on the same streams, and the streams themselves.
 struct OnlineReport {
+    /// Whole continuous recordings (frames outside every interval: no action),
+    /// or clips concatenated per subject.
+    bool recordings = false;
     OnlineResults settled, live, window;
     std::vector<StreamTimeline> streams;
 };

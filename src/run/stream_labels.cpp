@@ -87,6 +87,7 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
                 char_emitted[epoch + c] = now;
             }
         }
+        for (std::size_t i = 0; i < r.events; ++i) out.events.push_back({annotator->event(i), now});
         out.window[f] = frame_label(annotator->label());
         out.live[f] = frame_label(annotator->live_label());
         if (annotator->characters() > 0) frame_char[f] = static_cast<long long>(epoch + annotator->characters() - 1);
@@ -96,6 +97,10 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
          c < annotator->characters(); ++c) {
         char_label[epoch + c] = frame_label(annotator->provisional_label(c));
         char_emitted[epoch + c] = times_s.back();
+    }
+    if (frames > 0) {
+        const std::uint32_t flushed = annotator->flush();  // the same tail, as events
+        for (std::size_t i = 0; i < flushed; ++i) out.events.push_back({annotator->event(i), times_s.back()});
     }
     for (std::size_t f = 0; f < frames; ++f) {
         if (frame_char[f] < 0) {

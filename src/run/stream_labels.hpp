@@ -27,11 +27,18 @@ constexpr int frame_label(LabelId label) noexcept {
 }
 
 /// Per frame, what each online rule of the annotator said.
+/// An action event and when the annotator reported it (the frame's time, in seconds).
+struct ReportedEvent {
+    ActionEvent event;
+    double reported_s = 0;
+};
+
 struct StreamLabels {
     std::vector<int> window;           ///< The paper's rule: the latest window's label, output at the frame.
     std::vector<int> live;             ///< The segmenter's live label, output at the frame.
     std::vector<int> settled;          ///< The segmenter's final label of the frame's character.
     std::vector<double> settled_at_s;  ///< When that final label was output.
+    std::vector<ReportedEvent> events;  ///< Action events, the stream flushed at its end.
 };
 
 /// Why Annotator::init() refused a model and settings with
