@@ -14,6 +14,7 @@
 
 #include "actionstring/annotator.hpp"
 #include "actionstring/blob.hpp"
+#include "fuzz_frames.hpp"
 #include "run/state.hpp"
 
 using namespace actionstring;
@@ -47,15 +48,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const Status init = annotator.init(view, config);
         if (init != Status::ok && init != Status::model_exceeds_capacity) std::abort();
         if (init == Status::ok) {
-            std::vector<float> frame(3u * view.joint_count);
             for (int step = 0; step < 40; ++step) {
-                for (std::size_t j = 0; j < view.joint_count; ++j) {
-                    frame[3 * j + 0] = 0.05f * static_cast<float>(j % 7) + 0.01f * static_cast<float>(step % 13);
-                    frame[3 * j + 1] = 0.8f + 0.03f * static_cast<float>(j % 11);
-                    frame[3 * j + 2] = 0.02f * static_cast<float>(j % 5);
-                }
-                frame[3u * view.left_hip_joint] = 0.15f;
-                frame[3u * view.right_hip_joint] = -0.15f;
+                const std::vector<float> frame = fuzz::frame_for(view, step);
                 annotator->push_frame(static_cast<std::int64_t>(step) * 40000, frame.data());
                 const LabelId label = annotator->label(), live = annotator->live_label();
                 if (label != unknown_label && label >= view.label_count) std::abort();

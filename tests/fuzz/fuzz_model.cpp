@@ -20,6 +20,7 @@
 #include "model/artifact.hpp"
 #include "io/clip.hpp"
 #include "model/header.hpp"
+#include "fuzz_frames.hpp"
 
 using namespace actionstring;
 using namespace actionstring::host;
@@ -30,19 +31,6 @@ std::string with_checksum(const std::string& body) {
     char line[64];
     std::snprintf(line, sizeof line, "checksum fnv1a64 %016" PRIx64 "\n", fnv1a64(body));
     return "actionstring-model " + std::to_string(artifact_version) + "\n" + line + body;
-}
-
-// A standing body of `joints` joints whose hips (the model's roles) are apart.
-std::vector<float> frame_for(const ModelView& model, int step) {
-    std::vector<float> frame(3u * model.joint_count);
-    for (std::size_t j = 0; j < model.joint_count; ++j) {
-        frame[3 * j + 0] = 0.05f * static_cast<float>(j % 7) + 0.01f * static_cast<float>(step % 13);
-        frame[3 * j + 1] = 0.8f + 0.03f * static_cast<float>(j % 11);
-        frame[3 * j + 2] = 0.02f * static_cast<float>(j % 5);
-    }
-    frame[3u * model.left_hip_joint] = 0.15f;
-    frame[3u * model.right_hip_joint] = -0.15f;
-    return frame;
 }
 
 }  // namespace
@@ -69,7 +57,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (status == Status::model_exceeds_capacity) return 0;
     if (status != Status::ok) std::abort();
     for (int step = 0; step < 40; ++step) {
-        const std::vector<float> frame = frame_for(view, step);
+        const std::vector<float> frame = fuzz::frame_for(view, step);
         annotator->push_frame(static_cast<std::int64_t>(step) * 40000, frame.data());
         const LabelId label = annotator->label(), live = annotator->live_label();
         if (label != unknown_label && label >= view.label_count) std::abort();
