@@ -16,7 +16,7 @@ namespace {
 void print_info_usage(std::FILE* out) {
     std::fprintf(out,
                  "usage: actionstring info FILE [--skeleton ASF] [--rate HZ] [--scale M] [--up 0|1|2]\n"
-                 "                         [--roles ROOT,LEFT_HIP,RIGHT_HIP] [--joints]\n"
+                 "                         [--roles ROOT,LEFT_HIP,RIGHT_HIP] [--time-unit s|ms|us] [--joints]\n"
                  "\n"
                  "Reads a motion file (.amc with --skeleton, .asf, .bvh, .csv, Kinect .txt) and\n"
                  "prints its joints, frames, duration, frame rate, bounding box, up axis, joint\n"
@@ -26,6 +26,7 @@ void print_info_usage(std::FILE* out) {
                  "  --scale M       metres per file unit (default: the format's rule)\n"
                  "  --up AXIS       vertical axis 0, 1 or 2 (default: the format's rule)\n"
                  "  --roles R,L,R   joint names for root, left hip and right hip\n"
+                 "  --time-unit U   unit of a CSV's time column (default: its name's, else from the spacing)\n"
                  "  --joints        list every joint with its parent\n");
 }
 }  // namespace
@@ -46,6 +47,7 @@ int run_info(int argc, char** argv) {
         else if (arg == "--scale") options.length_scale = args.number(arg, 1e-9, 1e9);
         else if (arg == "--up") options.up_axis = static_cast<int>(args.number(arg, 0, 2));
         else if (arg == "--roles") options.roles = parse_roles(args, args.value(arg));
+        else if (arg == "--time-unit") options.time_unit_s = parse_time_unit(args, args.value(arg));
         else if (arg == "--joints") list_joints = true;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;
@@ -94,6 +96,7 @@ int run_info(int argc, char** argv) {
         std::printf("file:      %s\njoints:    %zu\nframes:    %zu (%zu lost tracking)\nduration:  %.3f s\n",
                     file.c_str(), clip.joint_count(), frames, lost, duration);
         std::printf("rate:      %.3f Hz (mean)\n", duration > 0 ? static_cast<double>(frames - 1) / duration : 0.0);
+        for (const std::string& note : clip.notes) std::printf("note:      %s\n", note.c_str());
         if (lost < frames)
             std::printf("bounds:    x [%.3f, %.3f]  y [%.3f, %.3f]  z [%.3f, %.3f] m\n", static_cast<double>(low[0]),
                         static_cast<double>(high[0]), static_cast<double>(low[1]), static_cast<double>(high[1]),

@@ -84,6 +84,16 @@ inline host::RoleNames parse_roles(ArgumentReader& args, const std::string& text
     }
 }
 
+/// "s", "ms" or "us" (a message through `args` otherwise).
+inline double parse_time_unit(ArgumentReader& args, const std::string& text) {
+    try {
+        return host::parse_time_unit(text);
+    } catch (const std::invalid_argument& error) {
+        args.error(error.what());
+        return 0.0;
+    }
+}
+
 /// Applies one of the segmenter's settings by name (host::apply_segmenter_setting),
 /// a bad value reported through `args`. Returns false when `name` is not one of them.
 inline bool apply_segmenter_setting(ArgumentReader& args, const std::string& name, const std::string& value,

@@ -270,11 +270,58 @@ TEST_CASE("joint CSV") {
     CHECK(clip.roles.complete());
     CHECK(clip.times[1] == doctest::Approx(0.033));
     check_error([&] { parse_joint_csv("k.csv", "frame,a_x,a_y,a_z\n"); }, 1, "'timestamp'");
-    check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,b_z\n"); }, 1, "name different joints");
-    check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z,a_x,a_y,a_z\n"); }, 1, "duplicate joint 'a'");
+    check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,b_z\n"); }, 1, "found none among 4 columns");
+    check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z,a_x,a_y,a_z\n"); }, 1, "both give the x of joint 'a'");
     check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z\n1,2,3\n"); }, 2, "expected 4 columns");
     check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z\n1,2,3,4\n0.5,2,3,4\n"); }, 3, "earlier");
     check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z\n"); }, 1, "no data rows");
+}
+
+TEST_CASE("joint CSV as tools export it: spellings, separators, extra columns, time units") {
+    // A Kinect recorder's export: CamelCase axes, trailing commas, an id and a label column, milliseconds from 0.
+    const std::string kinect =
+        "Timestamp,HipCenterX,HipCenterY,HipCenterZ,HipLeftX,HipLeftY,HipLeftZ,HipRightX,HipRightY,HipRightZ,User-ID,Action,\n"
+        "0,0,1,2,-0.1,1,2,0.1,1,2,7,wave,\n33,0,1,2,-0.1,1,2,0.1,1,2,7,wave,\n67,0,1,2,-0.1,1,2,0.1,1,2,7,wave,\n";
+    const Clip k = parse_joint_csv("export.csv", kinect);
+    CHECK(k.joint_names == std::vector<std::string>{"HipCenter", "HipLeft", "HipRight"});
+    CHECK(k.roles.complete());
+    CHECK(k.times[1] == doctest::Approx(0.033));  // milliseconds, detected from the spacing
+    REQUIRE(k.notes.size() == 2);
+    CHECK(k.notes[0] == "2 columns ignored: 'User-ID', 'Action'");
+    CHECK(k.notes[1].find("milliseconds") != std::string::npos);
+    // Told the unit is seconds, the 0.03 Hz stream that makes is flagged, not taken silently.
+    ReadOptions seconds;
+    seconds.time_unit_s = 1.0;
+    const Clip slow = parse_joint_csv("export.csv", kinect, seconds);
+    CHECK(slow.times[1] == doctest::Approx(33.0));
+    CHECK(slow.notes.back().find("warning: the median frame spacing gives 0.029") == 0);
+
+    // Semicolons, case-insensitive spellings of one joint, a unit in the time column's name, Azure Kinect roles.
+    const std::string azure =
+        "timestamp_us;PELVIS_X;pelvis_y;Pelvis Z;HIP_LEFT_X;HIP_LEFT_Y;HIP_LEFT_Z;HIP_RIGHT.x;HIP_RIGHT.y;HIP_RIGHT.z\n"
+        "1000000;0;1;2;-0.1;1;2;0.1;1;2\n1033333;0;1;2;-0.1;1;2;0.1;1;2\n";
+    const Clip a = parse_joint_csv("azure.csv", azure);
+    CHECK(a.joint_names == std::vector<std::string>{"PELVIS", "HIP_LEFT", "HIP_RIGHT"});
+    CHECK(a.roles.root == 0);
+    CHECK(a.roles.left_hip == 1);
+    CHECK(a.times[1] - a.times[0] == doctest::Approx(0.033333));
+
+    // Tabs, MediaPipe Pose names (no pelvis: the left hip is the root), seconds.
+    const std::string mediapipe =
+        "time\tleft_hip_x\tleft_hip_y\tleft_hip_z\tright_hip_x\tright_hip_y\tright_hip_z\tnose_x\tnose_y\tnose_z\n"
+        "0.00\t-0.1\t1\t2\t0.1\t1\t2\t0\t1.6\t2\n0.04\t-0.1\t1\t2\t0.1\t1\t2\t0\t1.6\t2\n";
+    const Clip m = parse_joint_csv("pose.tsv", mediapipe);
+    CHECK(m.joint_count() == 3);
+    CHECK(m.roles.root == 0);
+    CHECK(m.roles.right_hip == 1);
+    CHECK(m.notes.empty());
+
+    // No time column: the frame rate gives the times; without one, a clear refusal.
+    ReadOptions rate;
+    rate.frame_rate_hz = 30.0;
+    const Clip r = parse_joint_csv("rate.csv", "a_x,a_y,a_z\n1,2,3\n1,2,3\n", rate);
+    CHECK(r.times[1] == doctest::Approx(1.0 / 30.0));
+    check_error([&] { parse_joint_csv("k.csv", "a_x,a_y,a_z\n1,2,3\n"); }, 1, "expected a time column");
 }
 
 TEST_CASE("clip lists resolve paths against their folder") {

@@ -18,7 +18,9 @@ int Clip::joint_index(std::string_view name) const noexcept {
 
 namespace {
 
-// Built-in role names, tried in order: HDM05/CMU ASF, Kinect v1, Kinect v2, CC_Base rig.
+// Built-in role names, tried in order: HDM05/CMU ASF, Kinect v1, Kinect v2,
+// Azure Kinect, the CC_Base rig, MediaPipe Pose (no pelvis: the left hip
+// stands in as the root, which only moves the origin).
 struct RoleCandidates {
     const char* root;
     const char* left_hip;
@@ -28,8 +30,30 @@ constexpr RoleCandidates kBuiltInRoles[] = {
     {"root", "lhipjoint", "rhipjoint"},
     {"HipCenter", "HipLeft", "HipRight"},
     {"SpineBase", "HipLeft", "HipRight"},
+    {"Pelvis", "HipLeft", "HipRight"},
     {"CC_Base_Hip", "CC_Base_L_Thigh", "CC_Base_R_Thigh"},
+    {"LeftHip", "LeftHip", "RightHip"},
 };
+
+// A joint name as exports spell it differently: lower case, without '_', '-', '.' or spaces.
+std::string spelling_key(std::string_view name) {
+    std::string key;
+    for (const char c : name)
+        if (c != '_' && c != '-' && c != '.' && c != ' ') key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return key;
+}
+
+// Index of the joint spelled like `name` (HIP_LEFT, hip_left, HipLeft), or −1; −1 too when two joints match.
+int joint_by_spelling(const Clip& clip, const char* name) {
+    const std::string key = spelling_key(name);
+    int found = -1;
+    for (std::size_t j = 0; j < clip.joint_names.size(); ++j)
+        if (spelling_key(clip.joint_names[j]) == key) {
+            if (found >= 0) return -1;
+            found = static_cast<int>(j);
+        }
+    return found;
+}
 
 }  // namespace
 
@@ -47,9 +71,18 @@ void assign_roles(Clip& clip, const RoleNames& names) {
         clip.roles.right_hip = names.right_hip.empty() ? -1 : find(names.right_hip, "right hip");
         return;
     }
+    // Exact names first, then the same names as exports spell them.
     for (const RoleCandidates& candidates : kBuiltInRoles) {
         const JointRoles roles{clip.joint_index(candidates.root), clip.joint_index(candidates.left_hip),
                                clip.joint_index(candidates.right_hip)};
+        if (roles.complete()) {
+            clip.roles = roles;
+            return;
+        }
+    }
+    for (const RoleCandidates& candidates : kBuiltInRoles) {
+        const JointRoles roles{joint_by_spelling(clip, candidates.root), joint_by_spelling(clip, candidates.left_hip),
+                               joint_by_spelling(clip, candidates.right_hip)};
         if (roles.complete()) {
             clip.roles = roles;
             return;

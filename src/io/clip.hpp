@@ -48,6 +48,9 @@ struct Clip {
     std::vector<std::uint8_t> lost;  ///< Per frame, 1 when tracking was lost (every joint at the origin).
     int up_axis = 1;                 ///< 0 = x, 1 = y, 2 = z.
     JointRoles roles;
+    /// What the reader noticed and a user should know (columns ignored, a
+    /// time unit detected, an implausible frame rate); tools print them.
+    std::vector<std::string> notes;
 
     std::size_t joint_count() const noexcept { return joint_names.size(); }
     std::size_t frame_count() const noexcept { return times.size(); }
@@ -69,6 +72,9 @@ struct ReadOptions {
     double length_scale = 0.0;
     /// Vertical axis, or −1 for the format's rule (BVH: detected).
     int up_axis = -1;
+    /// Seconds per unit of a joint CSV's time column; 0 reads the unit from
+    /// the column's name, else from the frame spacing (a rate of 5 Hz–1 kHz).
+    double time_unit_s = 0.0;
     /// Overrides the built-in joint-role mapping.
     RoleNames roles;
 };

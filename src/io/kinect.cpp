@@ -1,7 +1,9 @@
 // Kinect skeleton text: MSR Action3D, UTKinect (and its label file), generic CSV.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "io/formats.hpp"
@@ -130,52 +132,203 @@ Clip parse_utkinect(const std::string& name, std::string_view text, const ReadOp
     return clip;
 }
 
+namespace {
+
+// The delimiter of a delimited text file: comma, semicolon or tab, whichever
+// the header line holds most of (comma on a tie).
+char detect_delimiter(std::string_view header) {
+    const auto count = [&](char c) { return std::count(header.begin(), header.end(), c); };
+    char best = ',';
+    for (const char c : {';', '\t'})
+        if (count(c) > count(best)) best = c;
+    return best;
+}
+
+// Fields of a line, each trimmed, without the empty ones a trailing separator leaves.
+std::vector<std::string_view> csv_fields(std::string_view line, char delimiter) {
+    std::vector<std::string_view> fields = split_fields(line, delimiter);
+    for (std::string_view& f : fields) f = trim(f);
+    while (fields.size() > 1 && fields.back().empty()) fields.pop_back();
+    return fields;
+}
+
+std::string lowercase(std::string_view text) {
+    std::string out(text);
+    for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+
+// Seconds per unit a time column's name states ("time_ms", "Timestamp (us)"), 0 when it states none.
+double unit_in_name(const std::string& name) {
+    std::string letters;
+    for (const char c : name)
+        if (std::isalnum(static_cast<unsigned char>(c))) letters += c;
+    auto ends = [&](const char* suffix) {
+        const std::size_t n = std::strlen(suffix);
+        return letters.size() > n && letters.compare(letters.size() - n, n, suffix) == 0;
+    };
+    if (ends("ms") || ends("msec") || ends("millis") || ends("milliseconds")) return 1e-3;
+    if (ends("us") || ends("usec") || ends("micros") || ends("microseconds")) return 1e-6;
+    if (ends("ns") || ends("nanoseconds")) return 1e-9;
+    if (ends("sec") || ends("seconds") || (ends("s") && letters != "times" && letters != "timestamps")) return 1.0;
+    return 0.0;
+}
+
+// Whether a column names the time: timestamp, time, t, with an optional unit.
+bool is_time_column(const std::string& name) {
+    std::string letters;
+    for (const char c : name)
+        if (std::isalpha(static_cast<unsigned char>(c))) letters += c;
+    for (const char* base : {"timestamp", "timestamps", "time", "times", "t"}) {
+        const std::string b(base);
+        if (letters == b) return true;
+        if (letters.rfind(b, 0) == 0) {
+            const std::string rest = letters.substr(b.size());
+            for (const char* unit : {"s", "sec", "seconds", "ms", "msec", "millis", "milliseconds", "us", "usec",
+                                     "micros", "microseconds", "ns"})
+                if (rest == unit) return true;
+        }
+    }
+    return false;
+}
+
+// "<joint><sep><axis>": Head_x, HeadX, head.x, Head X, HEAD-Z (axis any case).
+bool joint_axis(std::string_view column, std::string& joint, int& axis) {
+    if (column.size() < 2) return false;
+    const char last = static_cast<char>(std::tolower(static_cast<unsigned char>(column.back())));
+    if (last != 'x' && last != 'y' && last != 'z') return false;
+    std::string_view base = column.substr(0, column.size() - 1);
+    if (!base.empty() && (base.back() == '_' || base.back() == '.' || base.back() == ' ' || base.back() == '-'))
+        base.remove_suffix(1);
+    base = trim(base);
+    if (base.empty()) return false;
+    joint = std::string(base);
+    axis = last - 'x';
+    return true;
+}
+
+}  // namespace
+
 Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadOptions& options) {
     LineScanner scanner(name, text);
     std::string_view line;
     if (!scanner.next_content(line, '#')) scanner.fail_at(0, "empty file: expected a header row");
-    const std::vector<std::string_view> header = split_fields(line, ',');
-    if (header.empty() || !(iequals(header[0], "timestamp") || iequals(header[0], "time") || iequals(header[0], "t")))
-        scanner.fail("expected the first column to be 'timestamp' (seconds), got " + quoted(header[0]));
-    if ((header.size() - 1) % 3 != 0 || header.size() < 4)
-        scanner.fail("expected a timestamp and three columns (x, y, z) per joint, got " +
-                     std::to_string(header.size()) + " columns");
+    const char delimiter = detect_delimiter(line);
+    const std::vector<std::string_view> header = csv_fields(line, delimiter);
+
+    // The time column, and joints whose x, y and z columns are all there;
+    // every other column is ignored (and said so in the clip's notes).
+    int time_column = -1;
+    struct JointColumns {
+        std::string name, key;
+        int axis_column[3] = {-1, -1, -1};
+        std::size_t first = 0;
+    };
+    std::vector<JointColumns> joints;
+    std::vector<std::size_t> unused;
+    for (std::size_t c = 0; c < header.size(); ++c) {
+        const std::string column(header[c]);
+        if (time_column < 0 && is_time_column(lowercase(column))) {
+            time_column = static_cast<int>(c);
+            continue;
+        }
+        std::string joint;
+        int axis = 0;
+        if (!joint_axis(column, joint, axis)) {
+            unused.push_back(c);
+            continue;
+        }
+        std::string key = lowercase(joint);
+        auto found = std::find_if(joints.begin(), joints.end(), [&](const JointColumns& j) { return j.key == key; });
+        if (found == joints.end()) {
+            joints.push_back(JointColumns{joint, key, {-1, -1, -1}, c});
+            found = joints.end() - 1;
+        }
+        if (found->axis_column[axis] >= 0)
+            scanner.fail("columns " + quoted(header[static_cast<std::size_t>(found->axis_column[axis])]) + " and " +
+                         quoted(column) + " both give the " + std::string(1, static_cast<char>('x' + axis)) +
+                         " of joint " + quoted(found->name));
+        found->axis_column[axis] = static_cast<int>(c);
+    }
     Clip clip;
     clip.source = name;
-    for (std::size_t c = 1; c < header.size(); c += 3) {
-        std::string joint;
-        for (int a = 0; a < 3; ++a) {
-            const std::string_view column = header[c + static_cast<std::size_t>(a)];
-            const char axis = "xyz"[a];
-            if (column.size() < 3 ||
-                !(column[column.size() - 2] == '_' || column[column.size() - 2] == '.' ||
-                  column[column.size() - 2] == ' ') ||
-                std::tolower(static_cast<unsigned char>(column.back())) != axis)
-                scanner.fail("expected column " + std::to_string(c + static_cast<std::size_t>(a) + 1) +
-                             " to be '<joint>_" + axis + "', got " + quoted(column));
-            const std::string base(column.substr(0, column.size() - 2));
-            if (a == 0) joint = base;
-            else if (base != joint)
-                scanner.fail("columns " + quoted(header[c]) + " and " + quoted(column) + " name different joints");
+    std::vector<std::array<int, 3>> layout;
+    for (const JointColumns& j : joints) {
+        if (j.axis_column[0] < 0 || j.axis_column[1] < 0 || j.axis_column[2] < 0) {
+            for (const int c : j.axis_column)
+                if (c >= 0) unused.push_back(static_cast<std::size_t>(c));
+            continue;
         }
-        if (std::find(clip.joint_names.begin(), clip.joint_names.end(), joint) != clip.joint_names.end())
-            scanner.fail("duplicate joint " + quoted(joint));
-        clip.joint_names.push_back(joint);
+        clip.joint_names.push_back(j.name);
+        layout.push_back({j.axis_column[0], j.axis_column[1], j.axis_column[2]});
     }
-    double previous = -1e300;
+    if (time_column < 0 && !(options.frame_rate_hz > 0))
+        scanner.fail("expected a time column ('timestamp', 'time' or 't', with an optional unit such as 'time_ms'), "
+                     "or --rate for a file without one; columns: " + std::to_string(header.size()));
+    if (clip.joint_names.empty())
+        scanner.fail("expected joint columns named '<joint>_x', '<joint>_y', '<joint>_z' (or JointX, joint.x, "
+                     "'Joint X'), found none among " + std::to_string(header.size()) + " columns");
+    std::sort(unused.begin(), unused.end());
+    if (!unused.empty()) {
+        std::string list;
+        for (const std::size_t c : unused) list += (list.empty() ? "" : ", ") + quoted(header[c]);
+        clip.notes.push_back(std::to_string(unused.size()) + " column" + (unused.size() == 1 ? "" : "s") +
+                             " ignored: " + list);
+    }
+
+    // Rows: the columns the header named, in any order; the ignored ones are not parsed.
+    std::vector<double> raw_times;
     while (scanner.next_content(line, '#')) {
-        const std::vector<std::string_view> fields = split_fields(line, ',');
+        const std::vector<std::string_view> fields = csv_fields(line, delimiter);
         if (fields.size() != header.size())
             scanner.fail("expected " + std::to_string(header.size()) + " columns, got " +
                          std::to_string(fields.size()));
-        const double t = parse_number(scanner, fields[0], "a timestamp");
-        if (t < previous) scanner.fail("timestamp " + std::string(fields[0]) + " is earlier than the previous row's");
-        previous = t;
-        clip.times.push_back(t);
-        for (std::size_t c = 1; c < fields.size(); ++c)
-            clip.positions.push_back(static_cast<float>(parse_number(scanner, fields[c], "a coordinate")));
+        if (time_column >= 0) {
+            const double t = parse_number(scanner, fields[static_cast<std::size_t>(time_column)], "a timestamp");
+            if (!raw_times.empty() && t < raw_times.back())
+                scanner.fail("timestamp " + std::string(fields[static_cast<std::size_t>(time_column)]) +
+                             " is earlier than the previous row's");
+            raw_times.push_back(t);
+        }
+        for (const auto& axes : layout)
+            for (const int c : axes)
+                clip.positions.push_back(
+                    static_cast<float>(parse_number(scanner, fields[static_cast<std::size_t>(c)], "a coordinate")));
+        if (time_column < 0) raw_times.push_back(static_cast<double>(raw_times.size()) / options.frame_rate_hz);
     }
-    if (clip.times.empty()) scanner.fail("no data rows after the header");
+    if (raw_times.empty()) scanner.fail("no data rows after the header");
+
+    // Time units: given, stated by the column's name, or read from the frame spacing.
+    double unit = time_column < 0 ? 1.0 : options.time_unit_s;
+    const std::string how_given = options.time_unit_s > 0 ? "as given" : "from the column's name";
+    if (!(unit > 0)) unit = time_column >= 0 ? unit_in_name(lowercase(std::string(header[static_cast<std::size_t>(time_column)]))) : 0.0;
+    std::vector<double> steps;
+    for (std::size_t i = 1; i < raw_times.size(); ++i)
+        if (raw_times[i] > raw_times[i - 1]) steps.push_back(raw_times[i] - raw_times[i - 1]);
+    std::sort(steps.begin(), steps.end());
+    const double step = steps.empty() ? 0.0 : steps[steps.size() / 2];
+    auto plausible = [](double hz) { return hz >= 5.0 && hz <= 1000.0; };
+    if (unit > 0) {
+        if (time_column >= 0 && unit != 1.0)
+            clip.notes.push_back("timestamps in units of " + std::to_string(unit) + " s (" + how_given + ")");
+    } else if (step <= 0 || plausible(1.0 / step)) {
+        unit = 1.0;
+    } else if (plausible(1.0 / (step * 1e-3))) {
+        unit = 1e-3;
+        clip.notes.push_back("timestamps taken as milliseconds: the rows are " + std::to_string(step) +
+                             " apart, which in seconds would be " + std::to_string(1.0 / step) +
+                             " Hz (give --time-unit s|ms|us to say otherwise)");
+    } else if (plausible(1.0 / (step * 1e-6))) {
+        unit = 1e-6;
+        clip.notes.push_back("timestamps taken as microseconds: the rows are " + std::to_string(step) +
+                             " apart (give --time-unit s|ms|us to say otherwise)");
+    } else {
+        unit = 1.0;
+    }
+    for (const double t : raw_times) clip.times.push_back(t * unit);
+    if (step > 0 && !plausible(1.0 / (step * unit)))
+        clip.notes.push_back("warning: the median frame spacing gives " + std::to_string(1.0 / (step * unit)) +
+                             " Hz, outside 5 Hz to 1 kHz: check the timestamps' unit (--time-unit s|ms|us)");
     finish_kinect_clip(clip, options);
     require_finite_positions(clip);
     return clip;

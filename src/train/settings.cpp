@@ -60,6 +60,13 @@ bool apply_segmenter_setting(const std::string& name, const std::string& value, 
     return true;
 }
 
+double parse_time_unit(const std::string& text) {
+    if (text == "s") return 1.0;
+    if (text == "ms") return 1e-3;
+    if (text == "us") return 1e-6;
+    throw std::invalid_argument("option --time-unit expects s, ms or us, got '" + text + "'");
+}
+
 RoleNames parse_role_names(const std::string& text) {
     RoleNames names;
     const std::size_t first = text.find(','), second = first == std::string::npos ? first : text.find(',', first + 1);
@@ -102,6 +109,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "seed") o.seed = static_cast<std::uint32_t>(num(0, 4294967295.0));
     else if (apply_segmenter_setting(name, value, o.online)) return true;
     else if (name == "rate") read.frame_rate_hz = num(0.001, 1e6);
+    else if (name == "time-unit") read.time_unit_s = parse_time_unit(value);
     else if (name == "roles") read.roles = parse_role_names(value);
     else return false;
     return true;
@@ -131,7 +139,7 @@ const std::vector<std::string>& training_setting_names() {
         "epsilon",    "max-characters", "string-rate",  "variant",    "normalization",    "sigma",
         "keep-singletons", "neighbours", "window",      "step",       "unknown-distance", "seed",
         "settle",     "segment-penalty", "stay-penalty", "skip-penalty", "unknown-cost",  "rate",
-        "roles"};
+        "roles",      "time-unit"};
     return names;
 }
 

@@ -41,6 +41,9 @@ const std::vector<std::string>& training_setting_names();
 /// naming the file and line of an unknown setting or a bad value.
 void read_training_config(const std::string& path, TrainingOptions& options, ReadOptions& read);
 
+/// "s", "ms" or "us" → seconds per unit; throws std::invalid_argument.
+double parse_time_unit(const std::string& text);
+
 /// "ROOT,LEFT_HIP,RIGHT_HIP" → role names; throws std::invalid_argument.
 RoleNames parse_role_names(const std::string& text);
 
