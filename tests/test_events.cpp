@@ -131,6 +131,7 @@ TEST_CASE("a gap that restarts the stream ends the running action at once") {
         started += annotator->push_frame(frame.time_us, frame.positions.data()).events;
         last = frame.time_us;
     }
+    CHECK(started >= 1);  // the action started while streaming
     REQUIRE(annotator->in_action());
     const auto again = host::toy_stream(world, {3}, options);
     const FrameResult r = annotator->push_frame(last + 5000000, again.front().positions.data());  // 5 s later
