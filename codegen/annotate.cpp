@@ -27,7 +27,7 @@ int run_annotate(int argc, char** argv) {
         if (arg == "--help" || arg == "-h") {
             std::printf(
                 "usage: actionstring annotate --model MODEL FILE [--skeleton ASF] [--rate HZ] [--roles R,L,R]\n"
-                "                             [--json | --events] [--min-action S] [--time-unit s|ms|us]\n"
+                "                             [--json | --events] [--min-action S] [--time-unit s|ms|us] [--body N]\n"
                 "                             [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
                 "                             [--skip-penalty X] [--unknown-cost X]\n\n"
                 "Streams FILE frame by frame through the annotator, as a device would, and prints\n"
@@ -46,6 +46,7 @@ int run_annotate(int argc, char** argv) {
         else if (arg == "--rate") read.frame_rate_hz = args.number(arg, 0.001, 1e6);
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
         else if (arg == "--time-unit") read.time_unit_s = parse_time_unit(args, args.value(arg));
+        else if (arg == "--body") read.body = static_cast<int>(args.number(arg, 0, 63));
         else if (arg == "--json") json = true;
         else if (arg == "--events") events = true;
         else if (arg == "--min-action") min_action_s = args.number(arg, 0, 60);
@@ -61,7 +62,8 @@ int run_annotate(int argc, char** argv) {
         const host::ModelData model = host::load_model(model_path);
         const ModelView view = model.view();
         host::Clip clip = host::read_clip(file, read, skeleton);
-        for (const std::string& note : clip.notes) std::fprintf(stderr, "actionstring annotate: %s: %s\n", file.c_str(), note.c_str());
+        for (const std::string& note : clip.notes)
+            std::fprintf(stderr, "actionstring annotate: %s: %s\n", file.c_str(), note.c_str());
         host::conform_to_model(view, clip);
         if (events) {
             AnnotatorConfig config = overrides.over(view, args);

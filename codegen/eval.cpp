@@ -59,11 +59,12 @@ void print_online(const char* rule, const host::OnlineResults& r) {
                 r.frame_f1, r.segment_f1, r.segment_precision, r.segment_recall, r.mean_delay_s, r.missed_segments,
                 r.flicker_per_min);
     if (r.has_events)
-        std::printf("  %-28s %zu actions reported, %zu matched (event F1 %.3f), detection latency %.2f s,\n"
-                    "  %-28s start error %.2f s, end error %.2f s, %.2f false events per %s\n",
-                    "  events (once per action)", r.events, r.matched_events, r.event_f1, r.detection_latency_s, "",
-                    r.start_error_s, r.end_error_s, r.false_events_per_min,
-                    r.false_events_per_stream_min ? "minute of stream" : "minute of no action");
+        std::printf(
+            "  %-28s %zu actions reported, %zu matched (event F1 %.3f), detection latency %.2f s,\n"
+            "  %-28s start error %.2f s, end error %.2f s, %.2f false events per %s\n",
+            "  events (once per action)", r.events, r.matched_events, r.event_f1, r.detection_latency_s, "",
+            r.start_error_s, r.end_error_s, r.false_events_per_min,
+            r.false_events_per_stream_min ? "minute of stream" : "minute of no action");
 }
 
 void print_results(const host::ClipResults& r) {

@@ -18,7 +18,7 @@ void print_info_usage(std::FILE* out) {
                  "usage: actionstring info FILE [--skeleton ASF] [--rate HZ] [--scale M] [--up 0|1|2]\n"
                  "                         [--roles ROOT,LEFT_HIP,RIGHT_HIP] [--time-unit s|ms|us] [--joints]\n"
                  "\n"
-                 "Reads a motion file (.amc with --skeleton, .asf, .bvh, .csv, Kinect .txt) and\n"
+                 "Reads a motion file (.amc with --skeleton, .asf, .bvh, .csv/.tsv, Kinect .txt, NTU .skeleton) and\n"
                  "prints its joints, frames, duration, frame rate, bounding box, up axis, joint\n"
                  "roles and lost-tracking frames.\n"
                  "  --skeleton ASF  the ASF skeleton of an AMC file\n"
@@ -27,6 +27,7 @@ void print_info_usage(std::FILE* out) {
                  "  --up AXIS       vertical axis 0, 1 or 2 (default: the format's rule)\n"
                  "  --roles R,L,R   joint names for root, left hip and right hip\n"
                  "  --time-unit U   unit of a CSV's time column (default: its name's, else from the spacing)\n"
+                 "  --body N        body N (from 0) of an NTU RGB+D .skeleton (default: the one that moves most)\n"
                  "  --joints        list every joint with its parent\n");
 }
 }  // namespace
@@ -48,6 +49,7 @@ int run_info(int argc, char** argv) {
         else if (arg == "--up") options.up_axis = static_cast<int>(args.number(arg, 0, 2));
         else if (arg == "--roles") options.roles = parse_roles(args, args.value(arg));
         else if (arg == "--time-unit") options.time_unit_s = parse_time_unit(args, args.value(arg));
+        else if (arg == "--body") options.body = static_cast<int>(args.number(arg, 0, 63));
         else if (arg == "--joints") list_joints = true;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;

@@ -133,9 +133,9 @@ TEST_CASE("packed names are checked: terminated, non-empty, no NUL inside, offse
     static constexpr char inner_nul[] = "a\0\0\0c\0d";
     static constexpr std::uint32_t inner_offsets[5] = {0, 2, 2, 6, 8};
     const char* problem = "";
-    for (const NameTable names : {NameTable{unterminated, unterminated_offsets}, NameTable{good, empty_name},
-                                  NameTable{good, late_start}, NameTable{inner_nul, inner_offsets},
-                                  NameTable{nullptr, good_offsets}, NameTable{good, nullptr}}) {
+    for (const NameTable names :
+         {NameTable{unterminated, unterminated_offsets}, NameTable{good, empty_name}, NameTable{good, late_start},
+          NameTable{inner_nul, inner_offsets}, NameTable{nullptr, good_offsets}, NameTable{good, nullptr}}) {
         view.label_names = names;
         CHECK(validate_model(view, &problem) == Status::invalid_model);
         CHECK(std::string(problem).rfind("label_names", 0) == 0);

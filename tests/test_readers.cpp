@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -271,7 +272,8 @@ TEST_CASE("joint CSV") {
     CHECK(clip.times[1] == doctest::Approx(0.033));
     check_error([&] { parse_joint_csv("k.csv", "frame,a_x,a_y,a_z\n"); }, 1, "'timestamp'");
     check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,b_z\n"); }, 1, "found none among 4 columns");
-    check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z,a_x,a_y,a_z\n"); }, 1, "both give the x of joint 'a'");
+    check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z,a_x,a_y,a_z\n"); }, 1,
+                "both give the x of joint 'a'");
     check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z\n1,2,3\n"); }, 2, "expected 4 columns");
     check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z\n1,2,3,4\n0.5,2,3,4\n"); }, 3, "earlier");
     check_error([&] { parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z\n"); }, 1, "no data rows");
@@ -399,8 +401,61 @@ TEST_CASE("reliability: files are read whole or refused with the reason") {
     const std::string big = dir + "/big.txt";
     write_file(big, std::string(4096, 'x'));
     CHECK(read_file(big).size() == 4096);
-    CHECK_THROWS_WITH_AS(read_file(big, 1000), doctest::Contains("4096 bytes; files over 1000 bytes are refused"), ReadError);
+    CHECK_THROWS_WITH_AS(read_file(big, 1000), doctest::Contains("4096 bytes; files over 1000 bytes are refused"),
+                         ReadError);
     // Through read_clip, the same reasons reach the user.
     CHECK_THROWS_WITH_AS(read_clip(dir + "/absent.bvh"), doctest::Contains("No such file or directory"), ReadError);
     std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+// An NTU RGB+D .skeleton text written from the published layout: per frame the
+// body count, per body 10 values (the id first), 25, and 25 lines of 12 values.
+std::string ntu_text(int frames, const std::vector<std::pair<std::string, float>>& bodies) {
+    std::ostringstream out;
+    out << frames << "\n";
+    for (int f = 0; f < frames; ++f) {
+        out << bodies.size() << "\n";
+        for (const auto& [id, sway] : bodies) {
+            out << id << " 0 1 1 1 1 0 0.1 0.2 2\n25\n";
+            for (int j = 0; j < 25; ++j) {
+                const float x = 0.05f * static_cast<float>(j % 5) + sway * static_cast<float>(f);
+                const float y = 0.07f * static_cast<float>(j);
+                out << x << " " << y << " 3.1 250.5 200.1 1000.2 500.3 0.9 0.1 0.2 0.3 2\n";
+            }
+        }
+    }
+    return out.str();
+}
+
+}  // namespace
+
+TEST_CASE("NTU RGB+D skeletons: the main body, or a chosen one") {
+    // Body 72057594037931101 stands still, 72057594037931102 sways.
+    const std::string text = ntu_text(4, {{"72057594037931101", 0.0f}, {"72057594037931102", 0.05f}});
+    const Clip clip = parse_ntu_skeleton("S001C001P001R001A001.skeleton", text);
+    CHECK(clip.joint_count() == 25);
+    CHECK(clip.frame_count() == 4);
+    CHECK(clip.joint_names[0] == "SpineBase");
+    CHECK(clip.parents[3] == 2);   // Head ← Neck
+    CHECK(clip.parents[2] == 20);  // Neck ← SpineShoulder
+    CHECK(clip.roles.complete());
+    CHECK(clip.times[1] == doctest::Approx(1.0 / 30.0));
+    CHECK(clip.frame(3)[0] == doctest::Approx(0.15f));  // the swaying body: x moved 3 × 0.05
+    REQUIRE(clip.notes.size() == 1);
+    CHECK(clip.notes[0].find("2 bodies; read body 1 (the one that moves most)") == 0);
+    ReadOptions first;
+    first.body = 0;
+    CHECK(parse_ntu_skeleton("a.skeleton", text, first).frame(3)[0] == doctest::Approx(0.0f));
+    first.body = 2;
+    check_error([&] { parse_ntu_skeleton("a.skeleton", text, first); }, 0, "body 2 asked for");
+    // A body absent from a frame leaves that frame lost for it.
+    const Clip one = parse_ntu_skeleton("b.skeleton", "2\n0\n" + ntu_text(1, {{"7", 0.0f}}).substr(2));
+    CHECK(one.lost[0] == 1);
+    CHECK(one.lost[1] == 0);
+    check_error([&] { parse_ntu_skeleton("c.skeleton", "2\n1\n7 0 1 1 1 1 0 0.1 0.2 2\n25\n"); }, 4, "truncated");
+    check_error([&] { parse_ntu_skeleton("c.skeleton", "1\n1\n7 0 1 1 1 1 0 0.1 0.2\n"); }, 3, "10 values");
+    check_error([&] { parse_ntu_skeleton("c.skeleton", "1\n1\n7 0 1 1 1 1 0 0.1 0.2 2\n20\n"); }, 4, "25 joints");
+    check_error([&] { parse_ntu_skeleton("c.skeleton", "0\n"); }, 1, "no frames");
 }

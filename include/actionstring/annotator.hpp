@@ -108,7 +108,8 @@ public:
         // Settings first, so a bad one is reported as such rather than as a size.
         Status status = ActionSegmenter::check(model, config.segmenter);
         if (status != Status::ok) return status;
-        if (!(config.min_action_us >= 0 && config.min_action_us <= max_settle_delay_us)) return Status::invalid_argument;
+        if (!(config.min_action_us >= 0 && config.min_action_us <= max_settle_delay_us))
+            return Status::invalid_argument;
         const Plan p = plan(model, config);
         if (!detail::storage_fits(storage, bytes, p.bytes)) {
             // Report a broken model before a size computed from it.
@@ -117,8 +118,10 @@ public:
         }
         auto* base = static_cast<unsigned char*>(storage);
         window_rule_ = config.window_rule;
-        status = window_rule_ ? matcher_.init(model, base + p.matcher, p.matcher_bytes) : validate_matching_tables(model);
-        if (status == Status::ok) status = segmenter_.init(model, config.segmenter, base + p.segmenter, p.segmenter_bytes);
+        status =
+            window_rule_ ? matcher_.init(model, base + p.matcher, p.matcher_bytes) : validate_matching_tables(model);
+        if (status == Status::ok)
+            status = segmenter_.init(model, config.segmenter, base + p.segmenter, p.segmenter_bytes);
         if (status == Status::ok)
             status = encoder_.init(model, EncoderConfig{config.max_gap_us, config.max_backward_us}, base + p.encoder,
                                    p.encoder_bytes);
@@ -257,8 +260,7 @@ private:
             window_.first_character = matcher_.completed_window_start();
             window_.start_time_us = encoder_.tick_time_us(window_.first_character);
             window_.end_time_us = encoder_.tick_time_us(index);
-            window_.classification =
-                classify_distances(*model_, matcher_.completed_distances());
+            window_.classification = classify_distances(*model_, matcher_.completed_distances());
         }
     }
 
@@ -270,7 +272,8 @@ private:
         for (std::uint64_t c = first; c < pushed_; ++c) {
             const LabelId label = segmenter_.provisional_label(c);
             events_.settle(c, label, live_[c % live_ring_] == label,
-                           static_cast<std::int64_t>(static_cast<std::uint64_t>(origin_us) + c * static_cast<std::uint64_t>(period)));
+                           static_cast<std::int64_t>(static_cast<std::uint64_t>(origin_us) +
+                                                     c * static_cast<std::uint64_t>(period)));
         }
         events_.close();
     }
@@ -290,8 +293,8 @@ private:
     // and the segmenter's storage, each aligned, and a live label per
     // character the segmenter remembers (for the events' confidence).
     struct Plan {
-        std::size_t encoder = 0, encoder_bytes = 0, matcher = 0, matcher_bytes = 0, segmenter = 0,
-                    segmenter_bytes = 0, live = 0, live_count = 0, bytes = 0;
+        std::size_t encoder = 0, encoder_bytes = 0, matcher = 0, matcher_bytes = 0, segmenter = 0, segmenter_bytes = 0,
+                    live = 0, live_count = 0, bytes = 0;
     };
     static constexpr Plan plan(const ModelView& model, const AnnotatorConfig& config) noexcept {
         Plan p;

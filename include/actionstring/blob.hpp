@@ -222,11 +222,11 @@ inline Status model_from_blob(const void* bytes, std::size_t size, ModelView& mo
     if (!reader.scalar(detail::BlobKind::scalar, m.FIELD, LOW, HIGH)) return refuse(problem, #FIELD ": bad blob entry");
 #define ACTIONSTRING_BLOB_COUNT(T, FIELD, TABLE) \
     if (!reader.scalar(detail::BlobKind::count, m.FIELD, 0, 65535)) return refuse(problem, #FIELD ": bad blob entry");
-#define ACTIONSTRING_BLOB_TABLE(T, FIELD, SIZE, LOW, HIGH)         \
-    std::uint64_t FIELD##_count = 0;                               \
-    if (!reader.table(m.FIELD, FIELD##_count, LOW, HIGH)) \
+#define ACTIONSTRING_BLOB_TABLE(T, FIELD, SIZE, LOW, HIGH) \
+    std::uint64_t FIELD##_count = 0;                       \
+    if (!reader.table(m.FIELD, FIELD##_count, LOW, HIGH))  \
         return refuse(problem, #FIELD ": table out of bounds, misaligned or out of range");
-#define ACTIONSTRING_BLOB_NAMES(FIELD, COUNT)                      \
+#define ACTIONSTRING_BLOB_NAMES(FIELD, COUNT)                    \
     if (!reader.names(m.FIELD, static_cast<std::size_t>(COUNT))) \
         return refuse(problem, #FIELD ": names out of bounds or not NUL-terminated");
     ACTIONSTRING_MODEL_FIELDS(ACTIONSTRING_BLOB_SCALAR, ACTIONSTRING_BLOB_COUNT, ACTIONSTRING_BLOB_TABLE,
@@ -240,7 +240,7 @@ inline Status model_from_blob(const void* bytes, std::size_t size, ModelView& mo
     // expression reads past a table).
 #define ACTIONSTRING_BLOB_SCALAR(T, FIELD, INITIAL, LOW, HIGH)
 #define ACTIONSTRING_BLOB_COUNT(T, FIELD, TABLE)
-#define ACTIONSTRING_BLOB_TABLE(T, FIELD, SIZE, LOW, HIGH)   \
+#define ACTIONSTRING_BLOB_TABLE(T, FIELD, SIZE, LOW, HIGH) \
     if (FIELD##_count != static_cast<std::uint64_t>(SIZE)) \
         return refuse(problem, #FIELD ": table length disagrees with the fields it depends on");
 #define ACTIONSTRING_BLOB_NAMES(FIELD, COUNT)

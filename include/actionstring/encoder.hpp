@@ -107,7 +107,8 @@ public:
             return out;
         }
         const std::size_t current = has_previous_ ? 1u - previous_ : 0u;
-        out.status = normalize_pose(*model_, positions, poses_[current], uses_bones(model_->scale_mode) ? skeleton_ : nullptr);
+        out.status =
+            normalize_pose(*model_, positions, poses_[current], uses_bones(model_->scale_mode) ? skeleton_ : nullptr);
         if (out.status != Status::ok) return out;
         const SamplePlan plan = sampler_.advance(time_us);
         out.status = plan.status;

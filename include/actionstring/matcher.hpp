@@ -329,11 +329,11 @@ private:
     std::uint64_t pushed_ = 0;
     std::uint64_t completed_start_ = 0;
     bool has_completed_ = false;
-    Window* windows_ = nullptr;         // lanes_
-    float* costs_ = nullptr;            // cells × lanes_, lane fastest
-    std::uint16_t* paths_ = nullptr;    // the same, with path normalisation only
-    float* best_ = nullptr;             // R × lanes_
-    float* completed_ = nullptr;        // R
+    Window* windows_ = nullptr;           // lanes_
+    float* costs_ = nullptr;              // cells × lanes_, lane fastest
+    std::uint16_t* paths_ = nullptr;      // the same, with path normalisation only
+    float* best_ = nullptr;               // R × lanes_
+    float* completed_ = nullptr;          // R
     detail::Cell* lane_cells_ = nullptr;  // 2 × lanes_ scratch (with paths)
     float* lane_costs_ = nullptr;         // 2 × lanes_ scratch (costs only)
 };

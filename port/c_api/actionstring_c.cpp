@@ -68,8 +68,8 @@ const State* checked(const void* handle) {
     if (handle == nullptr || reinterpret_cast<std::uintptr_t>(handle) % actionstring::state_alignment != 0)
         return nullptr;
     const auto* state = static_cast<const State*>(handle);
-    if (state->magic != kStateMagic || state->self != state || checked_model(reinterpret_cast<const actionstring_model*>(
-                                                                       state->model)) == nullptr)
+    if (state->magic != kStateMagic || state->self != state ||
+        checked_model(reinterpret_cast<const actionstring_model*>(state->model)) == nullptr)
         return nullptr;
     if (state->total < kHeaderBytes + kGuardBytes) return nullptr;
     const auto* guard = reinterpret_cast<const unsigned char*>(state) + state->total - kGuardBytes;
@@ -100,8 +100,8 @@ bool config_ok(const ModelView& model, const AnnotatorConfig& config) {
     return actionstring::ActionSegmenter::check(model, config.segmenter) == Status::ok &&
            actionstring::StringSampler::settings_ok(model.string_period_us, config.max_gap_us,
                                                     config.max_backward_us) &&
-           Annotator::required_bytes(model, config) != actionstring::unsatisfiable_bytes &&
-           config.min_action_us >= 0 && config.min_action_us <= actionstring::max_settle_delay_us;
+           Annotator::required_bytes(model, config) != actionstring::unsatisfiable_bytes && config.min_action_us >= 0 &&
+           config.min_action_us <= actionstring::max_settle_delay_us;
 }
 
 void set_model(actionstring_model* handle, const ModelView& view, const char* checksum) {

@@ -97,13 +97,13 @@ typedef struct actionstring_frame_result {
 /** An action event: each detected action is reported once when it starts and
  *  once when it ends (runs shorter than config.min_action_us are not reported). */
 typedef struct actionstring_event {
-    int32_t started;          /**< 1: the action started; 0: it ended */
-    int32_t label;            /**< label index */
-    int64_t start_time_us;    /**< time of its first character, on the frames' clock */
-    int64_t end_time_us;      /**< time of its last character (so far, for a start) */
-    int64_t first_character;  /**< stream index of its first character */
+    int32_t started;         /**< 1: the action started; 0: it ended */
+    int32_t label;           /**< label index */
+    int64_t start_time_us;   /**< time of its first character, on the frames' clock */
+    int64_t end_time_us;     /**< time of its last character (so far, for a start) */
+    int64_t first_character; /**< stream index of its first character */
     int64_t last_character;
-    float confidence;         /**< share of its characters whose live label already said this label */
+    float confidence; /**< share of its characters whose live label already said this label */
 } actionstring_event;
 
 /* ---- models ------------------------------------------------------------------------ */

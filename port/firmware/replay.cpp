@@ -116,8 +116,8 @@ int main() {
         .text(" encoder ")
         .number(actionstring::StringEncoder::required_bytes(model::kModel))
         .text(" segmenter ")
-        .number(actionstring::ActionSegmenter::required_bytes(model::kModel,
-                                                              actionstring::segmenter_config(model::kModel)))
+        .number(
+            actionstring::ActionSegmenter::required_bytes(model::kModel, actionstring::segmenter_config(model::kModel)))
         .write();
 #if defined(__arm__)
     line.text("# calibration instructions 2000000 cycles ").number(calibration_cycles(1000000u)).write();

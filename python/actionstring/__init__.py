@@ -41,15 +41,20 @@ PathLike = Union[str, "os.PathLike[str]"]
 
 
 def read_clip(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis: int = -1,
-              roles: Optional[Sequence[str]] = None, skeleton: str = "") -> Clip:
-    """Reads one motion file (ASF/AMC with ``skeleton``, BVH, Kinect text, joint CSV).
+              roles: Optional[Sequence[str]] = None, skeleton: str = "", time_unit: str = "",
+              body: int = -1) -> Clip:
+    """Reads one motion file (ASF/AMC with ``skeleton``, BVH, Kinect text, joint CSV,
+    NTU RGB+D ``.skeleton``).
 
     ``rate`` is the frame rate of files without timing (0: the format's default),
     ``scale`` metres per file unit (0: the format's rule), ``up_axis`` 0/1/2 (-1:
-    the format's rule), ``roles`` the (root, left hip, right hip) joint names.
+    the format's rule), ``roles`` the (root, left hip, right hip) joint names,
+    ``time_unit`` a CSV's time unit ("s", "ms", "us"; default: its column's name,
+    else the frame spacing), ``body`` which body of an NTU file (-1: the one that
+    moves most). What the reader noticed is in ``clip.notes``.
     Raises ReadError naming the file, the line and what was expected.
     """
-    return _native._read_clip(os.fspath(path), rate, scale, up_axis, roles, skeleton)
+    return _native._read_clip(os.fspath(path), rate, scale, up_axis, roles, skeleton, time_unit, body)
 
 
 def read_clip_list(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis: int = -1,
@@ -62,7 +67,7 @@ def read_clip_list(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_
 def training_settings() -> List[str]:
     """Names ``train`` accepts as keywords (dashes as underscores), as ``actionstring train`` takes them."""
     return [name.replace("-", "_") for name in _native._training_setting_names()
-            if name not in ("rate", "roles")]
+            if name not in ("rate", "roles", "time-unit", "body")]
 
 
 class Classification(tuple):

@@ -76,8 +76,8 @@ LabelledClip clip_from_arrays(const py::handle& positions_object, const py::obje
     const auto positions = float32_array(positions_object, "positions");
     if (positions.ndim() != 3 || positions.shape(2) != 3)
         throw py::value_error("positions: expected shape (frames, joints, 3), got " +
-                              std::string(py::str(py::cast(std::vector<py::ssize_t>(
-                                  positions.shape(), positions.shape() + positions.ndim())))));
+                              std::string(py::str(py::cast(
+                                  std::vector<py::ssize_t>(positions.shape(), positions.shape() + positions.ndim())))));
     const auto frames = static_cast<std::size_t>(positions.shape(0));
     const auto joints = static_cast<std::size_t>(positions.shape(1));
     if (frames == 0 || joints == 0) throw py::value_error("positions: no frames or no joints");
@@ -136,8 +136,8 @@ py::array positions_view(const py::object& self) {
     const auto frames = static_cast<py::ssize_t>(c.clip.frame_count());
     const auto joints = static_cast<py::ssize_t>(c.clip.joint_count());
     py::array_t<float> view({frames, joints, py::ssize_t{3}},
-                            {joints * 3 * static_cast<py::ssize_t>(sizeof(float)), 3 * static_cast<py::ssize_t>(sizeof(float)),
-                             static_cast<py::ssize_t>(sizeof(float))},
+                            {joints * 3 * static_cast<py::ssize_t>(sizeof(float)),
+                             3 * static_cast<py::ssize_t>(sizeof(float)), static_cast<py::ssize_t>(sizeof(float))},
                             c.clip.positions.data(), self);
     view.attr("setflags")(py::arg("write") = false);
     return view;
@@ -151,8 +151,12 @@ py::array times_view(const py::object& self) {
     return view;
 }
 
-host::ReadOptions read_options(double rate, double scale, int up_axis, const py::object& roles) {
+host::ReadOptions read_options(double rate, double scale, int up_axis, const py::object& roles,
+                               const std::string& time_unit = "", int body = -1) {
     host::ReadOptions read;
+    if (!time_unit.empty()) read.time_unit_s = host::parse_time_unit(time_unit);
+    if (body < -1 || body > 63) throw py::value_error("body: 0 to 63, or -1 for the one that moves most");
+    read.body = body;
     read.frame_rate_hz = rate;
     read.length_scale = scale;
     read.up_axis = up_axis;
@@ -224,7 +228,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
         const std::string key = item.first.cast<std::string>();
         if (!host::apply_training_setting(setting_name(key), setting_value(item.second), options, unused))
             throw py::value_error("unknown training setting '" + key + "'");
-        if (key == "rate" || key == "roles")
+        if (key == "rate" || key == "roles" || key == "time_unit" || key == "body")
             throw py::value_error("'" + key + "' is a reading setting: give it to read_clip or read_clip_list");
     }
     if (clips.empty()) throw py::value_error("no clips to train on");
@@ -359,6 +363,8 @@ PYBIND11_MODULE(_actionstring, m) {
         .def_property_readonly("frame_count", [](const LabelledClip& c) { return c.clip.frame_count(); })
         .def_property_readonly("joint_count", [](const LabelledClip& c) { return c.clip.joint_count(); })
         .def_property_readonly("duration", [](const LabelledClip& c) { return c.clip.duration(); })
+        .def_property_readonly("notes", [](const LabelledClip& c) { return c.clip.notes; },
+                               "What the reader noticed: columns ignored, a time unit detected, a warning")
         .def(
             "relabelled",
             [](const LabelledClip& c, const std::string& label, const std::string& subject) {
@@ -378,13 +384,13 @@ PYBIND11_MODULE(_actionstring, m) {
     m.def(
         "_read_clip",
         [](const std::string& path, double rate, double scale, int up_axis, const py::object& roles,
-           const std::string& skeleton) {
+           const std::string& skeleton, const std::string& time_unit, int body) {
             LabelledClip out;
-            out.clip = host::read_clip(path, read_options(rate, scale, up_axis, roles), skeleton);
+            out.clip = host::read_clip(path, read_options(rate, scale, up_axis, roles, time_unit, body), skeleton);
             return out;
         },
         py::arg("path"), py::arg("rate") = 0.0, py::arg("scale") = 0.0, py::arg("up_axis") = -1,
-        py::arg("roles") = py::none(), py::arg("skeleton") = "");
+        py::arg("roles") = py::none(), py::arg("skeleton") = "", py::arg("time_unit") = "", py::arg("body") = -1);
     m.def(
         "_read_clip_list",
         [](const std::string& path, double rate, double scale, int up_axis, const py::object& roles) {
@@ -394,7 +400,9 @@ PYBIND11_MODULE(_actionstring, m) {
         py::arg("roles") = py::none());
 
     py::class_<ModelData, ModelPtr>(m, "_Model")
-        .def_static("load", [](const std::string& path) { return ModelPtr(std::make_shared<ModelData>(host::load_model(path))); })
+        .def_static(
+            "load",
+            [](const std::string& path) { return ModelPtr(std::make_shared<ModelData>(host::load_model(path))); })
         .def_static("from_blob",
                     [](const py::bytes& bytes) {
                         return ModelPtr(std::make_shared<ModelData>(host::read_blob("<bytes>", std::string(bytes))));
@@ -408,8 +416,9 @@ PYBIND11_MODULE(_actionstring, m) {
              [](const ModelData& model, const std::string& path, const std::string& ns) {
                  const std::string text = host::serialize_model(model);
                  const std::size_t slash = path.find_last_of('/');
-                 host::write_file(path, host::generate_header(model, host::artifact_checksum(text), ns,
-                                                              slash == std::string::npos ? path : path.substr(slash + 1)));
+                 host::write_file(path,
+                                  host::generate_header(model, host::artifact_checksum(text), ns,
+                                                        slash == std::string::npos ? path : path.substr(slash + 1)));
              })
         .def_property_readonly("label_names", [](const ModelData& model) { return model.label_names.strings(); })
         .def_property_readonly("joint_names", [](const ModelData& model) { return model.joint_names.strings(); })
@@ -442,8 +451,8 @@ PYBIND11_MODULE(_actionstring, m) {
                  return py::make_tuple(label_object(model, c.label), c.distance, c.confidence);
              })
         .def("_evaluate_json",
-             [](const ModelData& model, std::vector<LabelledClip> clips, std::vector<LabelledClip> train,
-                bool online, std::uint32_t seed, const py::dict& settings, const std::string& name) {
+             [](const ModelData& model, std::vector<LabelledClip> clips, std::vector<LabelledClip> train, bool online,
+                std::uint32_t seed, const py::dict& settings, const std::string& name) {
                  const ModelView view = model.view();
                  const AnnotatorConfig config = online_config(model, settings);
                  py::gil_scoped_release release;
@@ -451,22 +460,20 @@ PYBIND11_MODULE(_actionstring, m) {
                      host::evaluate(view, std::move(clips), std::move(train), {}, online, seed, config);
                  return host::evaluation_json(e, name, seed, config);
              })
-        .def("annotate",
-             [](const ModelData& model, const LabelledClip& clip, const py::dict& settings) {
-                 const ModelView view = model.view();
-                 const auto spans =
-                     host::annotate_clip(view, conformed(model, clip), online_config(model, settings));
-                 py::list out;
-                 for (const host::LabelSpan& span : spans) {
-                     py::dict d;
-                     d["start"] = span.start_s;
-                     d["end"] = span.end_s;
-                     d["label"] = label_or_unknown(model, span.label);
-                     d["confidence"] = span.agreement;
-                     out.append(d);
-                 }
-                 return out;
-             });
+        .def("annotate", [](const ModelData& model, const LabelledClip& clip, const py::dict& settings) {
+            const ModelView view = model.view();
+            const auto spans = host::annotate_clip(view, conformed(model, clip), online_config(model, settings));
+            py::list out;
+            for (const host::LabelSpan& span : spans) {
+                py::dict d;
+                d["start"] = span.start_s;
+                d["end"] = span.end_s;
+                d["label"] = label_or_unknown(model, span.label);
+                d["confidence"] = span.agreement;
+                out.append(d);
+            }
+            return out;
+        });
 
     m.def("_train", &train, py::arg("clips"), py::arg("settings"), py::arg("tune"), py::arg("config") = "");
     m.def("_training_setting_names", &host::training_setting_names);

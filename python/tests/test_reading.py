@@ -88,3 +88,20 @@ def test_unreadable_files_raise_read_error_with_file_and_line(tmp_path):
     bad_list.write_text("path\tlabel\n")
     with pytest.raises(actionstring.ReadError, match=r"list\.tsv"):
         actionstring.read_clip_list(bad_list)
+
+
+def test_csv_as_exported_with_its_notes(tmp_path):
+    path = tmp_path / "export.csv"
+    path.write_text(
+        "Timestamp,HipCenterX,HipCenterY,HipCenterZ,HipLeftX,HipLeftY,HipLeftZ,HipRightX,HipRightY,HipRightZ,User-ID,\n"
+        + "".join(f"{33 * i},0,1,2,-0.1,1,2,0.1,1,2,7,\n" for i in range(10)))
+    clip = actionstring.read_clip(path)
+    assert clip.joint_names == ["HipCenter", "HipLeft", "HipRight"]
+    assert clip.times[1] == pytest.approx(0.033)
+    assert any("milliseconds" in note for note in clip.notes)
+    assert any("'User-ID'" in note for note in clip.notes)
+    seconds = actionstring.read_clip(path, time_unit="s")
+    assert seconds.times[1] == pytest.approx(33.0)
+    assert any(note.startswith("warning:") for note in seconds.notes)
+    with pytest.raises(ValueError, match="--time-unit"):
+        actionstring.read_clip(path, time_unit="minutes")

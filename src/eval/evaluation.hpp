@@ -18,9 +18,9 @@ namespace host {
 /// Everything one evaluation run computes.
 struct Evaluation {
     std::vector<LabelledClip> clips;
-    bool recordings = false;            ///< The streams are whole recordings (a list with intervals).
-    std::vector<ClipResults> results;   ///< The model's first, then the baselines.
-    std::vector<double> frame_ns;       ///< The annotator's per-frame times, sorted.
+    bool recordings = false;           ///< The streams are whole recordings (a list with intervals).
+    std::vector<ClipResults> results;  ///< The model's first, then the baselines.
+    std::vector<double> frame_ns;      ///< The annotator's per-frame times, sorted.
     bool online = false;
     OnlineReport online_report;
 };

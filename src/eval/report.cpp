@@ -169,7 +169,8 @@ void write_report(const std::string& dir, const std::string& title, const std::v
            << settled.unknown_everywhere_accuracy << ".\n\n"
            << "| rule | frame accuracy | in action | no action | frame F1 | segment F1 | mean delay (s) | missed "
               "segments | flicker (/min) |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n"
-           << "| baseline: unknown everywhere | " << settled.unknown_everywhere_accuracy << " | 0 | 1 | 0 | 0 | | | |\n";
+           << "| baseline: unknown everywhere | " << settled.unknown_everywhere_accuracy
+           << " | 0 | 1 | 0 | 0 | | | |\n";
         const std::pair<const char*, const OnlineResults*> rules[] = {{"segmenter, settled labels", &online->settled},
                                                                       {"segmenter, live labels", &online->live},
                                                                       {"paper: latest window wins", &online->window}};
@@ -179,11 +180,11 @@ void write_report(const std::string& dir, const std::string& title, const std::v
                << rule.second->frame_f1 << " | " << rule.second->segment_f1 << " | " << rule.second->mean_delay_s
                << " | " << rule.second->missed_segments << " | " << rule.second->flicker_per_min << " |\n";
         if (settled.has_events)
-            md << "\nAction events (each action once when it starts and once when it ends): "
-               << settled.events << " reported, " << settled.matched_events << " matched to a true action (event F1 "
-               << settled.event_f1 << "), detection latency " << settled.detection_latency_s
-               << " s, start error " << settled.start_error_s << " s, end error " << settled.end_error_s << " s, "
-               << settled.false_events_per_min << " false events per "
+            md << "\nAction events (each action once when it starts and once when it ends): " << settled.events
+               << " reported, " << settled.matched_events << " matched to a true action (event F1 " << settled.event_f1
+               << "), detection latency " << settled.detection_latency_s << " s, start error " << settled.start_error_s
+               << " s, end error " << settled.end_error_s << " s, " << settled.false_events_per_min
+               << " false events per "
                << (settled.false_events_per_stream_min ? "minute of stream" : "minute of no action") << ".\n";
         md << "\n";
         for (std::size_t s = 0; s < online->streams.size(); ++s) {

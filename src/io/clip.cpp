@@ -39,7 +39,8 @@ constexpr RoleCandidates kBuiltInRoles[] = {
 std::string spelling_key(std::string_view name) {
     std::string key;
     for (const char c : name)
-        if (c != '_' && c != '-' && c != '.' && c != ' ') key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (c != '_' && c != '-' && c != '.' && c != ' ')
+            key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return key;
 }
 

@@ -32,7 +32,8 @@ Clip read_clip(const std::string& path, const ReadOptions& options, const std::s
     }
     const std::string text = read_file(path);
     if (ext == "bvh") return parse_bvh(path, text, options);
-    if (ext == "csv") return parse_joint_csv(path, text, options);
+    if (ext == "csv" || ext == "tsv") return parse_joint_csv(path, text, options);
+    if (ext == "skeleton") return parse_ntu_skeleton(path, text, options);
     if (ext == "txt") {
         LineScanner scanner(path, text);
         std::string_view first;
@@ -44,7 +45,9 @@ Clip read_clip(const std::string& path, const ReadOptions& options, const std::s
                         "cannot tell the format: expected 4 values (MSR Action3D) or 61 (UTKinect) on a line, got " +
                             std::to_string(values));
     }
-    throw ReadError(path, 0, "unknown file type '." + ext + "': expected .amc, .bvh, .csv or .txt (Kinect text)");
+    throw ReadError(path, 0,
+                    "unknown file type '." + ext +
+                        "': expected .amc, .bvh, .csv, .tsv, .skeleton (NTU RGB+D) or .txt (Kinect text)");
 }
 
 }  // namespace host

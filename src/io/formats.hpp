@@ -73,6 +73,9 @@ Clip parse_utkinect(const std::string& name, std::string_view text, const ReadOp
 /// `.x` or ` x` suffixes, any case); timestamps in seconds, positions in metres
 /// unless told otherwise.
 Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadOptions& options = {});
+/// NTU RGB+D .skeleton text (Kinect v2, 25 joints, 30 Hz, several bodies per
+/// frame): the body ReadOptions::body names, else the one that moves most.
+Clip parse_ntu_skeleton(const std::string& name, std::string_view text, const ReadOptions& options = {});
 
 /// One labelled interval of a continuous recording (frame ids as in the joint file).
 struct LabelInterval {

@@ -48,6 +48,14 @@ const std::vector<int>& kinect_v1_parents() {
     return parents;
 }
 
+// Kinect v2 parents, SDK order (NTU RGB+D's too).
+const std::vector<int>& kinect_v2_parents() {
+    static const std::vector<int> parents = {-1, 0,  20, 2,  20, 4,  5,  6,  20, 8,  9,  10, 0,
+                                             12, 13, 14, 0,  16, 17, 18, 1,  7,  7,  11, 11};
+    return parents;
+}
+
+// Parents of Kinect v1 joints given in another order (MSR Action3D's).
 std::vector<int> parents_by_name(const std::vector<std::string>& names) {
     const auto& sdk = kinect_v1_joint_names();
     std::vector<int> parents;
@@ -263,11 +271,15 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
         layout.push_back({j.axis_column[0], j.axis_column[1], j.axis_column[2]});
     }
     if (time_column < 0 && !(options.frame_rate_hz > 0))
-        scanner.fail("expected a time column ('timestamp', 'time' or 't', with an optional unit such as 'time_ms'), "
-                     "or --rate for a file without one; columns: " + std::to_string(header.size()));
+        scanner.fail(
+            "expected a time column ('timestamp', 'time' or 't', with an optional unit such as 'time_ms'), "
+            "or --rate for a file without one; columns: " +
+            std::to_string(header.size()));
     if (clip.joint_names.empty())
-        scanner.fail("expected joint columns named '<joint>_x', '<joint>_y', '<joint>_z' (or JointX, joint.x, "
-                     "'Joint X'), found none among " + std::to_string(header.size()) + " columns");
+        scanner.fail(
+            "expected joint columns named '<joint>_x', '<joint>_y', '<joint>_z' (or JointX, joint.x, "
+            "'Joint X'), found none among " +
+            std::to_string(header.size()) + " columns");
     std::sort(unused.begin(), unused.end());
     if (!unused.empty()) {
         std::string list;
@@ -301,7 +313,9 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
     // Time units: given, stated by the column's name, or read from the frame spacing.
     double unit = time_column < 0 ? 1.0 : options.time_unit_s;
     const std::string how_given = options.time_unit_s > 0 ? "as given" : "from the column's name";
-    if (!(unit > 0)) unit = time_column >= 0 ? unit_in_name(lowercase(std::string(header[static_cast<std::size_t>(time_column)]))) : 0.0;
+    if (!(unit > 0))
+        unit = time_column >= 0 ? unit_in_name(lowercase(std::string(header[static_cast<std::size_t>(time_column)])))
+                                : 0.0;
     std::vector<double> steps;
     for (std::size_t i = 1; i < raw_times.size(); ++i)
         if (raw_times[i] > raw_times[i - 1]) steps.push_back(raw_times[i] - raw_times[i - 1]);
@@ -329,6 +343,116 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
     if (step > 0 && !plausible(1.0 / (step * unit)))
         clip.notes.push_back("warning: the median frame spacing gives " + std::to_string(1.0 / (step * unit)) +
                              " Hz, outside 5 Hz to 1 kHz: check the timestamps' unit (--time-unit s|ms|us)");
+    finish_kinect_clip(clip, options);
+    require_finite_positions(clip);
+    return clip;
+}
+
+Clip parse_ntu_skeleton(const std::string& name, std::string_view text, const ReadOptions& options) {
+    // NTU RGB+D .skeleton text (Kinect v2): the frame count; per frame the body
+    // count, then per body a line of 10 values (the tracking id first), the
+    // joint count (25), and one line of 12 values per joint (x y z in metres,
+    // then depth and colour pixel coordinates, orientation and tracking state).
+    LineScanner scanner(name, text);
+    std::string_view line;
+    auto next = [&](const char* what) {
+        if (!scanner.next_content(line))
+            scanner.fail(std::string("file ends where ") + what + " was expected (truncated?)");
+        return split_words(line);
+    };
+    auto count = [&](const std::vector<std::string_view>& words, const char* what, double high) {
+        if (words.size() != 1)
+            scanner.fail(std::string("expected ") + what + " alone on the line, got " + std::to_string(words.size()) +
+                         " values");
+        const double v = parse_number(scanner, words[0], what);
+        if (!(v >= 0 && v <= high && v == std::floor(v)))
+            scanner.fail(std::string("expected ") + what + " between 0 and " + std::to_string(static_cast<long>(high)));
+        return static_cast<std::size_t>(v);
+    };
+    const std::size_t frames = count(next("the frame count"), "a frame count", 1e6);
+    if (frames == 0) scanner.fail("the file holds no frames");
+    constexpr std::size_t joints = 25;
+    // Each body seen: its id, and its positions per frame (zeros where it is absent).
+    struct Body {
+        std::string id;
+        std::vector<float> positions;
+        std::size_t present = 0;
+    };
+    std::vector<Body> bodies;
+    for (std::size_t f = 0; f < frames; ++f) {
+        const std::size_t body_count = count(next("a frame's body count"), "a body count", 16);
+        for (std::size_t b = 0; b < body_count; ++b) {
+            const std::vector<std::string_view> info = next("a body's line");
+            if (info.size() != 10)
+                scanner.fail("expected 10 values on a body's line, got " + std::to_string(info.size()));
+            const std::string id(info[0]);
+            auto body = std::find_if(bodies.begin(), bodies.end(), [&](const Body& x) { return x.id == id; });
+            if (body == bodies.end()) {
+                if (bodies.size() == 64) scanner.fail("more than 64 different bodies in one file");
+                bodies.push_back(Body{id, {}, 0});
+                body = bodies.end() - 1;
+            }
+            // Grown as frames are read, so a declared frame count alone allocates nothing.
+            body->positions.resize((f + 1) * joints * 3, 0.0f);
+            if (count(next("a body's joint count"), "a joint count", 25) != joints)
+                scanner.fail("expected 25 joints per body (Kinect v2)");
+            float* out = body->positions.data() + f * joints * 3;
+            for (std::size_t j = 0; j < joints; ++j) {
+                const std::vector<std::string_view> values = next("a joint's line");
+                if (values.size() != 12)
+                    scanner.fail("expected 12 values on a joint's line, got " + std::to_string(values.size()));
+                for (std::size_t a = 0; a < 3; ++a)
+                    out[3 * j + a] = static_cast<float>(parse_number(scanner, values[a], "a coordinate"));
+            }
+            ++body->present;
+        }
+    }
+    if (scanner.next_content(line)) scanner.fail("unexpected content after the last frame");
+    if (bodies.empty()) scanner.fail_at(0, "no body in any frame");
+    for (Body& body : bodies) body.positions.resize(frames * joints * 3, 0.0f);
+    // The body asked for, else the one that moves most (the sum over its
+    // joints of the positions' variance over the frames where it is present).
+    std::size_t chosen = 0;
+    if (options.body >= 0) {
+        if (static_cast<std::size_t>(options.body) >= bodies.size())
+            throw ReadError(name, 0,
+                            "body " + std::to_string(options.body) + " asked for, but the file has " +
+                                std::to_string(bodies.size()) + " (counted from 0 in order of appearance)");
+        chosen = static_cast<std::size_t>(options.body);
+    } else {
+        double most = -1;
+        for (std::size_t b = 0; b < bodies.size(); ++b) {
+            double motion = 0;
+            for (std::size_t k = 0; k < joints * 3; ++k) {
+                double sum = 0, squares = 0;
+                std::size_t n = 0;
+                for (std::size_t f = 0; f < frames; ++f) {
+                    const float* p = bodies[b].positions.data() + f * joints * 3;
+                    bool present = false;
+                    for (std::size_t i = 0; i < joints * 3 && !present; ++i) present = p[i] != 0.0f;
+                    if (!present) continue;
+                    sum += p[k];
+                    squares += static_cast<double>(p[k]) * p[k];
+                    ++n;
+                }
+                if (n > 1)
+                    motion += squares / static_cast<double>(n) -
+                              (sum / static_cast<double>(n)) * (sum / static_cast<double>(n));
+            }
+            if (motion > most) most = motion, chosen = b;
+        }
+    }
+    Clip clip;
+    clip.source = name;
+    clip.joint_names = kinect_v2_joint_names();
+    clip.parents = kinect_v2_parents();
+    clip.positions = std::move(bodies[chosen].positions);
+    const double rate = options.frame_rate_hz > 0 ? options.frame_rate_hz : 30.0;
+    for (std::size_t f = 0; f < frames; ++f) clip.times.push_back(static_cast<double>(f) / rate);
+    if (bodies.size() > 1)
+        clip.notes.push_back(std::to_string(bodies.size()) + " bodies; read body " + std::to_string(chosen) +
+                             (options.body >= 0 ? " (as asked)" : " (the one that moves most)") + ", present in " +
+                             std::to_string(bodies[chosen].present) + " of " + std::to_string(frames) + " frames");
     finish_kinect_clip(clip, options);
     require_finite_positions(clip);
     return clip;

@@ -18,9 +18,10 @@ namespace {
 template <class T>
 void put_le(std::string& out, std::size_t at, T value) {
     static_assert(std::is_trivially_copyable_v<T>, "plain values only");
-    using Bits = std::conditional_t<sizeof(T) == 1, std::uint8_t,
-                                    std::conditional_t<sizeof(T) == 2, std::uint16_t,
-                                                       std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>>>;
+    using Bits =
+        std::conditional_t<sizeof(T) == 1, std::uint8_t,
+                           std::conditional_t<sizeof(T) == 2, std::uint16_t,
+                                              std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>>>;
     Bits bits;
     std::memcpy(&bits, &value, sizeof bits);
     for (std::size_t i = 0; i < sizeof(T); ++i) out[at + i] = static_cast<char>((bits >> (8 * i)) & 0xFFu);
@@ -35,7 +36,8 @@ public:
         std::uint64_t bits = 0;
         std::string raw(8, '\0');
         put_le(raw, 0, value);
-        for (std::size_t i = 0; i < sizeof(T); ++i) bits |= std::uint64_t{static_cast<unsigned char>(raw[i])} << (8 * i);
+        for (std::size_t i = 0; i < sizeof(T); ++i)
+            bits |= std::uint64_t{static_cast<unsigned char>(raw[i])} << (8 * i);
         entry(kind, sizeof(T), bits, 0, 0);
     }
     template <class T>
@@ -100,10 +102,10 @@ ModelData copy_view(const ModelView& m) {
 #define ACTIONSTRING_COPY_COUNT(T, FIELD, TABLE)
 #define ACTIONSTRING_COPY_TABLE(T, FIELD, SIZE, LOW, HIGH) \
     if (m.FIELD != nullptr) data.FIELD.assign(m.FIELD, m.FIELD + static_cast<std::size_t>(SIZE));
-#define ACTIONSTRING_COPY_NAMES(FIELD, COUNT)                                      \
-    {                                                                              \
-        const std::vector<std::string> names = name_strings(m.FIELD, COUNT);      \
-        data.FIELD.assign(names.begin(), names.end());                             \
+#define ACTIONSTRING_COPY_NAMES(FIELD, COUNT)                                \
+    {                                                                        \
+        const std::vector<std::string> names = name_strings(m.FIELD, COUNT); \
+        data.FIELD.assign(names.begin(), names.end());                       \
     }
     ACTIONSTRING_MODEL_FIELDS(ACTIONSTRING_COPY_SCALAR, ACTIONSTRING_COPY_COUNT, ACTIONSTRING_COPY_TABLE,
                               ACTIONSTRING_COPY_NAMES)

@@ -99,11 +99,11 @@ std::string generate_header(const ModelData& m, const std::string& checksum, con
 #define ACTIONSTRING_SET_COUNT(T, FIELD, TABLE) out << "    m." #FIELD " = " << v.FIELD << ";\n";
 #define ACTIONSTRING_SET_TABLE(T, FIELD, SIZE, LOW, HIGH) \
     out << "    m." #FIELD " = " << (m.FIELD.empty() ? std::string("nullptr") : array_name(#FIELD)) << ";\n";
-#define ACTIONSTRING_SET_NAMES(FIELD, COUNT)                                                                  \
-    out << "    m." #FIELD " = "                                                                               \
-        << (m.FIELD.empty() ? std::string("::actionstring::NameTable{}")                                      \
-                            : "::actionstring::NameTable{" + array_name(#FIELD "_text") + ", " +               \
-                                  array_name(#FIELD "_offsets") + "}")                                         \
+#define ACTIONSTRING_SET_NAMES(FIELD, COUNT)                                                     \
+    out << "    m." #FIELD " = "                                                                 \
+        << (m.FIELD.empty() ? std::string("::actionstring::NameTable{}")                         \
+                            : "::actionstring::NameTable{" + array_name(#FIELD "_text") + ", " + \
+                                  array_name(#FIELD "_offsets") + "}")                           \
         << ";\n";
     ACTIONSTRING_MODEL_FIELDS(ACTIONSTRING_SET_SCALAR, ACTIONSTRING_SET_COUNT, ACTIONSTRING_SET_TABLE,
                               ACTIONSTRING_SET_NAMES)

@@ -42,9 +42,7 @@ public:
     std::vector<std::string>::const_iterator end() const noexcept { return names_.end(); }
     const std::vector<std::string>& strings() const noexcept { return names_; }
     /// The packed names (valid until the list changes), or an empty table when there are none.
-    NameTable table() const noexcept {
-        return names_.empty() ? NameTable{} : NameTable{text_.data(), offsets_.data()};
-    }
+    NameTable table() const noexcept { return names_.empty() ? NameTable{} : NameTable{text_.data(), offsets_.data()}; }
     /// The packed text (every name and its NUL) and the size() + 1 offsets.
     const std::string& packed_text() const noexcept { return text_; }
     const std::vector<std::uint32_t>& packed_offsets() const noexcept { return offsets_; }

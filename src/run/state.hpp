@@ -27,8 +27,9 @@ public:
         bytes_ = State::required_bytes(model, settings...);
         // Nothing can hold it: let the state say why (a setting, the model, or its size).
         if (bytes_ == unsatisfiable_bytes) return state_.init(model, settings..., nullptr, 0);
-        storage_.reset(bytes_ == 0 ? nullptr : static_cast<unsigned char*>(
-                                                   ::operator new(bytes_, std::align_val_t{state_alignment})));
+        storage_.reset(bytes_ == 0
+                           ? nullptr
+                           : static_cast<unsigned char*>(::operator new (bytes_, std::align_val_t{state_alignment})));
         return state_.init(model, settings..., storage_.get(), bytes_);
     }
 
@@ -41,7 +42,7 @@ public:
 
 private:
     struct Release {
-        void operator()(unsigned char* p) const noexcept { ::operator delete(p, std::align_val_t{state_alignment}); }
+        void operator()(unsigned char* p) const noexcept { ::operator delete (p, std::align_val_t{state_alignment}); }
     };
     State state_;
     std::unique_ptr<unsigned char, Release> storage_;

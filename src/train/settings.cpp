@@ -78,8 +78,7 @@ RoleNames parse_role_names(const std::string& text) {
     return names;
 }
 
-bool apply_training_setting(const std::string& name, const std::string& value, TrainingOptions& o,
-                            ReadOptions& read) {
+bool apply_training_setting(const std::string& name, const std::string& value, TrainingOptions& o, ReadOptions& read) {
     auto num = [&](double low, double high) { return number(name, value, low, high); };
     if (name == "components") o.components = static_cast<int>(num(0, 256));
     else if (name == "covariance") o.covariance = static_cast<Covariance>(choice(name, value, {"full", "diagonal"}));
@@ -89,7 +88,8 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "em-iterations") o.em_max_iterations = static_cast<int>(num(1, 100000));
     else if (name == "em-tolerance") o.em_tolerance = num(0, 1);
     else if (name == "em-restarts") o.em_restarts = static_cast<int>(num(1, 64));
-    else if (name == "scale") o.scale_mode = static_cast<ScaleMode>(choice(name, value, {"none", "hip-width", "bones"}));
+    else if (name == "scale")
+        o.scale_mode = static_cast<ScaleMode>(choice(name, value, {"none", "hip-width", "bones"}));
     else if (name == "mirror") o.mirror = flag(value);
     else if (name == "velocity") o.velocity_weight = num(0, 1000);
     else if (name == "velocity-span") o.velocity_span_s = num(0.01, 2);
@@ -110,6 +110,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (apply_segmenter_setting(name, value, o.online)) return true;
     else if (name == "rate") read.frame_rate_hz = num(0.001, 1e6);
     else if (name == "time-unit") read.time_unit_s = parse_time_unit(value);
+    else if (name == "body") read.body = static_cast<int>(num(0, 63));
     else if (name == "roles") read.roles = parse_role_names(value);
     else return false;
     return true;
@@ -133,13 +134,39 @@ void read_training_config(const std::string& path, TrainingOptions& options, Rea
 }
 
 const std::vector<std::string>& training_setting_names() {
-    static const std::vector<std::string> names{
-        "components", "covariance", "covariance-floor", "pca",        "feature-rate",     "em-iterations",
-        "em-tolerance", "em-restarts", "scale",         "mirror",     "velocity",         "velocity-span",
-        "epsilon",    "max-characters", "string-rate",  "variant",    "normalization",    "sigma",
-        "keep-singletons", "neighbours", "window",      "step",       "unknown-distance", "seed",
-        "settle",     "segment-penalty", "stay-penalty", "skip-penalty", "unknown-cost",  "rate",
-        "roles",      "time-unit"};
+    static const std::vector<std::string> names{"components",
+                                                "covariance",
+                                                "covariance-floor",
+                                                "pca",
+                                                "feature-rate",
+                                                "em-iterations",
+                                                "em-tolerance",
+                                                "em-restarts",
+                                                "scale",
+                                                "mirror",
+                                                "velocity",
+                                                "velocity-span",
+                                                "epsilon",
+                                                "max-characters",
+                                                "string-rate",
+                                                "variant",
+                                                "normalization",
+                                                "sigma",
+                                                "keep-singletons",
+                                                "neighbours",
+                                                "window",
+                                                "step",
+                                                "unknown-distance",
+                                                "seed",
+                                                "settle",
+                                                "segment-penalty",
+                                                "stay-penalty",
+                                                "skip-penalty",
+                                                "unknown-cost",
+                                                "rate",
+                                                "roles",
+                                                "time-unit",
+                                                "body"};
     return names;
 }
 

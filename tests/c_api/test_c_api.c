@@ -63,7 +63,8 @@ static void contract_checks(const actionstring_model* model) {
     CHECK(actionstring_init(model, &config, state_memory, size - 1, &state) == ACTIONSTRING_STORAGE_TOO_SMALL &&
           state == NULL);
     CHECK(actionstring_init(model, &config, state_memory, size, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
-    CHECK(actionstring_init(NULL, &config, state_memory, size, &state) == ACTIONSTRING_NOT_INITIALIZED && state == NULL);
+    CHECK(actionstring_init(NULL, &config, state_memory, size, &state) == ACTIONSTRING_NOT_INITIALIZED &&
+          state == NULL);
     CHECK(actionstring_init(model, &config, state_memory + 1, size, &state) == ACTIONSTRING_STORAGE_TOO_SMALL &&
           state == NULL);
     actionstring_config bad_config = config;
@@ -239,7 +240,8 @@ static void blob_checks(const char* const* paths, int count) {
         if (blobs[b] == NULL) return;
         CHECK(actionstring_model_from_blob(blobs[b], sizes[b], &models[b]) == ACTIONSTRING_OK);
         CHECK(strncmp(actionstring_model_checksum(&models[b]), "blob-fnv1a64:", 13) == 0);
-        CHECK(actionstring_model_joint_count(&models[b]) > 0 && actionstring_model_joint_count(&models[b]) <= kMaxJoints);
+        CHECK(actionstring_model_joint_count(&models[b]) > 0 &&
+              actionstring_model_joint_count(&models[b]) <= kMaxJoints);
         const size_t size = actionstring_state_size(&models[b], NULL);
         CHECK(size > 0 && size <= sizeof memory[b]);
         CHECK(actionstring_init(&models[b], NULL, memory[b], size, &states[b]) == ACTIONSTRING_OK);
@@ -261,7 +263,8 @@ static void blob_checks(const char* const* paths, int count) {
             const uint32_t joints = actionstring_model_joint_count(&models[b]);
             synthetic_frame(joints, f + 37 * b, frame);
             actionstring_frame_result result;
-            CHECK(actionstring_push_frame(states[b], (int64_t)f * 16667, frame, 3 * joints, &result) == ACTIONSTRING_OK);
+            CHECK(actionstring_push_frame(states[b], (int64_t)f * 16667, frame, 3 * joints, &result) ==
+                  ACTIONSTRING_OK);
             events[b] += result.events;
             const int32_t live = actionstring_live_label(states[b]);
             CHECK(live >= -1 && live < (int32_t)actionstring_model_label_count(&models[b]));
@@ -269,8 +272,8 @@ static void blob_checks(const char* const* paths, int count) {
             /* A frame of another model's skeleton is refused. */
             if (b > 0 && joints != actionstring_model_joint_count(&models[0]))
                 CHECK(actionstring_push_frame(states[b], (int64_t)f * 16667 + 1, frame,
-                                              3 * actionstring_model_joint_count(&models[0]), NULL) ==
-                      ACTIONSTRING_INVALID_ARGUMENT);
+                                              3 * actionstring_model_joint_count(&models[0]),
+                                              NULL) == ACTIONSTRING_INVALID_ARGUMENT);
         }
     for (int b = 0; b < count; ++b) {
         uint32_t flushed = 0;
@@ -336,7 +339,8 @@ static int replay_file(const char* path) {
             ++settled;
             if (label == shown) continue;
             shown = label;
-            printf("settled %u char %lld %s\n", index, (long long)character, actionstring_model_label_name(&model, label));
+            printf("settled %u char %lld %s\n", index, (long long)character,
+                   actionstring_model_label_name(&model, label));
         }
         ++index;
     }

@@ -30,7 +30,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (size > 0) std::memcpy(bytes, data, size);
     if (size % 2 == 0 && size >= 32) {
         const std::uint64_t sum = detail::blob_checksum(bytes, size);
-        for (std::size_t i = 0; i < 8; ++i) bytes[detail::blob_checksum_at + i] = static_cast<unsigned char>(sum >> (8 * i));
+        for (std::size_t i = 0; i < 8; ++i)
+            bytes[detail::blob_checksum_at + i] = static_cast<unsigned char>(sum >> (8 * i));
     }
     ModelView view;
     const char* problem = nullptr;

@@ -53,6 +53,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         parse_utkinect_labels("fuzz_labels.txt", text);
 #elif defined(ACTIONSTRING_FUZZ_CSV)
         check(parse_joint_csv("fuzz.csv", text));
+#elif defined(ACTIONSTRING_FUZZ_NTU)
+        check(parse_ntu_skeleton("fuzz.skeleton", text));
 #elif defined(ACTIONSTRING_FUZZ_CLIP_LIST)
         parse_clip_list("fuzz.tsv", text, "folder");
 #else

@@ -31,9 +31,8 @@ AnnotatorConfig every_rule(const ModelView& model) {
 }
 
 // Feeds one frame to both annotators and requires identical results; counts completed windows.
-void push_both(Annotator& generated, Annotator& host_side, const ModelView& view,
-               std::int64_t time_us, const float* positions, std::size_t& windows, std::size_t& characters,
-               Annotator* blob_side = nullptr) {
+void push_both(Annotator& generated, Annotator& host_side, const ModelView& view, std::int64_t time_us,
+               const float* positions, std::size_t& windows, std::size_t& characters, Annotator* blob_side = nullptr) {
     const FrameResult a = generated.push_frame(time_us, positions);
     const FrameResult b = host_side.push_frame(time_us, positions);
     if (blob_side != nullptr) {
