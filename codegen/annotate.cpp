@@ -8,6 +8,7 @@
 #include "common/time.hpp"
 #include "io/formats.hpp"
 #include "model/artifact.hpp"
+#include "live.hpp"
 #include "options.hpp"
 #include "run/skeleton.hpp"
 #include "run/stream_labels.hpp"
@@ -17,7 +18,8 @@ namespace cli {
 
 int run_annotate(int argc, char** argv) {
     std::string model_path, file, skeleton;
-    bool json = false, events = false;
+    bool json = false, events = false, live = false;
+    LiveSource live_source;
     double min_action_s = 0.25;
     host::ReadOptions read;
     SegmenterOverrides overrides;
@@ -27,6 +29,7 @@ int run_annotate(int argc, char** argv) {
         if (arg == "--help" || arg == "-h") {
             std::printf(
                 "usage: actionstring annotate --model MODEL FILE [--skeleton ASF] [--rate HZ] [--roles R,L,R]\n"
+                "       actionstring annotate --model MODEL --live [--udp PORT [--idle-timeout S]] [options]\n"
                 "                             [--json | --events] [--min-action S] [--time-unit s|ms|us] [--body N]\n"
                 "                             [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
                 "                             [--skip-penalty X] [--unknown-cost X]\n\n"
@@ -38,6 +41,13 @@ int run_annotate(int argc, char** argv) {
                 "action once when it starts and once when it ends (label, start and end time,\n"
                 "confidence); an action shorter than --min-action seconds [0.25] is flicker and\n"
                 "is not reported, and the end of the file ends a running action.\n"
+                "--live reads frames as they arrive, from standard input or (--udp PORT) from\n"
+                "UDP datagrams on 127.0.0.1: a joint CSV header line, then one frame per line\n"
+                "(the CSV spellings of 'info'; joints matched to the model's by name), and\n"
+                "prints JSON lines the moment they are known, flushed: each change of the\n"
+                "settled label ({\"settled\": …, \"time\": …}) and each action event. A malformed\n"
+                "line is skipped and counted, never fatal; the end of the input (or\n"
+                "--idle-timeout seconds without a datagram) ends the stream.\n"
                 "The segmenter options are those of 'actionstring eval'.\n");
             return 0;
         }
@@ -49,6 +59,9 @@ int run_annotate(int argc, char** argv) {
         else if (arg == "--body") read.body = static_cast<int>(args.number(arg, 0, 63));
         else if (arg == "--json") json = true;
         else if (arg == "--events") events = true;
+        else if (arg == "--live") live = true;
+        else if (arg == "--udp") live_source.udp_port = static_cast<int>(args.number(arg, 1, 65535));
+        else if (arg == "--idle-timeout") live_source.idle_timeout_s = args.number(arg, 0.01, 3600);
         else if (arg == "--min-action") min_action_s = args.number(arg, 0, 60);
         else if (parse_segmenter_option(args, arg, overrides)) continue;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
@@ -56,6 +69,17 @@ int run_annotate(int argc, char** argv) {
         else return args.error("more than one FILE given");
     }
     if (!args.ok()) return 2;
+    if (live) {
+        if (model_path.empty() || !file.empty())
+            return args.error("usage: actionstring annotate --model MODEL --live [--udp PORT] (see --help)");
+        return run_reporting_errors("annotate", [&] {
+            const host::ModelData model = host::load_model(model_path);
+            AnnotatorConfig config = overrides.over(model.view(), args);
+            config.min_action_us = static_cast<std::int64_t>(std::llround(min_action_s * 1e6));
+            return run_live(model, config, read, live_source);
+        });
+    }
+    if (live_source.udp_port != 0) return args.error("--udp needs --live");
     if (model_path.empty() || file.empty())
         return args.error("usage: actionstring annotate --model MODEL FILE (see --help)");
     return run_reporting_errors("annotate", [&] {

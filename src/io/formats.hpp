@@ -73,6 +73,37 @@ Clip parse_utkinect(const std::string& name, std::string_view text, const ReadOp
 /// `.x` or ` x` suffixes, any case); timestamps in seconds, positions in metres
 /// unless told otherwise.
 Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadOptions& options = {});
+
+/// A joint CSV's header, read once, and its rows read one at a time (what
+/// parse_joint_csv() reads a file with, and `annotate --live` a stream with).
+/// The header's rules are parse_joint_csv()'s; it throws ReadError naming
+/// `name` and `line` when it holds no time column (and no frame rate is
+/// given) or no joint.
+class JointCsvLayout {
+public:
+    JointCsvLayout(const std::string& name, std::string_view header_line, std::size_t line, const ReadOptions& options);
+    const std::vector<std::string>& joint_names() const noexcept { return joint_names_; }
+    /// Columns ignored, a unit read from the time column's name.
+    const std::vector<std::string>& notes() const noexcept { return notes_; }
+    /// Index of the time column, or −1 (then the rows are taken at the given frame rate).
+    int time_column() const noexcept { return time_column_; }
+    /// Seconds per time unit: given, or stated by the column's name; 0 when neither.
+    double time_unit_s() const noexcept { return time_unit_s_; }
+    /// One row: its raw time (in the file's unit) and joint_names().size() × 3
+    /// positions. False with `error` saying what was expected when the row is malformed.
+    bool parse_row(std::string_view line, double& raw_time, float* positions, std::string& error) const;
+
+private:
+    std::string name_;
+    std::size_t line_ = 0;
+    char delimiter_ = ',';
+    std::size_t columns_ = 0;
+    int time_column_ = -1;
+    double time_unit_s_ = 0.0;
+    std::vector<std::string> joint_names_;
+    std::vector<std::array<int, 3>> axes_;
+    std::vector<std::string> notes_;
+};
 /// NTU RGB+D .skeleton text (Kinect v2, 25 joints, 30 Hz, several bodies per
 /// frame): the body ReadOptions::body names, else the one that moves most.
 Clip parse_ntu_skeleton(const std::string& name, std::string_view text, const ReadOptions& options = {});

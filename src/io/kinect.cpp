@@ -3,7 +3,9 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "io/formats.hpp"
@@ -200,6 +202,15 @@ bool is_time_column(const std::string& name) {
     return false;
 }
 
+// The whole token as a finite number, or nothing.
+std::optional<double> parse_real_token(std::string_view token) {
+    const std::string text(token);
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) return std::nullopt;
+    return v;
+}
+
 // "<joint><sep><axis>": Head_x, HeadX, head.x, Head X, HEAD-Z (axis any case).
 bool joint_axis(std::string_view column, std::string& joint, int& axis) {
     if (column.size() < 2) return false;
@@ -217,27 +228,26 @@ bool joint_axis(std::string_view column, std::string& joint, int& axis) {
 
 }  // namespace
 
-Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadOptions& options) {
-    LineScanner scanner(name, text);
-    std::string_view line;
-    if (!scanner.next_content(line, '#')) scanner.fail_at(0, "empty file: expected a header row");
-    const char delimiter = detect_delimiter(line);
-    const std::vector<std::string_view> header = csv_fields(line, delimiter);
+JointCsvLayout::JointCsvLayout(const std::string& name, std::string_view header_line, std::size_t line,
+                               const ReadOptions& options)
+    : name_(name), line_(line) {
+    auto fail = [&](const std::string& what) { throw ReadError(name_, line_, what); };
+    delimiter_ = detect_delimiter(header_line);
+    const std::vector<std::string_view> header = csv_fields(header_line, delimiter_);
+    columns_ = header.size();
 
     // The time column, and joints whose x, y and z columns are all there;
-    // every other column is ignored (and said so in the clip's notes).
-    int time_column = -1;
+    // every other column is ignored (and said so in the notes).
     struct JointColumns {
         std::string name, key;
         int axis_column[3] = {-1, -1, -1};
-        std::size_t first = 0;
     };
     std::vector<JointColumns> joints;
     std::vector<std::size_t> unused;
     for (std::size_t c = 0; c < header.size(); ++c) {
         const std::string column(header[c]);
-        if (time_column < 0 && is_time_column(lowercase(column))) {
-            time_column = static_cast<int>(c);
+        if (time_column_ < 0 && is_time_column(lowercase(column))) {
+            time_column_ = static_cast<int>(c);
             continue;
         }
         std::string joint;
@@ -249,34 +259,31 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
         std::string key = lowercase(joint);
         auto found = std::find_if(joints.begin(), joints.end(), [&](const JointColumns& j) { return j.key == key; });
         if (found == joints.end()) {
-            joints.push_back(JointColumns{joint, key, {-1, -1, -1}, c});
+            joints.push_back(JointColumns{joint, key, {-1, -1, -1}});
             found = joints.end() - 1;
         }
         if (found->axis_column[axis] >= 0)
-            scanner.fail("columns " + quoted(header[static_cast<std::size_t>(found->axis_column[axis])]) + " and " +
-                         quoted(column) + " both give the " + std::string(1, static_cast<char>('x' + axis)) +
-                         " of joint " + quoted(found->name));
+            fail("columns " + quoted(header[static_cast<std::size_t>(found->axis_column[axis])]) + " and " +
+                 quoted(column) + " both give the " + std::string(1, static_cast<char>('x' + axis)) + " of joint " +
+                 quoted(found->name));
         found->axis_column[axis] = static_cast<int>(c);
     }
-    Clip clip;
-    clip.source = name;
-    std::vector<std::array<int, 3>> layout;
     for (const JointColumns& j : joints) {
         if (j.axis_column[0] < 0 || j.axis_column[1] < 0 || j.axis_column[2] < 0) {
             for (const int c : j.axis_column)
                 if (c >= 0) unused.push_back(static_cast<std::size_t>(c));
             continue;
         }
-        clip.joint_names.push_back(j.name);
-        layout.push_back({j.axis_column[0], j.axis_column[1], j.axis_column[2]});
+        joint_names_.push_back(j.name);
+        axes_.push_back({j.axis_column[0], j.axis_column[1], j.axis_column[2]});
     }
-    if (time_column < 0 && !(options.frame_rate_hz > 0))
-        scanner.fail(
+    if (time_column_ < 0 && !(options.frame_rate_hz > 0))
+        fail(
             "expected a time column ('timestamp', 'time' or 't', with an optional unit such as 'time_ms'), "
             "or --rate for a file without one; columns: " +
             std::to_string(header.size()));
-    if (clip.joint_names.empty())
-        scanner.fail(
+    if (joint_names_.empty())
+        fail(
             "expected joint columns named '<joint>_x', '<joint>_y', '<joint>_z' (or JointX, joint.x, "
             "'Joint X'), found none among " +
             std::to_string(header.size()) + " columns");
@@ -284,38 +291,73 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
     if (!unused.empty()) {
         std::string list;
         for (const std::size_t c : unused) list += (list.empty() ? "" : ", ") + quoted(header[c]);
-        clip.notes.push_back(std::to_string(unused.size()) + " column" + (unused.size() == 1 ? "" : "s") +
-                             " ignored: " + list);
+        notes_.push_back(std::to_string(unused.size()) + " column" + (unused.size() == 1 ? "" : "s") +
+                         " ignored: " + list);
     }
+    if (time_column_ >= 0) {
+        time_unit_s_ = options.time_unit_s > 0
+                           ? options.time_unit_s
+                           : unit_in_name(lowercase(std::string(header[static_cast<std::size_t>(time_column_)])));
+        if (options.time_unit_s <= 0 && time_unit_s_ > 0 && time_unit_s_ != 1.0)
+            notes_.push_back("timestamps in units of " + std::to_string(time_unit_s_) + " s (from the column's name)");
+    }
+}
+
+bool JointCsvLayout::parse_row(std::string_view line, double& raw_time, float* positions, std::string& error) const {
+    const std::vector<std::string_view> fields = csv_fields(line, delimiter_);
+    if (fields.size() != columns_) {
+        error = "expected " + std::to_string(columns_) + " columns, got " + std::to_string(fields.size());
+        return false;
+    }
+    auto number = [&](std::string_view token, const char* what, double& out) {
+        const std::optional<double> v = parse_real_token(token);
+        if (!v) error = std::string("expected ") + what + ", got " + quoted(token);
+        else out = *v;
+        return v.has_value();
+    };
+    raw_time = 0;
+    if (time_column_ >= 0 && !number(fields[static_cast<std::size_t>(time_column_)], "a timestamp", raw_time))
+        return false;
+    for (std::size_t j = 0; j < axes_.size(); ++j)
+        for (std::size_t a = 0; a < 3; ++a) {
+            double v = 0;
+            if (!number(fields[static_cast<std::size_t>(axes_[j][a])], "a coordinate", v)) return false;
+            positions[3 * j + a] = static_cast<float>(v);
+        }
+    return true;
+}
+
+Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadOptions& options) {
+    LineScanner scanner(name, text);
+    std::string_view line;
+    if (!scanner.next_content(line, '#')) scanner.fail_at(0, "empty file: expected a header row");
+    const JointCsvLayout layout(name, line, scanner.line_number(), options);
+    Clip clip;
+    clip.source = name;
+    clip.joint_names = layout.joint_names();
+    clip.notes = layout.notes();
+    const int time_column = layout.time_column();
 
     // Rows: the columns the header named, in any order; the ignored ones are not parsed.
     std::vector<double> raw_times;
+    std::vector<float> frame(3 * layout.joint_names().size());
+    std::string error;
     while (scanner.next_content(line, '#')) {
-        const std::vector<std::string_view> fields = csv_fields(line, delimiter);
-        if (fields.size() != header.size())
-            scanner.fail("expected " + std::to_string(header.size()) + " columns, got " +
-                         std::to_string(fields.size()));
+        double t = 0;
+        if (!layout.parse_row(line, t, frame.data(), error)) scanner.fail(error);
         if (time_column >= 0) {
-            const double t = parse_number(scanner, fields[static_cast<std::size_t>(time_column)], "a timestamp");
             if (!raw_times.empty() && t < raw_times.back())
-                scanner.fail("timestamp " + std::string(fields[static_cast<std::size_t>(time_column)]) +
-                             " is earlier than the previous row's");
+                scanner.fail("timestamp " + std::to_string(t) + " is earlier than the previous row's");
             raw_times.push_back(t);
+        } else {
+            raw_times.push_back(static_cast<double>(raw_times.size()) / options.frame_rate_hz);
         }
-        for (const auto& axes : layout)
-            for (const int c : axes)
-                clip.positions.push_back(
-                    static_cast<float>(parse_number(scanner, fields[static_cast<std::size_t>(c)], "a coordinate")));
-        if (time_column < 0) raw_times.push_back(static_cast<double>(raw_times.size()) / options.frame_rate_hz);
+        clip.positions.insert(clip.positions.end(), frame.begin(), frame.end());
     }
     if (raw_times.empty()) scanner.fail("no data rows after the header");
 
     // Time units: given, stated by the column's name, or read from the frame spacing.
-    double unit = time_column < 0 ? 1.0 : options.time_unit_s;
-    const std::string how_given = options.time_unit_s > 0 ? "as given" : "from the column's name";
-    if (!(unit > 0))
-        unit = time_column >= 0 ? unit_in_name(lowercase(std::string(header[static_cast<std::size_t>(time_column)])))
-                                : 0.0;
+    double unit = time_column < 0 ? 1.0 : layout.time_unit_s();
     std::vector<double> steps;
     for (std::size_t i = 1; i < raw_times.size(); ++i)
         if (raw_times[i] > raw_times[i - 1]) steps.push_back(raw_times[i] - raw_times[i - 1]);
@@ -323,8 +365,7 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
     const double step = steps.empty() ? 0.0 : steps[steps.size() / 2];
     auto plausible = [](double hz) { return hz >= 5.0 && hz <= 1000.0; };
     if (unit > 0) {
-        if (time_column >= 0 && unit != 1.0)
-            clip.notes.push_back("timestamps in units of " + std::to_string(unit) + " s (" + how_given + ")");
+        // given, or stated by the column's name
     } else if (step <= 0 || plausible(1.0 / step)) {
         unit = 1.0;
     } else if (plausible(1.0 / (step * 1e-3))) {
