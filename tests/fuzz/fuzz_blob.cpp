@@ -41,25 +41,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         delete[] storage;
         return 0;
     }
-    AnnotatorConfig config = annotator_config(view);
-    config.window_rule = true;
-    // A valid model may still ask for more state than a fuzzing run should allocate.
-    if (Annotator::required_bytes(view, config) <= (std::size_t{64} << 20)) {
-        host::Stateful<Annotator> annotator;
-        const Status init = annotator.init(view, config);
-        if (init != Status::ok && init != Status::model_exceeds_capacity) std::abort();
-        if (init == Status::ok) {
-            for (int step = 0; step < 40; ++step) {
-                const std::vector<float> frame = fuzz::frame_for(view, step);
-                annotator->push_frame(static_cast<std::int64_t>(step) * 40000, frame.data());
-                const LabelId label = annotator->label(), live = annotator->live_label();
-                if (label != unknown_label && label >= view.label_count) std::abort();
-                if (live != unknown_label && live >= view.label_count) std::abort();
-                if (!std::isfinite(annotator->confidence())) std::abort();
-                if (live != unknown_label && std::strlen(view.label_names[live]) == 0) std::abort();
-            }
-        }
-    }
+    fuzz::stream_and_check(view);
     delete[] storage;
     return 0;
 }

@@ -1,11 +1,18 @@
-// A frame the fuzz targets stream through a model the fuzzer made: a standing
-// body of the model's joints whose hips (the model's roles) are apart.
+// What the model fuzz targets do with a model the fuzzer made and the runtime
+// accepted: stream frames of a standing body through an annotator and check
+// every label.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <vector>
 
+#include "actionstring/annotator.hpp"
 #include "actionstring/model.hpp"
+#include "run/state.hpp"
 
 namespace actionstring {
 namespace fuzz {
@@ -20,6 +27,29 @@ inline std::vector<float> frame_for(const ModelView& model, int step) {
     frame[3u * model.left_hip_joint] = 0.15f;
     frame[3u * model.right_hip_joint] = -0.15f;
     return frame;
+}
+
+/// Streams 40 frames through an annotator with both rules on a model that
+/// passed validation; aborts (a finding) when init() refuses it, or a label is
+/// out of range, a label name empty or the confidence not finite. A model
+/// whose state would exceed 64 MiB is valid but skipped.
+inline void stream_and_check(const ModelView& view) {
+    AnnotatorConfig config = annotator_config(view);
+    config.window_rule = true;
+    if (Annotator::required_bytes(view, config) > (std::size_t{64} << 20)) return;
+    host::Stateful<Annotator> annotator;
+    const Status status = annotator.init(view, config);
+    if (status == Status::model_exceeds_capacity) return;
+    if (status != Status::ok) std::abort();
+    for (int step = 0; step < 40; ++step) {
+        const std::vector<float> frame = frame_for(view, step);
+        annotator->push_frame(static_cast<std::int64_t>(step) * 40000, frame.data());
+        const LabelId label = annotator->label(), live = annotator->live_label();
+        if (label != unknown_label && label >= view.label_count) std::abort();
+        if (live != unknown_label && live >= view.label_count) std::abort();
+        if (!std::isfinite(annotator->confidence())) std::abort();
+        if (live != unknown_label && std::strlen(view.label_names[live]) == 0) std::abort();
+    }
 }
 
 }  // namespace fuzz

@@ -47,22 +47,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // A model that loads has passed the same checks as codegen and init().
     const std::string header = generate_header(model, "0", "fuzz", "fuzz.model");
     if (header.empty()) std::abort();
-    static Stateful<Annotator> annotator;
-    const ModelView view = model.view();
-    AnnotatorConfig config = annotator_config(view);
-    config.window_rule = true;
-    // A valid model may still ask for more state than a fuzzing run should allocate.
-    if (Annotator::required_bytes(view, config) > (std::size_t{64} << 20)) return 0;
-    const Status status = annotator.init(view, config);
-    if (status == Status::model_exceeds_capacity) return 0;
-    if (status != Status::ok) std::abort();
-    for (int step = 0; step < 40; ++step) {
-        const std::vector<float> frame = fuzz::frame_for(view, step);
-        annotator->push_frame(static_cast<std::int64_t>(step) * 40000, frame.data());
-        const LabelId label = annotator->label(), live = annotator->live_label();
-        if (label != unknown_label && label >= view.label_count) std::abort();
-        if (live != unknown_label && live >= view.label_count) std::abort();
-        if (!std::isfinite(annotator->confidence())) std::abort();
-    }
+    fuzz::stream_and_check(model.view());
     return 0;
 }
