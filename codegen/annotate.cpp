@@ -31,6 +31,7 @@ int run_annotate(int argc, char** argv) {
                 "usage: actionstring annotate --model MODEL FILE [--skeleton ASF] [--rate HZ] [--roles R,L,R]\n"
                 "       actionstring annotate --model MODEL --live [--udp PORT [--idle-timeout S]] [options]\n"
                 "                             [--json | --events] [--min-action S] [--time-unit s|ms|us] [--body N]\n"
+                "                             [--columns time=COL,JOINT=X:Y:Z,...]\n"
                 "                             [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
                 "                             [--skip-penalty X] [--unknown-cost X]\n\n"
                 "Streams FILE frame by frame through the annotator, as a device would, and prints\n"
@@ -57,6 +58,7 @@ int run_annotate(int argc, char** argv) {
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
         else if (arg == "--time-unit") read.time_unit_s = parse_time_unit(args, args.value(arg));
         else if (arg == "--body") read.body = static_cast<int>(args.number(arg, 0, 63));
+        else if (arg == "--columns") read.columns = args.value(arg);
         else if (arg == "--json") json = true;
         else if (arg == "--events") events = true;
         else if (arg == "--live") live = true;

@@ -28,6 +28,7 @@ void print_info_usage(std::FILE* out) {
                  "  --roles R,L,R   joint names for root, left hip and right hip\n"
                  "  --time-unit U   unit of a CSV's time column (default: its name's, else from the spacing)\n"
                  "  --body N        body N (from 0) of an NTU RGB+D .skeleton (default: the one that moves most)\n"
+                 "  --columns SPEC  a CSV's layout when no spelling rule fits: time=COL,JOINT=X:Y:Z,...\n"
                  "  --joints        list every joint with its parent\n");
 }
 }  // namespace
@@ -50,6 +51,7 @@ int run_info(int argc, char** argv) {
         else if (arg == "--roles") options.roles = parse_roles(args, args.value(arg));
         else if (arg == "--time-unit") options.time_unit_s = parse_time_unit(args, args.value(arg));
         else if (arg == "--body") options.body = static_cast<int>(args.number(arg, 0, 63));
+        else if (arg == "--columns") options.columns = args.value(arg);
         else if (arg == "--joints") list_joints = true;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;

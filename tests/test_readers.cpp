@@ -431,6 +431,26 @@ std::string ntu_text(int frames, const std::vector<std::pair<std::string, float>
 
 }  // namespace
 
+TEST_CASE("joint CSV with --columns: a layout no spelling rule covers") {
+    const std::string text =
+        "when;a1;a2;a3;b1;b2;b3;c1;c2;c3;junk\n0;0;1;2;-0.1;1;2;0.1;1;2;x\n0.04;0;1;2;-0.1;1;2;0.1;1;2;y\n";
+    ReadOptions options;
+    options.columns = "time=WHEN, pelvis=a1:a2:a3, hipleft=b1:b2:b3, hipright=c1:c2:c3";
+    const Clip clip = parse_joint_csv("odd.csv", text, options);
+    CHECK(clip.joint_names == std::vector<std::string>{"pelvis", "hipleft", "hipright"});
+    CHECK(clip.roles.complete());
+    CHECK(clip.times[1] == doctest::Approx(0.04));
+    CHECK(clip.frame(1)[3] == doctest::Approx(-0.1f));
+    REQUIRE(clip.notes.size() == 1);
+    CHECK(clip.notes[0] == "1 columns not named by --columns, ignored");
+    options.columns = "time=when,pelvis=a1:a2:nope";
+    check_error([&] { parse_joint_csv("odd.csv", text, options); }, 1, "no column 'nope' in the header");
+    options.columns = "time=when,pelvis=a1:a2";
+    check_error([&] { parse_joint_csv("odd.csv", text, options); }, 1, "expected JOINT=X:Y:Z");
+    options.columns = "pelvis=a1:a2:a3";
+    check_error([&] { parse_joint_csv("odd.csv", text, options); }, 1, "no time column given");
+}
+
 TEST_CASE("NTU RGB+D skeletons: the main body, or a chosen one") {
     // Body 72057594037931101 stands still, 72057594037931102 sways.
     const std::string text = ntu_text(4, {{"72057594037931101", 0.0f}, {"72057594037931102", 0.05f}});

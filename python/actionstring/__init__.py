@@ -42,7 +42,7 @@ PathLike = Union[str, "os.PathLike[str]"]
 
 def read_clip(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis: int = -1,
               roles: Optional[Sequence[str]] = None, skeleton: str = "", time_unit: str = "",
-              body: int = -1) -> Clip:
+              body: int = -1, columns: str = "") -> Clip:
     """Reads one motion file (ASF/AMC with ``skeleton``, BVH, Kinect text, joint CSV,
     NTU RGB+D ``.skeleton``).
 
@@ -51,10 +51,11 @@ def read_clip(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis:
     the format's rule), ``roles`` the (root, left hip, right hip) joint names,
     ``time_unit`` a CSV's time unit ("s", "ms", "us"; default: its column's name,
     else the frame spacing), ``body`` which body of an NTU file (-1: the one that
-    moves most). What the reader noticed is in ``clip.notes``.
+    moves most), ``columns`` a CSV's layout when no spelling rule fits
+    ("time=COL,JOINT=X:Y:Z,..."). What the reader noticed is in ``clip.notes``.
     Raises ReadError naming the file, the line and what was expected.
     """
-    return _native._read_clip(os.fspath(path), rate, scale, up_axis, roles, skeleton, time_unit, body)
+    return _native._read_clip(os.fspath(path), rate, scale, up_axis, roles, skeleton, time_unit, body, columns)
 
 
 def read_clip_list(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis: int = -1,
@@ -67,7 +68,7 @@ def read_clip_list(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_
 def training_settings() -> List[str]:
     """Names ``train`` accepts as keywords (dashes as underscores), as ``actionstring train`` takes them."""
     return [name.replace("-", "_") for name in _native._training_setting_names()
-            if name not in ("rate", "roles", "time-unit", "body")]
+            if name not in ("rate", "roles", "time-unit", "body", "columns")]
 
 
 class Classification(tuple):

@@ -152,8 +152,9 @@ py::array times_view(const py::object& self) {
 }
 
 host::ReadOptions read_options(double rate, double scale, int up_axis, const py::object& roles,
-                               const std::string& time_unit = "", int body = -1) {
+                               const std::string& time_unit = "", int body = -1, const std::string& columns = "") {
     host::ReadOptions read;
+    read.columns = columns;
     if (!time_unit.empty()) read.time_unit_s = host::parse_time_unit(time_unit);
     if (body < -1 || body > 63) throw py::value_error("body: 0 to 63, or -1 for the one that moves most");
     read.body = body;
@@ -228,7 +229,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
         const std::string key = item.first.cast<std::string>();
         if (!host::apply_training_setting(setting_name(key), setting_value(item.second), options, unused))
             throw py::value_error("unknown training setting '" + key + "'");
-        if (key == "rate" || key == "roles" || key == "time_unit" || key == "body")
+        if (key == "rate" || key == "roles" || key == "time_unit" || key == "body" || key == "columns")
             throw py::value_error("'" + key + "' is a reading setting: give it to read_clip or read_clip_list");
     }
     if (clips.empty()) throw py::value_error("no clips to train on");
@@ -363,8 +364,9 @@ PYBIND11_MODULE(_actionstring, m) {
         .def_property_readonly("frame_count", [](const LabelledClip& c) { return c.clip.frame_count(); })
         .def_property_readonly("joint_count", [](const LabelledClip& c) { return c.clip.joint_count(); })
         .def_property_readonly("duration", [](const LabelledClip& c) { return c.clip.duration(); })
-        .def_property_readonly("notes", [](const LabelledClip& c) { return c.clip.notes; },
-                               "What the reader noticed: columns ignored, a time unit detected, a warning")
+        .def_property_readonly(
+            "notes", [](const LabelledClip& c) { return c.clip.notes; },
+            "What the reader noticed: columns ignored, a time unit detected, a warning")
         .def(
             "relabelled",
             [](const LabelledClip& c, const std::string& label, const std::string& subject) {
@@ -384,13 +386,15 @@ PYBIND11_MODULE(_actionstring, m) {
     m.def(
         "_read_clip",
         [](const std::string& path, double rate, double scale, int up_axis, const py::object& roles,
-           const std::string& skeleton, const std::string& time_unit, int body) {
+           const std::string& skeleton, const std::string& time_unit, int body, const std::string& columns) {
             LabelledClip out;
-            out.clip = host::read_clip(path, read_options(rate, scale, up_axis, roles, time_unit, body), skeleton);
+            out.clip =
+                host::read_clip(path, read_options(rate, scale, up_axis, roles, time_unit, body, columns), skeleton);
             return out;
         },
         py::arg("path"), py::arg("rate") = 0.0, py::arg("scale") = 0.0, py::arg("up_axis") = -1,
-        py::arg("roles") = py::none(), py::arg("skeleton") = "", py::arg("time_unit") = "", py::arg("body") = -1);
+        py::arg("roles") = py::none(), py::arg("skeleton") = "", py::arg("time_unit") = "", py::arg("body") = -1,
+        py::arg("columns") = "");
     m.def(
         "_read_clip_list",
         [](const std::string& path, double rate, double scale, int up_axis, const py::object& roles) {

@@ -105,3 +105,12 @@ def test_csv_as_exported_with_its_notes(tmp_path):
     assert any(note.startswith("warning:") for note in seconds.notes)
     with pytest.raises(ValueError, match="--time-unit"):
         actionstring.read_clip(path, time_unit="minutes")
+
+
+def test_csv_columns_given_by_hand(tmp_path):
+    path = tmp_path / "odd.csv"
+    path.write_text("when;a1;a2;a3;b1;b2;b3;c1;c2;c3\n0;0;1;2;-0.1;1;2;0.1;1;2\n0.04;0;1;2;-0.1;1;2;0.1;1;2\n")
+    clip = actionstring.read_clip(path, columns="time=when,pelvis=a1:a2:a3,hipleft=b1:b2:b3,hipright=c1:c2:c3")
+    assert clip.joint_names == ["pelvis", "hipleft", "hipright"]
+    with pytest.raises(actionstring.ReadError, match="no column 'zz'"):
+        actionstring.read_clip(path, columns="time=when,pelvis=a1:a2:zz")

@@ -75,6 +75,9 @@ struct ReadOptions {
     /// Seconds per unit of a joint CSV's time column; 0 reads the unit from
     /// the column's name, else from the frame spacing (a rate of 5 Hz–1 kHz).
     double time_unit_s = 0.0;
+    /// A joint CSV's layout when no spelling rule fits: "time=COLUMN,JOINT=X:Y:Z,…"
+    /// (header names, case-insensitive). Empty: the columns are recognised by name.
+    std::string columns;
     /// Which body of a multi-body file (NTU RGB+D), counted from 0 in order of
     /// appearance; −1 takes the one that moves most.
     int body = -1;

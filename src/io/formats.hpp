@@ -94,6 +94,8 @@ public:
     bool parse_row(std::string_view line, double& raw_time, float* positions, std::string& error) const;
 
 private:
+    void explicit_columns(const std::vector<std::string_view>& header, const ReadOptions& options);
+
     std::string name_;
     std::size_t line_ = 0;
     char delimiter_ = ',';

@@ -52,8 +52,8 @@ const std::vector<int>& kinect_v1_parents() {
 
 // Kinect v2 parents, SDK order (NTU RGB+D's too).
 const std::vector<int>& kinect_v2_parents() {
-    static const std::vector<int> parents = {-1, 0,  20, 2,  20, 4,  5,  6,  20, 8,  9,  10, 0,
-                                             12, 13, 14, 0,  16, 17, 18, 1,  7,  7,  11, 11};
+    static const std::vector<int> parents = {-1, 0,  20, 2, 20, 4,  5,  6, 20, 8, 9,  10, 0,
+                                             12, 13, 14, 0, 16, 17, 18, 1, 7,  7, 11, 11};
     return parents;
 }
 
@@ -235,6 +235,10 @@ JointCsvLayout::JointCsvLayout(const std::string& name, std::string_view header_
     delimiter_ = detect_delimiter(header_line);
     const std::vector<std::string_view> header = csv_fields(header_line, delimiter_);
     columns_ = header.size();
+    if (!options.columns.empty()) {
+        explicit_columns(header, options);
+        return;
+    }
 
     // The time column, and joints whose x, y and z columns are all there;
     // every other column is ignored (and said so in the notes).
@@ -301,6 +305,51 @@ JointCsvLayout::JointCsvLayout(const std::string& name, std::string_view header_
         if (options.time_unit_s <= 0 && time_unit_s_ > 0 && time_unit_s_ != 1.0)
             notes_.push_back("timestamps in units of " + std::to_string(time_unit_s_) + " s (from the column's name)");
     }
+}
+
+// The layout given by --columns: "time=COLUMN,JOINT=X:Y:Z,…" (column names as
+// the header spells them, case-insensitive; the time entry may be left out
+// when a frame rate is given).
+void JointCsvLayout::explicit_columns(const std::vector<std::string_view>& header, const ReadOptions& options) {
+    auto fail = [&](const std::string& what) { throw ReadError(name_, line_, "--columns: " + what); };
+    auto find = [&](std::string_view wanted) {
+        const std::string key = lowercase(trim(wanted));
+        for (std::size_t c = 0; c < header.size(); ++c)
+            if (lowercase(header[c]) == key) return static_cast<int>(c);
+        std::string list;
+        for (const std::string_view h : header) list += (list.empty() ? "" : ", ") + quoted(h);
+        fail("no column " + quoted(trim(wanted)) + " in the header (" + list + ")");
+        return -1;
+    };
+    std::vector<bool> used(header.size(), false);
+    for (const std::string_view entry : split_fields(options.columns, ',')) {
+        const std::size_t equals = entry.find('=');
+        if (equals == std::string_view::npos) fail("expected NAME=COLUMN entries, got " + quoted(entry));
+        const std::string name(trim(entry.substr(0, equals)));
+        const std::string_view value = entry.substr(equals + 1);
+        if (lowercase(name) == "time") {
+            time_column_ = find(value);
+            used[static_cast<std::size_t>(time_column_)] = true;
+            continue;
+        }
+        const std::vector<std::string_view> axes = split_fields(value, ':');
+        if (name.empty() || axes.size() != 3) fail("expected JOINT=X:Y:Z, got " + quoted(entry));
+        std::array<int, 3> columns{};
+        for (std::size_t a = 0; a < 3; ++a) {
+            columns[a] = find(axes[a]);
+            used[static_cast<std::size_t>(columns[a])] = true;
+        }
+        if (std::find(joint_names_.begin(), joint_names_.end(), name) != joint_names_.end())
+            fail("joint " + quoted(name) + " named twice");
+        joint_names_.push_back(name);
+        axes_.push_back(columns);
+    }
+    if (joint_names_.empty()) fail("no joint given");
+    if (time_column_ < 0 && !(options.frame_rate_hz > 0)) fail("no time column given, and no frame rate (--rate)");
+    std::size_t unused = 0;
+    for (const bool u : used) unused += u ? 0 : 1;
+    if (unused > 0) notes_.push_back(std::to_string(unused) + " columns not named by --columns, ignored");
+    if (time_column_ >= 0) time_unit_s_ = options.time_unit_s;
 }
 
 bool JointCsvLayout::parse_row(std::string_view line, double& raw_time, float* positions, std::string& error) const {

@@ -111,6 +111,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "rate") read.frame_rate_hz = num(0.001, 1e6);
     else if (name == "time-unit") read.time_unit_s = parse_time_unit(value);
     else if (name == "body") read.body = static_cast<int>(num(0, 63));
+    else if (name == "columns") read.columns = value;
     else if (name == "roles") read.roles = parse_role_names(value);
     else return false;
     return true;
@@ -166,7 +167,8 @@ const std::vector<std::string>& training_setting_names() {
                                                 "rate",
                                                 "roles",
                                                 "time-unit",
-                                                "body"};
+                                                "body",
+                                                "columns"};
     return names;
 }
 
