@@ -2,6 +2,7 @@
 // exact recovery of streams made of the representatives, "no action", limits.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -67,8 +68,10 @@ Tables random_tables(std::mt19937& rng) {
 // The recurrence of segmenter.hpp over the whole stream at once: absolute
 // costs (no shift), every column and every segment end kept, and for each
 // character t the label that the best explanation at t + settle gives it.
+// `margins` receives, per character, how far the best explanation's label
+// leads the best one with another label (live_margin()).
 std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig& config, std::uint32_t settle,
-                                       const std::vector<Character>& stream) {
+                                       const std::vector<Character>& stream, std::vector<float>* margins = nullptr) {
     const float inf = std::numeric_limits<float>::infinity();
     const std::size_t T = stream.size(), R = m.representative_count;
     struct End {
@@ -114,6 +117,14 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
             if (next[r][n] < best_end)
                 best_end = next[r][n], end_rep = static_cast<int>(r), end_start = next_start[r][n];
         }
+        if (margins != nullptr) {
+            const LabelId live = label(best_rep);
+            float rival = live == unknown_label ? inf : before + config.unknown_cost;
+            for (std::size_t r = 0; r < R; ++r)
+                if (label(static_cast<int>(r)) != live)
+                    for (std::size_t i = 1; i <= m.representative_length(r); ++i) rival = std::min(rival, next[r][i]);
+            margins->push_back(rival - best);
+        }
         cost = next;
         start = next_start;
         ends[t] = {end_rep, end_start};
@@ -151,10 +162,14 @@ TEST_CASE("settled labels equal a full-table reference of the same recurrence") 
         std::vector<Character> stream(static_cast<std::size_t>(std::uniform_int_distribution<int>(1, 150)(rng)));
         for (auto& c : stream)
             c = static_cast<Character>(std::uniform_int_distribution<int>(0, t.view.character_count - 1)(rng));
-        const std::vector<LabelId> expected = reference_settled(t.view, config, settle, stream);
+        std::vector<float> margins;
+        const std::vector<LabelId> expected = reference_settled(t.view, config, settle, stream, &margins);
         std::vector<LabelId> got(stream.size(), unknown_label);
+        CHECK(segmenter->live_margin() == 0.0f);
         for (std::size_t i = 0; i < stream.size(); ++i) {
             const bool settled = segmenter->push(stream[i]);
+            CHECK(segmenter->live_margin() >= 0.0f);
+            CHECK(segmenter->live_margin() == margins[i]);  // exact: W holds multiples of 1/4
             CHECK(settled == (i >= settle));
             if (!settled) continue;
             CHECK(segmenter->settled_character() == i - settle);

@@ -207,6 +207,9 @@ public:
     /// The segmenter's label for the newest character: no delay, but it may
     /// still change as the action goes on. unknown_label before the first character.
     LabelId live_label() const noexcept { return segmenter_.live_label(); }
+    /// How far the live label leads every other label, "no action" included
+    /// (units of W; ActionSegmenter::live_margin()): a confidence for it.
+    float live_margin() const noexcept { return segmenter_.live_margin(); }
     /// Whether a character has settled since the stream (re)started.
     bool has_settled() const noexcept { return segmenter_.has_settled(); }
     /// Index of the last settled character, and its final label.

@@ -121,6 +121,7 @@ public:
     void reset() noexcept {
         pushed_ = 0;
         last_end_ = 0.0f;
+        margin_ = 0.0f;
         best_ = Hypothesis{};
         const std::size_t cells = model_->total_representative_chars();
         for (std::size_t i = 0; i < cells; ++i) {
@@ -151,11 +152,18 @@ public:
         SegmentEnd end{unknown_rep, now};
         float end_cost = previous_end + config_.unknown_cost;
         Hypothesis best{end_cost, unknown_rep, now};
+        // The best explanation whose newest character has another label than
+        // best's (for live_margin()): kept beside best as each candidate comes.
+        float runner_up = detail::infinity();
         for (std::size_t r = 0; r < m.representative_count; ++r) {
             const Character* rep = m.representative_chars + m.representative_offsets[r];
             const std::size_t n = m.representative_length(r);
             float* cost = costs_ + m.representative_offsets[r];  // cell i is cost[i − 1]
             std::uint32_t* start = starts_ + m.representative_offsets[r];
+            // This representative's best cell (the first strict minimum, so
+            // best below is the same cell a single pass over all cells finds).
+            float rep_best = detail::infinity();
+            std::uint32_t rep_from = now;
             // Descending, so cells i−1 and i−2 still hold the previous step.
             for (std::size_t i = n; i >= 1; --i) {
                 float value = i >= 2 ? cost[i - 2] - shift : entry;
@@ -168,7 +176,14 @@ public:
                 value += w(rep[i - 1], character);
                 cost[i - 1] = value;
                 start[i - 1] = from;
-                if (value < best.cost) best = Hypothesis{value, static_cast<std::uint16_t>(r), from};
+                if (value < rep_best) rep_best = value, rep_from = from;
+            }
+            const bool other_label = m.representative_labels[r] != label_of(best.rep);
+            if (rep_best < best.cost) {
+                if (other_label) runner_up = best.cost;
+                best = Hypothesis{rep_best, static_cast<std::uint16_t>(r), rep_from};
+            } else if (other_label && rep_best < runner_up) {
+                runner_up = rep_best;
             }
             if (cost[n - 1] < end_cost) {
                 end_cost = cost[n - 1];
@@ -178,6 +193,7 @@ public:
         ends_[now % ring_size_] = end;
         last_end_ = end_cost;
         best_ = best;
+        margin_ = runner_up - best.cost;
         ++pushed_;
         if (pushed_ <= settle_chars_) return false;
         const std::uint64_t settled = pushed_ - 1 - settle_chars_;
@@ -187,6 +203,12 @@ public:
 
     /// Label of the best explanation's newest character (no delay, may change).
     LabelId live_label() const noexcept { return pushed_ == 0 ? unknown_label : label_of(best_.rep); }
+    /// How much better the live label's best explanation is than the best one
+    /// whose newest character has any other label ("no action" included), in
+    /// units of W: a confidence for the live label. 0 before the first
+    /// character or on a tie; infinity when no other label can explain the
+    /// stream (a model of one label with "no action" turned off).
+    float live_margin() const noexcept { return margin_; }
     /// Whether any character is settled yet.
     bool has_settled() const noexcept { return pushed_ > settle_chars_; }
     /// Index of the last settled character (meaningful when has_settled()).
@@ -267,6 +289,7 @@ private:
     std::uint32_t settle_chars_ = 0;
     std::uint64_t pushed_ = 0;
     float last_end_ = 0.0f;
+    float margin_ = 0.0f;
     Hypothesis best_;
     // A power of two above settle_chars_, so that slot = index mod 2^32 mod
     // ring_size_ stays consistent when the 32-bit index wraps.

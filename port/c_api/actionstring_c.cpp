@@ -308,6 +308,11 @@ int32_t actionstring_live_label(const actionstring_state* handle) {
     return static_cast<int32_t>(state->annotator.live_label());
 }
 
+float actionstring_live_margin(const actionstring_state* handle) {
+    const State* state = live(handle);
+    return state == nullptr ? 0.0f : state->annotator.live_margin();
+}
+
 int64_t actionstring_settled_character(const actionstring_state* handle) {
     const State* state = live(handle);
     if (state == nullptr || !state->annotator.has_settled()) return -1;

@@ -184,6 +184,10 @@ ACTIONSTRING_C_API const char* actionstring_label_name(const actionstring_state*
 
 /** The segmenter's label for the newest character (no delay, may still change), or -1. */
 ACTIONSTRING_C_API int32_t actionstring_live_label(const actionstring_state* state);
+/** How far the live label leads every other label, "no action" included, in units of
+ *  the model's character distances: a confidence for it (0 before the first character
+ *  or on a tie; INFINITY when no other label can explain the stream). */
+ACTIONSTRING_C_API float actionstring_live_margin(const actionstring_state* state);
 /** Index of the last character whose label is final, or -1 before the first one. */
 ACTIONSTRING_C_API int64_t actionstring_settled_character(const actionstring_state* state);
 /** Final label of a settled character (one of the most recent, e.g. those the last frame

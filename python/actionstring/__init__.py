@@ -234,7 +234,9 @@ class Annotator:
     ``stream_restarted`` or why the frame was rejected: ``non_finite_input``,
     ``tracking_lost``, ...), ``accepted``, ``characters``, ``settled`` (a list of
     (character, time_s, label) for every character whose label became final with
-    this frame; label None for no action), ``live_label`` (the newest guess) and
+    this frame; label None for no action), ``live_label`` (the newest guess),
+    ``live_margin`` (how far it leads every other label, in units of the model's
+    character distances: its confidence; ``inf`` when nothing else can explain the stream) and
     ``events``: each action once when it starts and once when it ends (dicts
     with ``event``, ``label``, ``start``, ``end`` in seconds and ``confidence``;
     an action shorter than ``min_action`` seconds, 0.25 by default, is flicker
@@ -263,6 +265,11 @@ class Annotator:
     @property
     def live_label(self) -> Optional[str]:
         return self._native.live_label
+
+    @property
+    def live_margin(self) -> float:
+        """How far the live label leads every other label (its confidence)."""
+        return self._native.live_margin
 
     @property
     def label(self) -> Optional[str]:

@@ -290,6 +290,7 @@ public:
         out["windows_completed"] = r.windows_completed;
         out["settled"] = settled;
         out["live_label"] = label_object(*model_, annotator_->live_label());
+        out["live_margin"] = annotator_->live_margin();
         return out;
     }
 
@@ -301,6 +302,7 @@ public:
 
     void reset() { annotator_->reset(); }
     py::object live_label() const { return label_object(*model_, annotator_->live_label()); }
+    float live_margin() const { return annotator_->live_margin(); }
     py::object label() const { return label_object(*model_, annotator_->label()); }
     float confidence() const { return annotator_->confidence(); }
     std::uint64_t characters() const { return annotator_->characters(); }
@@ -488,6 +490,7 @@ PYBIND11_MODULE(_actionstring, m) {
         .def("reset", &StreamAnnotator::reset)
         .def("flush", &StreamAnnotator::flush)
         .def_property_readonly("live_label", &StreamAnnotator::live_label)
+        .def_property_readonly("live_margin", &StreamAnnotator::live_margin)
         .def_property_readonly("label", &StreamAnnotator::label)
         .def_property_readonly("confidence", &StreamAnnotator::confidence)
         .def_property_readonly("characters", &StreamAnnotator::characters)

@@ -12,7 +12,9 @@ def test_streaming_a_clip_settles_its_label(toy_model, toy_clips):
     for time_s, frame in zip(clip.times, clip.positions):
         result = annotator.push_frame(time_s, frame)
         assert result["status"] == "ok" and result["accepted"]
+        assert result["live_margin"] >= 0.0  # never NaN
         settled += result["settled"]
+    assert annotator.live_margin == result["live_margin"]
     assert annotator.characters == len(settled) + annotator.settle_chars
     assert annotator.settle_chars == 5  # 0.5 s at 10 characters per second
     labels = [label for _, _, label in settled]
@@ -56,7 +58,7 @@ def test_frames_of_any_float_layout_and_rejected_frames(toy_model, toy_clips):
     with pytest.raises(ValueError, match="finite"):
         annotator.push_frame(float("nan"), frame)
     annotator.reset()
-    assert annotator.characters == 0 and annotator.live_label is None
+    assert annotator.characters == 0 and annotator.live_label is None and annotator.live_margin == 0.0
 
 
 def test_online_settings_are_checked(toy_model):

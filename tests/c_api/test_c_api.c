@@ -171,6 +171,8 @@ static void contract_checks(const actionstring_model* model) {
     CHECK(characters > 50);                /* about 12 characters per second of accepted frames */
     CHECK(actionstring_label(state) >= 0); /* windows completed: a label was chosen */
     CHECK(actionstring_live_label(state) >= 0);
+    CHECK(actionstring_live_margin(state) >= 0.0f); /* a number, never NaN */
+    CHECK(actionstring_live_margin(NULL) == 0.0f);
     CHECK(actionstring_settled_character(state) >= 0);
     CHECK(actionstring_settled_label(state, actionstring_settled_character(state)) >= -1);
     CHECK(actionstring_settled_label(state, -5) == -1);
@@ -199,6 +201,7 @@ static void contract_checks(const actionstring_model* model) {
     CHECK(actionstring_reset(state) == ACTIONSTRING_OK);
     CHECK(actionstring_label(state) == -1);
     CHECK(actionstring_live_label(state) == -1);
+    CHECK(actionstring_live_margin(state) == 0.0f);
     CHECK(actionstring_settled_character(state) == -1);
     CHECK(strcmp(actionstring_status_name(ACTIONSTRING_TRACKING_LOST), "tracking_lost") == 0);
     CHECK(strcmp(actionstring_status_name(ACTIONSTRING_STORAGE_TOO_SMALL), "storage_too_small") == 0);
