@@ -22,6 +22,9 @@ int run_eval(int argc, char** argv);
 /// `actionstring annotate --model MODEL FILE`: the label timeline of a recording.
 int run_annotate(int argc, char** argv);
 
+/// `actionstring view FILE --model MODEL --out PAGE`: an HTML page to watch a recording with its labels.
+int run_view(int argc, char** argv);
+
 /// `actionstring stream-table --clips LIST --out HEADER`: a recorded stream as constexpr tables.
 int run_stream_table(int argc, char** argv);
 /// `actionstring interval-list`: a continuous dataset's timeline as a clip list with intervals.

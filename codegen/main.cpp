@@ -18,6 +18,7 @@ void print_usage(std::FILE* out) {
                  "  codegen    turn a model artifact into a header of constexpr tables\n"
                  "  eval       clip accuracy of a model on a list, beside baselines\n"
                  "  annotate   the label timeline of a recording (TSV or JSON)\n"
+                 "  view       a self-contained HTML page to watch a recording with its labels\n"
                  "  stream-table  write clips of a list as one replay stream of constexpr\n"
                  "             tables (for the firmware, port/firmware)\n"
                  "  interval-list  a continuous dataset's timeline (UTKinect) as a clip list of\n"
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(command, "stream-table") == 0) return actionstring::cli::run_stream_table(argc - 1, argv + 1);
     if (std::strcmp(command, "interval-list") == 0) return actionstring::cli::run_interval_list(argc - 1, argv + 1);
     if (std::strcmp(command, "annotate") == 0) return actionstring::cli::run_annotate(argc - 1, argv + 1);
+    if (std::strcmp(command, "view") == 0) return actionstring::cli::run_view(argc - 1, argv + 1);
     std::fprintf(stderr, "actionstring: unknown command '%s'\n\n", command);
     print_usage(stderr);
     return 2;

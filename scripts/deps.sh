@@ -22,6 +22,6 @@ ensure_packages() {
 # Packages for building and testing on the host, and for the Cortex-M builds.
 ACTIONSTRING_HOST_PACKAGES=(cmake make g++ clang libclang-rt-14-dev libeigen3-dev doctest-dev jq mono-mcs mono-runtime
                             python3-dev python3-venv python3-pip python3-setuptools python3-wheel pybind11-dev
-                            python3-numpy python3-pytest python3-sklearn
+                            python3-numpy python3-pytest python3-sklearn chromium fonts-dejavu-core
                             gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib
                             qemu-system-arm)

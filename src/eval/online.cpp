@@ -254,7 +254,7 @@ OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledC
         std::shuffle(order.begin(), order.end(), rng);
         std::vector<StreamSegment> segments;
         for (const std::size_t c : order) segments.push_back({&clips[c].clip, clips[c].label, 0.0});
-        const ConcatenatedStream stream = concatenate_stream(segments);
+        ConcatenatedStream stream = concatenate_stream(segments);
         StreamTimeline timeline;
         timeline.name = "subject " + subject.first;
         for (std::size_t f = 0; f < stream.frame_count(); ++f)
@@ -267,6 +267,10 @@ OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledC
             for (std::size_t f = stream.segment_first_frame[s]; f < end; ++f) timeline.truth[f] = label;
         }
         timeline.labels = label_stream(model, config, timeline.times_s, stream.positions.data(), stream.joints);
+        timeline.joints = stream.joints;
+        timeline.positions = std::move(stream.positions);
+        timeline.parents = clips[order.front()].clip.parents;
+        timeline.up_axis = clips[order.front()].clip.up_axis;
         pooled.add(timeline);
         report.streams.push_back(std::move(timeline));
     }
@@ -274,25 +278,37 @@ OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledC
     return report;
 }
 
-OnlineReport evaluate_recordings(const ModelView& model, const std::vector<LabelledRecording>& recordings,
-                                 const AnnotatorConfig& config) {
-    const std::vector<std::string> names = name_strings(model.label_names, model.label_count);
-    OnlineReport report;
-    report.recordings = true;
-    PooledTimelines pooled;
-    for (const LabelledRecording& recording : recordings) {
-        const Clip& clip = recording.clip;
-        StreamTimeline timeline;
-        const std::size_t slash = clip.source.find_last_of('/');
-        timeline.name = clip.source.substr(slash == std::string::npos ? 0 : slash + 1);
-        timeline.times_s = clip.times;
+StreamTimeline stream_recording(const ModelView& model, const Clip& clip,
+                                const std::vector<LabelledRecording::Interval>* intervals,
+                                const AnnotatorConfig& config) {
+    StreamTimeline timeline;
+    const std::size_t slash = clip.source.find_last_of('/');
+    timeline.name = clip.source.substr(slash == std::string::npos ? 0 : slash + 1);
+    timeline.times_s = clip.times;
+    if (intervals != nullptr) {
+        const std::vector<std::string> names = name_strings(model.label_names, model.label_count);
         timeline.truth.assign(clip.frame_count(), unknown_frame);
-        for (const auto& interval : recording.intervals) {
+        for (const auto& interval : *intervals) {
             const int label = model_label(names, interval.label);
             for (std::size_t f = 0; f < clip.frame_count(); ++f)
                 if (clip.times[f] >= interval.start_s && clip.times[f] <= interval.end_s) timeline.truth[f] = label;
         }
-        timeline.labels = label_stream(model, config, clip.times, clip.positions.data(), clip.joint_count());
+    }
+    timeline.labels = label_stream(model, config, clip.times, clip.positions.data(), clip.joint_count());
+    timeline.joints = clip.joint_count();
+    timeline.positions = clip.positions;
+    timeline.parents = clip.parents;
+    timeline.up_axis = clip.up_axis;
+    return timeline;
+}
+
+OnlineReport evaluate_recordings(const ModelView& model, const std::vector<LabelledRecording>& recordings,
+                                 const AnnotatorConfig& config) {
+    OnlineReport report;
+    report.recordings = true;
+    PooledTimelines pooled;
+    for (const LabelledRecording& recording : recordings) {
+        StreamTimeline timeline = stream_recording(model, recording.clip, &recording.intervals, config);
         pooled.add(timeline);
         report.streams.push_back(std::move(timeline));
     }

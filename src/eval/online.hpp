@@ -72,8 +72,15 @@ void score_events(OnlineResults& results, const std::vector<int>& truth, const s
 struct StreamTimeline {
     std::string name;
     std::vector<double> times_s;
-    std::vector<int> truth;  ///< −1 "no action", −2 a label the model does not know.
+    std::vector<int> truth;  ///< −1 "no action", −2 a label the model does not know; empty: not known.
     StreamLabels labels;
+    /// The skeleton as streamed, for the viewer: frames × joints × xyz in
+    /// metres, each joint's parent (−1 at a root; empty when the format has
+    /// none) and the up axis.
+    std::size_t joints = 0;
+    std::vector<float> positions;
+    std::vector<int> parents;
+    int up_axis = 1;
 };
 
 /// Scores of the three rules on the same streams, and the streams themselves.
@@ -92,6 +99,13 @@ OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledC
                              const AnnotatorConfig& config);
 /// The same with the model's own online settings (annotator_config()).
 OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed);
+
+/// Streams one recording whole, frame by frame, through the annotator and
+/// keeps its skeleton (for the viewer). The truth comes from `intervals`
+/// (frames outside every one: no action); with none given it is not known.
+StreamTimeline stream_recording(const ModelView& model, const Clip& clip,
+                                const std::vector<LabelledRecording::Interval>* intervals,
+                                const AnnotatorConfig& config);
 
 /// Streams every recording whole, frame by frame with its timestamps, through
 /// the annotator and scores every rule against its timeline; frames outside

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <sys/stat.h>
 
+#include "eval/viewer.hpp"
+
 namespace actionstring {
 namespace host {
 namespace {
@@ -25,14 +27,18 @@ std::string escape(const std::string& text) {
     return out;
 }
 
+}  // namespace
+
 // Distinct hues for labels; unknown / "no action" is light grey.
-std::string colour(int label) {
+std::string label_colour(int label) {
     if (label < 0) return label == unknown_frame ? "#d9d9d9" : "#000000";
     static const char* palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
                                     "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939", "#8c6d31", "#843c39",
                                     "#7b4173", "#3182bd", "#e6550d", "#31a354", "#756bb1", "#636363"};
     return palette[static_cast<std::size_t>(label) % (sizeof palette / sizeof palette[0])];
 }
+
+namespace {
 
 void write_file(const std::string& path, const std::string& text) {
     std::ofstream out(path);
@@ -116,7 +122,7 @@ std::string timeline_svg(const StreamTimeline& stream, const std::vector<std::st
             char geometry[96];
             std::snprintf(geometry, sizeof geometry, "x=\"%.1f\" y=\"%d\" width=\"%.1f\" height=\"%d\"", x0, y,
                           std::max(x1 - x0, 0.5), row);
-            svg << "<rect " << geometry << " fill=\"" << colour(v[i]) << "\"><title>"
+            svg << "<rect " << geometry << " fill=\"" << label_colour(v[i]) << "\"><title>"
                 << escape(v[i] >= 0 && static_cast<std::size_t>(v[i]) < labels.size()
                               ? labels[static_cast<std::size_t>(v[i])]
                               : std::string(v[i] == unknown_frame ? "unknown / no action" : "label not in the model"))
@@ -136,7 +142,7 @@ std::string timeline_svg(const StreamTimeline& stream, const std::vector<std::st
     for (std::size_t l = 0; l <= labels.size(); ++l) {
         const int x = 10 + static_cast<int>(l % 4) * 220, y = axis + 30 + static_cast<int>(l / 4) * 18;
         const int id = l < labels.size() ? static_cast<int>(l) : -1;
-        svg << "<rect x=\"" << x << "\" y=\"" << y - 10 << "\" width=\"12\" height=\"12\" fill=\"" << colour(id)
+        svg << "<rect x=\"" << x << "\" y=\"" << y - 10 << "\" width=\"12\" height=\"12\" fill=\"" << label_colour(id)
             << "\"/><text x=\"" << x + 16 << "\" y=\"" << y << "\">"
             << escape(id >= 0 ? labels[l] : std::string("unknown / no action")) << "</text>\n";
     }
@@ -189,8 +195,11 @@ void write_report(const std::string& dir, const std::string& title, const std::v
         md << "\n";
         for (std::size_t s = 0; s < online->streams.size(); ++s) {
             const std::string file = "timeline_" + std::to_string(s + 1) + ".svg";
+            const std::string page = "view_" + std::to_string(s + 1) + ".html";
             write_file(dir + "/" + file, timeline_svg(online->streams[s], labels));
-            md << "![" << online->streams[s].name << "](" << file << ")\n\n";
+            write_file(dir + "/" + page, viewer_html(online->streams[s], labels, title + ": " + online->streams[s].name));
+            md << "![" << online->streams[s].name << "](" << file << ")\n\n[Watch " << online->streams[s].name
+               << " with its labels](" << page << ") (a self-contained page: the skeleton, the timelines, the margin).\n\n";
         }
     }
     write_file(dir + "/report.md", md.str());

@@ -60,6 +60,7 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
     out.window.assign(frames, unknown_frame);
     out.live.assign(frames, unknown_frame);
     out.settled.assign(frames, unknown_frame);
+    out.margin.assign(frames, 0.0f);
     out.settled_at_s.assign(frames, 0.0);
     // Characters of every stream epoch (a restart begins a new one), with their final label and when it came.
     std::vector<int> char_label;
@@ -90,6 +91,7 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
         for (std::size_t i = 0; i < r.events; ++i) out.events.push_back({annotator->event(i), now});
         out.window[f] = frame_label(annotator->label());
         out.live[f] = frame_label(annotator->live_label());
+        out.margin[f] = annotator->live_margin();
         if (annotator->characters() > 0) frame_char[f] = static_cast<long long>(epoch + annotator->characters() - 1);
     }
     // At the end of the stream, the unsettled tail gets what the best explanation says of it then.

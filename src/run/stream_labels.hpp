@@ -37,6 +37,7 @@ struct StreamLabels {
     std::vector<int> window;            ///< The paper's rule: the latest window's label, output at the frame.
     std::vector<int> live;              ///< The segmenter's live label, output at the frame.
     std::vector<int> settled;           ///< The segmenter's final label of the frame's character.
+    std::vector<float> margin;          ///< The live label's lead over every other label, at the frame (W units).
     std::vector<double> settled_at_s;   ///< When that final label was output.
     std::vector<ReportedEvent> events;  ///< Action events, the stream flushed at its end.
 };
