@@ -414,8 +414,14 @@ constexpr const char* page_tail = R"HTML(</script>
     const m = N ? D.margin[frame] : 0, div = document.createElement("div");
     div.textContent = "margin: " + (m === null ? "no rival" : m.toFixed(3));
     now.appendChild(div);
-    const list = document.getElementById("events").children;
-    for (const e of list) e.classList.toggle("near", Math.abs(Number(e.dataset.at) - t) < 2);
+    const box = document.getElementById("events");
+    let first = null;
+    for (const e of box.children) {
+      const near = Math.abs(Number(e.dataset.at) - t) < 2;
+      e.classList.toggle("near", near);
+      if (near && first === null) first = e;
+    }
+    if (first !== null) box.scrollTop = first.offsetTop - box.offsetTop;  // the list only, not the page
   }
 
   function draw() {

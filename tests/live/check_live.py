@@ -48,3 +48,29 @@ with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as sender:
 stdout, stderr = annotator.communicate(timeout=60)
 assert annotator.returncode == 0, stderr
 check(stdout, stderr, "udp")
+
+# The same recording as a file: annotate on the file and annotate --live from a pipe give
+# the same action events, and every settled label the live run printed is the file's
+# settled label at that time.
+import tempfile  # noqa: E402
+
+clean = subprocess.run([sys.executable, str(pathlib.Path(__file__).with_name("toy_stream.py")), "6", "--clean"],
+                       capture_output=True, text=True, check=True).stdout
+with tempfile.TemporaryDirectory() as tmp:
+    recording = pathlib.Path(tmp) / "recording.csv"
+    recording.write_text(clean)
+    options = ["--model", model, "--settle", "0.5"]
+    on_file = subprocess.run([cli, "annotate", *options, str(recording), "--events"], capture_output=True, text=True,
+                             timeout=60, check=True).stdout
+    spans = json.loads(subprocess.run([cli, "annotate", *options, str(recording), "--json"], capture_output=True,
+                                      text=True, timeout=60, check=True).stdout)["segments"]
+    piped = subprocess.run([cli, "annotate", *options, "--live"], input=clean, capture_output=True, text=True,
+                           timeout=60, check=True).stdout
+file_events = [json.loads(line) for line in on_file.splitlines()]
+live_lines = [json.loads(line) for line in piped.splitlines()]
+live_events = [x for x in live_lines if "event" in x]
+assert file_events and live_events == file_events, f"events differ:\n{file_events}\n{live_events}"
+for x in (x for x in live_lines if "settled" in x):
+    covering = [s for s in spans if s["start"] <= x["time"] + 1e-6]  # times print rounded to 0.1 ms
+    assert covering and covering[-1]["label"] == x["settled"], f"live said {x}, the file's timeline {spans}"
+print(f"file and pipe: the same {len(file_events)} events and settled labels")
