@@ -50,6 +50,9 @@ void print_train_usage(std::FILE* out) {
                  "  --sigma S               merge string clusters while their distance <= S [%g]\n"
                  "  --keep-singletons       keep clusters of one string as representatives\n"
                  "  --mirror                also train on every clip mirrored (left and right swapped)\n"
+                 "  --pose-joints A,B,...   the joints the model reads (root and hips added); default:\n"
+                 "                          an engine rig's body joints (CC_Base, Mixamo, Unreal, Unity\n"
+                 "                          humanoid: no fingers, twist or face bones), else every joint\n"
                  "  --neighbours K          k of the kNN vote [%d]\n"
                  "  --window S, --step S    sliding window and step in seconds [%g, %g]\n"
                  "  --unknown-distance X    label unknown above this distance [never]\n"
@@ -133,20 +136,22 @@ std::string training_json(const std::string& model_path, const ModelView& view, 
 
 // With no settings given: tune them by cross-validation over the list's
 // subjects (one subject only: the starting settings), showing each step.
-host::TuningResult tune(const std::vector<host::LabelledClip>& clips) {
+host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const std::vector<std::string>& pose_joints) {
+    host::TrainingOptions start = host::tuning_start();
+    start.pose_joints = pose_joints;  // the skeleton is the user's choice, not a tuned setting
     std::set<std::string> subjects;
     for (const host::LabelledClip& c : clips) subjects.insert(c.subject);
     if (subjects.size() < 2) {
         std::fprintf(stderr, "train: one subject in the list, so no cross-validation: the default settings\n");
         host::TuningResult fixed;
-        fixed.options = host::tuning_start();
+        fixed.options = start;
         return fixed;
     }
     std::fprintf(stderr,
                  "train: no settings given: choosing them by leave-one-subject-out cross-validation over "
                  "%zu subjects (--no-tune to skip)\n",
                  subjects.size());
-    const host::TuningResult tuned = host::tune_training(clips, host::tuning_start(), [](const host::TuningStep& step) {
+    const host::TuningResult tuned = host::tune_training(clips, start, [](const host::TuningStep& step) {
         std::fprintf(stderr, "train:   %-28s fold mean %.3f%s\n", step.setting.c_str(), step.mean_accuracy,
                      step.kept ? "  <- kept" : "");
     });
@@ -256,7 +261,8 @@ int run_train(int argc, char** argv) {
             const std::string name = arg.substr(2);
             const std::string value = args.value(arg);
             if (args.ok() && !apply(args, name, value, options, read)) return args.unknown(arg);
-            if (name != "rate" && name != "roles") settings_given = true;
+            // Reading and skeleton choices are not tuned settings: self-tuning still runs.
+            if (name != "rate" && name != "roles" && name != "pose-joints") settings_given = true;
         } else {
             return args.unknown(arg);
         }
@@ -275,7 +281,7 @@ int run_train(int argc, char** argv) {
         if (!validate_path.empty()) validation = host::load_labelled_clips(validate_path, read);
         if (sweep) return run_sweep(train, validation, options);
         if (cv) return run_cross_validation(train, options);
-        if (!settings_given && !no_tune) options = tune(train).options;
+        if (!settings_given && !no_tune) options = tune(train, options.pose_joints).options;
         auto stage_start = std::chrono::steady_clock::now();
         options.progress = [&](const char* stage) {
             std::fprintf(stderr, "train: %s\n", stage);
@@ -286,6 +292,7 @@ int run_train(int argc, char** argv) {
         host::save_model(model, out_path);
         const ModelView view = model.view();
         std::printf("model:            %s\n", out_path.c_str());
+        if (!report.skeleton.empty()) std::printf("skeleton:         %s\n", report.skeleton.c_str());
         std::printf("frames:           %zu read, %zu rejected; %zu feature samples at %g Hz\n", report.frames_read,
                     report.frames_rejected, report.feature_samples, options.feature_rate_hz);
         if (view.has_gmm()) {

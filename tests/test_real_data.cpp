@@ -14,8 +14,12 @@
 #include "io/clip_list.hpp"
 #include "io/formats.hpp"
 #include "io/text.hpp"
+#include "run/classify.hpp"
+#include "run/skeleton.hpp"
+#include "train/pipeline.hpp"
 #include "data_location.hpp"
 
+using namespace actionstring;
 using namespace actionstring::host;
 
 namespace {
@@ -232,4 +236,31 @@ TEST_CASE("BVH: the engine-rig files read, stand on the floor, and a joint match
         CHECK(clip.frame(0)[a] ==
               doctest::Approx(0.01 * (offset[static_cast<std::size_t>(a)] + first_frame[static_cast<std::size_t>(a)]))
                   .epsilon(1e-6));
+}
+
+TEST_CASE("BVH: CC_Base files of 100 and 101 joints train together on the rig's body joints") {
+    if (!test::have_data("bvh/002_01.bvh")) return;
+    std::vector<LabelledClip> clips;
+    for (const char* name : {"002_01.bvh", "002_04.bvh", "007_12.bvh"})
+        clips.push_back({read_clip(test::data_dir() + "/bvh/" + name), name, "cmu"});
+    REQUIRE(clips[0].clip.joint_count() == 101);  // an extra root, RL_BoneRoot
+    REQUIRE(clips[1].clip.joint_count() == 100);
+    TrainingOptions options;
+    options.components = 0;
+    options.scale_mode = ScaleMode::bone_lengths;
+    options.velocity_weight = 1.0;
+    options.velocity_span_s = 0.4;
+    options.keep_singletons = true;
+    options.sigma = 0.1;
+    TrainingReport report;
+    const ModelData model = train_model(clips, options, &report);
+    const ModelView view = model.view();
+    CHECK(report.skeleton == "CC_Base rig: 23 of 101 joints");
+    CHECK(view.joint_count == 23);
+    CHECK(rig_name(view) == "CC_Base rig");
+    // Each file, read again whole (100 or 101 joints), is mapped onto the model's joints and recognised.
+    std::vector<LabelledClip> again;
+    for (const LabelledClip& c : clips) again.push_back({read_clip(c.clip.source), c.label, c.subject});
+    conform_to_model(view, again);
+    CHECK(clip_accuracy(view, again) == 1.0);
 }

@@ -19,8 +19,9 @@ int Clip::joint_index(std::string_view name) const noexcept {
 namespace {
 
 // Built-in role names, tried in order: HDM05/CMU ASF, Kinect v1, Kinect v2,
-// Azure Kinect, the CC_Base rig, MediaPipe Pose (no pelvis: the left hip
-// stands in as the root, which only moves the origin).
+// Azure Kinect, the CC_Base rig, Mixamo, the Unreal mannequin, Unity's
+// humanoid, MediaPipe Pose (no pelvis: the left hip stands in as the root,
+// which only moves the origin).
 struct RoleCandidates {
     const char* root;
     const char* left_hip;
@@ -32,11 +33,17 @@ constexpr RoleCandidates kBuiltInRoles[] = {
     {"SpineBase", "HipLeft", "HipRight"},
     {"Pelvis", "HipLeft", "HipRight"},
     {"CC_Base_Hip", "CC_Base_L_Thigh", "CC_Base_R_Thigh"},
+    {"Hips", "LeftUpLeg", "RightUpLeg"},       // Mixamo (often with a "mixamorig:" prefix)
+    {"pelvis", "thigh_l", "thigh_r"},          // the Unreal mannequin
+    {"Hips", "LeftUpperLeg", "RightUpperLeg"}, // Unity's humanoid bone names
     {"LeftHip", "LeftHip", "RightHip"},
 };
 
-// A joint name as exports spell it differently: lower case, without '_', '-', '.' or spaces.
+// A joint name as exports spell it differently: lower case, without '_', '-',
+// '.' or spaces, and without a namespace ("mixamorig:Hips", "Armature|Hips").
 std::string spelling_key(std::string_view name) {
+    const std::size_t cut = name.find_last_of(":|");
+    if (cut != std::string_view::npos) name = name.substr(cut + 1);
     std::string key;
     for (const char c : name)
         if (c != '_' && c != '-' && c != '.' && c != ' ')

@@ -25,6 +25,29 @@ std::string rig_name(const ModelView& model);
 void conform_to_model(const ModelView& model, Clip& clip);
 void conform_to_model(const ModelView& model, std::vector<LabelledClip>& clips);
 
+/// The body joints of an engine rig this library knows (the CC_Base rig,
+/// Mixamo, the Unreal mannequin, Unity's humanoid bone names): the file's own
+/// names of the joints that carry the body's pose (hips, spine, neck, head,
+/// shoulders to hands, legs to toes; no fingers, twist, face or helper bones),
+/// the root first. Sets `rig` to the rig's name when given. Empty for any other
+/// skeleton (HDM05/CMU ASF, Kinect: small enough that every joint is kept).
+std::vector<std::string> body_joints(const Clip& clip, std::string* rig = nullptr);
+
+/// Keeps only the named joints of the clip, in that order (names matched as
+/// conform_to_model() matches them, a namespace prefix such as "mixamorig:"
+/// aside). Each kept joint's parent becomes its nearest kept ancestor, and the
+/// root and hip roles follow their joints. Throws ReadError naming the file
+/// and the joints it lacks, or a role joint not kept.
+void keep_joints(Clip& clip, const std::vector<std::string>& names);
+
+/// Puts every training clip on one skeleton before training: the joints
+/// named in `pose_joints` (the root and hips added when missing), else the
+/// first clip's body_joints() when it is an engine rig, else every joint as
+/// it is. Files of one rig that differ only by extra joints (an extra root,
+/// fingers, twist bones) then train together. Clips must share their up axis.
+/// Returns a note for the user ("CC_Base rig: 23 of 100 joints"), or "".
+std::string select_pose_joints(std::vector<LabelledClip>& clips, const std::vector<std::string>& pose_joints);
+
 /// Throws std::invalid_argument unless a frame of `joints` joints is what the
 /// model reads (every host function that streams frames checks this first).
 void require_joint_count(const ModelView& model, std::size_t joints, const std::string& source);

@@ -30,6 +30,10 @@ std::vector<int> mirror_pairs(const std::vector<std::string>& names) {
                                             swapped(name, "_L_", "_R_"),    swapped(name, "_R_", "_L_")};
         if (!name.empty() && (name[0] == 'l' || name[0] == 'r'))
             candidates.push_back((name[0] == 'l' ? "r" : "l") + name.substr(1));
+        // The Unreal mannequin's suffixes: thigh_l, thigh_r.
+        const std::size_t n = name.size();
+        if (n > 2 && name[n - 2] == '_' && (name[n - 1] == 'l' || name[n - 1] == 'r'))
+            candidates.push_back(name.substr(0, n - 1) + (name[n - 1] == 'l' ? "r" : "l"));
         for (const std::string& candidate : candidates) {
             const int other = candidate.empty() ? -1 : index(candidate);
             if (other >= 0 && other != static_cast<int>(j)) {

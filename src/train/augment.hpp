@@ -13,7 +13,8 @@ namespace host {
 
 /// For each joint, the index of its counterpart on the other side of the body
 /// (itself for a joint on the midline), by name: "Left"/"Right" anywhere
-/// (Kinect, Mixamo, engine rigs), "_L_"/"_R_" (CC_Base), or a leading "l"/"r"
+/// (Kinect, Mixamo, engine rigs), "_L_"/"_R_" (CC_Base), a trailing "_l"/"_r"
+/// (the Unreal mannequin), or a leading "l"/"r"
 /// (HDM05/CMU ASF: lfemur, rfemur). A name is paired only when its
 /// counterpart exists, so "lowerback" stays itself.
 std::vector<int> mirror_pairs(const std::vector<std::string>& joint_names);

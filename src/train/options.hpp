@@ -42,6 +42,10 @@ struct TrainingOptions {
     bool mirror = false;
     /// Time the velocity is taken over, in seconds (10 ms to 2 s).
     double velocity_span_s = 0.2;
+    /// The joints the model reads (names; the root and hips are added). Empty:
+    /// an engine rig's built-in body joints, or every joint of other skeletons
+    /// (select_pose_joints() in run/skeleton.hpp).
+    std::vector<std::string> pose_joints;
     // Characters.
     double epsilon = 1.0;  ///< Split a cluster whose L1 diameter is ≥ ε.
     int max_characters = 4096;
@@ -73,6 +77,7 @@ struct TrainingReport {
     int strings = 0, representatives = 0;
     std::vector<int> representatives_per_label;
     std::vector<std::pair<std::string, double>> stage_seconds;
+    std::string skeleton;  ///< Which joints were kept, e.g. "CC_Base rig: 23 of 100 joints" ("" all of them).
 };
 
 }  // namespace host

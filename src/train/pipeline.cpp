@@ -19,6 +19,7 @@
 #include "common/parallel.hpp"
 #include "common/stats.hpp"
 #include "run/encode.hpp"
+#include "run/skeleton.hpp"
 #include "train/augment.hpp"
 #include "train/clustering.hpp"
 #include "train/pca.hpp"
@@ -139,8 +140,10 @@ ModelData start_model(const std::vector<LabelledClip>& clips, const TrainingOpti
     const Clip& first = clips.front().clip;
     for (const LabelledClip& c : clips) {
         if (c.clip.joint_names != first.joint_names)
-            throw std::invalid_argument(c.clip.source + ": its joints differ from " + first.source +
-                                        "'s; train on one skeleton");
+            throw std::invalid_argument(c.clip.source + ": its joints (" + std::to_string(c.clip.joint_count()) +
+                                        ") differ from " + first.source + "'s (" + std::to_string(first.joint_count()) +
+                                        "); name the joints to train on, present in every file: --pose-joints "
+                                        "NAME,NAME,...");
         r.frames_read += c.clip.frame_count();
     }
     if (!first.roles.complete())
@@ -372,13 +375,21 @@ void set_matching(ModelData& m, const TrainingOptions& options, int representati
 
 }  // namespace
 
-ModelData train_model(const std::vector<LabelledClip>& given, const TrainingOptions& options, TrainingReport* report) {
+ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOptions& options, TrainingReport* report) {
     check_options(options);
-    const std::vector<LabelledClip> mirrored = options.mirror ? with_mirrored(given) : std::vector<LabelledClip>{};
-    const std::vector<LabelledClip>& clips = options.mirror ? mirrored : given;
     TrainingReport local;
     TrainingReport& r = report != nullptr ? *report : local;
     r = TrainingReport{};
+    // One skeleton for every clip: the pose joints asked for, or an engine rig's body joints.
+    const bool select = !listed.empty() && (!options.pose_joints.empty() || !body_joints(listed.front().clip).empty());
+    std::vector<LabelledClip> selected;
+    if (select) {
+        selected = listed;
+        r.skeleton = select_pose_joints(selected, options.pose_joints);
+    }
+    const std::vector<LabelledClip>& given = select ? selected : listed;
+    const std::vector<LabelledClip> mirrored = options.mirror ? with_mirrored(given) : std::vector<LabelledClip>{};
+    const std::vector<LabelledClip>& clips = options.mirror ? mirrored : given;
     StageTimer stage(options, r);
 
     ModelData m = start_model(clips, options, r);

@@ -78,6 +78,21 @@ RoleNames parse_role_names(const std::string& text) {
     return names;
 }
 
+// A comma-separated list of joint names (no empty names).
+std::vector<std::string> joint_list(const std::string& name, const std::string& value) {
+    std::vector<std::string> names;
+    std::size_t begin = 0;
+    while (true) {
+        const std::size_t end = value.find(',', begin);
+        const std::string item = value.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+        if (item.empty()) throw std::invalid_argument("option --" + name + " expects NAME,NAME,..., got '" + value + "'");
+        names.push_back(item);
+        if (end == std::string::npos) break;
+        begin = end + 1;
+    }
+    return names;
+}
+
 bool apply_training_setting(const std::string& name, const std::string& value, TrainingOptions& o, ReadOptions& read) {
     auto num = [&](double low, double high) { return number(name, value, low, high); };
     if (name == "components") o.components = static_cast<int>(num(0, 256));
@@ -91,6 +106,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "scale")
         o.scale_mode = static_cast<ScaleMode>(choice(name, value, {"none", "hip-width", "bones"}));
     else if (name == "mirror") o.mirror = flag(value);
+    else if (name == "pose-joints") o.pose_joints = joint_list(name, value);
     else if (name == "velocity") o.velocity_weight = num(0, 1000);
     else if (name == "velocity-span") o.velocity_span_s = num(0.01, 2);
     else if (name == "epsilon") o.epsilon = num(1e-9, 1e9);
@@ -145,6 +161,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "em-restarts",
                                                 "scale",
                                                 "mirror",
+                                                "pose-joints",
                                                 "velocity",
                                                 "velocity-span",
                                                 "epsilon",
