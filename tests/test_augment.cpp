@@ -16,6 +16,7 @@ TEST_CASE("joints pair with their other-side counterpart by name, midline joints
           std::vector<int>{0, 3, 4, 1, 2, 5});
     CHECK(mirror_pairs({"HipCenter", "HandLeft", "HandRight", "ShoulderCenter"}) == std::vector<int>{0, 2, 1, 3});
     CHECK(mirror_pairs({"CC_Base_L_Thigh", "CC_Base_Hip", "CC_Base_R_Thigh"}) == std::vector<int>{2, 1, 0});
+    CHECK(mirror_pairs({"thigh_r", "pelvis", "thigh_l", "spine_01"}) == std::vector<int>{2, 1, 0, 3});  // Unreal
     CHECK(mirror_pairs({"mixamorig:LeftArm", "mixamorig:RightArm", "mixamorig:Spine"}) == std::vector<int>{1, 0, 2});
 }
 
