@@ -168,7 +168,7 @@ TEST_CASE("a damaged or hostile blob is refused with a reason, never read out of
         const char* expected;
     };
     const Case cases[] = {
-        {"another version", [](std::string& b) { b[8] = 2; }, "version"},
+        {"another version", [](std::string& b) { b[8] = static_cast<char>(blob_version + 1); }, "version"},
         {"size field larger than the bytes", [](std::string& b) { write_u64(b, 16, b.size() + 16); }, "truncated"},
         {"a table far past the end",
          [](std::string& b) { write_u64(b, entry(field_index("character_distances")) + 8, 1ull << 60); },

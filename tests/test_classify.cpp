@@ -73,3 +73,43 @@ TEST_CASE("a single label has full confidence; NaN distances are ignored") {
     const float all_nan[] = {nan, nan};
     CHECK(classify_distances(reps.view, all_nan).label == unknown_label);
 }
+
+TEST_CASE("the characters' votes: penalties relative to the favoured label, and they can decide") {
+    Reps reps({0, 1, 2}, 1);
+    // K = 2 characters; log P(c | label) label by label (exact binary fractions).
+    const float votes[] = {-0.25f, -2.0f,    // a: mostly character 0
+                           -2.0f, -0.25f,    // b: mostly character 1
+                           -1.0f, -1.0f};    // c: either
+    reps.view.character_count = 2;
+    reps.view.character_votes = votes;
+    float penalties[3] = {9, 9, 9};
+
+    // No votes in the model (weight 0): all zero.
+    const Character string[] = {1, 1, 0, 1};
+    vote_penalties(reps.view, string, 4, penalties);
+    CHECK(penalties[0] == 0.0f);
+    CHECK(penalties[2] == 0.0f);
+    CHECK_FALSE(reps.view.has_votes());
+
+    reps.view.vote_weight = 2.0f;
+    REQUIRE(reps.view.has_votes());
+    vote_penalties(reps.view, string, 4, penalties);
+    // Means: a (−2 − 2 − 0.25 − 2) / 4 = −1.5625, b −0.6875, c −1; b is favoured.
+    CHECK(penalties[1] == 0.0f);
+    CHECK(penalties[0] == 2.0f * (1.5625f - 0.6875f));
+    CHECK(penalties[2] == 2.0f * (1.0f - 0.6875f));
+
+    // DTW alone says a; with the votes b wins, and the distance and confidence include them.
+    const float d[] = {1.0f, 1.5f, 3.0f};
+    CHECK(classify_distances(reps.view, d).label == 0);
+    const Classification voted = classify_distances(reps.view, d, penalties);
+    CHECK(voted.label == 1);
+    CHECK(voted.distance == 1.5f);
+    CHECK(voted.confidence == doctest::Approx((2.75f - 1.5f) / 2.75f));  // the nearest other label: a, 1 + 1.75
+
+    // An empty string or a null string gives no penalty.
+    vote_penalties(reps.view, string, 0, penalties);
+    CHECK(penalties[0] == 0.0f);
+    vote_penalties(reps.view, nullptr, 4, penalties);
+    CHECK(penalties[1] == 0.0f);
+}

@@ -55,6 +55,20 @@ TEST_CASE("each kind of corruption is refused") {
         {"k zero", [](host::ModelData& m) { m.neighbours = 0; }},
         {"NaN threshold", [](host::ModelData& m) { m.unknown_distance = kNaN; }},
         {"bad variant", [](host::ModelData& m) { m.variant = static_cast<MatchVariant>(7); }},
+        {"negative vote weight", [](host::ModelData& m) { m.vote_weight = -1.0f; }},
+        {"votes missing", [](host::ModelData& m) { m.vote_weight = 1.0f; }},
+        {"NaN vote",
+         [](host::ModelData& m) {
+             m.vote_weight = 1.0f;
+             m.character_votes.assign(m.label_names.size() * m.character_count, -1.0f);
+             m.character_votes[3] = kNaN;
+         }},
+        {"vote not a log-probability",
+         [](host::ModelData& m) {
+             m.vote_weight = 1.0f;
+             m.character_votes.assign(m.label_names.size() * m.character_count, -1.0f);
+             m.character_votes.back() = 0.5f;
+         }},
     };
     for (const auto& entry : corruptions) {
         const char* name = entry.first;

@@ -196,6 +196,22 @@ TEST_CASE("a model without a GMM (PCA-only characters) trains, validates, round-
     CHECK(header.find("kGmmMeans") == std::string::npos);
     CHECK(header.find("feature_dim = 6;") != std::string::npos);
     CHECK(header.find("m.component_count = 0;") != std::string::npos);  // and no state for a posterior
+    // The characters' votes: for every label a distribution over the K characters.
+    REQUIRE(view.has_votes());
+    CHECK(view.vote_weight == 1.0f);
+    for (std::size_t l = 0; l < view.label_count; ++l) {
+        double total = 0;
+        for (std::size_t c = 0; c < view.character_count; ++c)
+            total += std::exp(static_cast<double>(view.character_votes[l * view.character_count + c]));
+        CHECK(total == doctest::Approx(1.0).epsilon(1e-5));
+    }
+    CHECK(header.find("kCharacterVotes") != std::string::npos);
+    // Weight 0: no table, DTW alone.
+    TrainingOptions no_votes = options;
+    no_votes.vote_weight = 0;
+    const ModelData plain = train_model(train, no_votes);
+    CHECK_FALSE(plain.view().has_votes());
+    CHECK(plain.character_votes.empty());
     // Without a projection there is nothing to scale: refused with a reason.
     options.pca_dim = 0;
     CHECK_THROWS_WITH_AS(train_model(train, options), doctest::Contains("needs a projection"), std::invalid_argument);

@@ -26,26 +26,59 @@ struct Classification {
     std::uint16_t representative = 0xFFFF;
 };
 
+/// The characters' label votes for a string (design.md §1.8): per label, what
+/// they add to the distance of each of its representatives,
+///   λ · (max over labels of m(label) − m(own label)),  m(l) = mean over the
+///   string's characters c of log P(c | l),
+/// so ≥ 0, and 0 for the label the characters favour most. A character says
+/// which actions its key-pose occurs in, wherever it falls in the string; DTW
+/// says whether the order matches. All 0 without votes or for an empty string.
+/// @param string    `length` characters; read only during the call
+/// @param penalties receives label_count floats (caller-owned)
+inline void vote_penalties(const ModelView& model, const Character* string, std::size_t length,
+                           float* penalties) noexcept {
+    if (penalties == nullptr) return;
+    const std::size_t L = model.label_count, K = model.character_count;
+    for (std::size_t l = 0; l < L; ++l) penalties[l] = 0.0f;
+    if (!model.has_votes() || string == nullptr || length == 0) return;
+    float best = -detail::infinity();
+    for (std::size_t l = 0; l < L; ++l) {
+        const float* votes = model.character_votes + l * K;
+        float sum = 0.0f;
+        for (std::size_t t = 0; t < length; ++t)
+            if (string[t] < K) sum += votes[string[t]];
+        penalties[l] = sum / static_cast<float>(length);
+        if (penalties[l] > best) best = penalties[l];
+    }
+    for (std::size_t l = 0; l < L; ++l) penalties[l] = model.vote_weight * (best - penalties[l]);
+}
+
 /// k-nearest-neighbour vote over representative distances (k = model.neighbours,
 /// at most max_neighbours). The label with most votes among the k nearest
 /// wins; on a tie, the label of the nearer neighbour. Equal distances keep
 /// representative order.
 /// @param distances representative_count floats; read only during the call
-inline Classification classify_distances(const ModelView& model, const float* distances) noexcept {
+/// @param penalties null, or label_count floats added to the distance of each
+///                  label's representatives (vote_penalties()); read only during the call
+inline Classification classify_distances(const ModelView& model, const float* distances,
+                                         const float* penalties = nullptr) noexcept {
     Classification result;
     const std::size_t R = model.representative_count;
     if (distances == nullptr || R == 0 || model.neighbours > max_neighbours) return result;
     const std::size_t k = model.neighbours < R ? model.neighbours : R;
+    auto distance = [&](std::size_t r) {
+        return penalties == nullptr ? distances[r] : distances[r] + penalties[model.representative_labels[r]];
+    };
 
     // Insertion into a sorted list of the k nearest: k is small.
     std::uint16_t nearest[max_neighbours] = {};  // (zeroed only to quiet a false maybe-uninitialized)
     std::size_t found = 0;
     for (std::size_t r = 0; r < R; ++r) {
-        const float d = distances[r];
+        const float d = distance(r);
         if (detail::is_nan(d)) continue;
-        if (found == k && !(d < distances[nearest[k - 1]])) continue;
+        if (found == k && !(d < distance(nearest[k - 1]))) continue;
         std::size_t at = found < k ? found++ : k - 1;
-        while (at > 0 && d < distances[nearest[at - 1]]) {
+        while (at > 0 && d < distance(nearest[at - 1])) {
             nearest[at] = nearest[at - 1];
             --at;
         }
@@ -62,13 +95,13 @@ inline Classification classify_distances(const ModelView& model, const float* di
             best_votes = votes;
             result.nearest_label = label;
             result.representative = nearest[a];
-            result.distance = distances[nearest[a]];
+            result.distance = distance(nearest[a]);
         }
     }
 
     float other = detail::infinity();
     for (std::size_t r = 0; r < R; ++r)
-        if (model.representative_labels[r] != result.nearest_label && distances[r] < other) other = distances[r];
+        if (model.representative_labels[r] != result.nearest_label && distance(r) < other) other = distance(r);
     if (!(result.distance <= model.unknown_distance)) return result;  // unknown
     result.label = result.nearest_label;
     if (!detail::is_finite(other)) result.confidence = 1.0f;

@@ -105,6 +105,8 @@ struct ModelView {
     constexpr std::size_t input_dim() const noexcept { return has_motion() ? 2u * pose_dim() : pose_dim(); }
     constexpr bool has_projection() const noexcept { return projection_matrix != nullptr; }
     constexpr bool has_gmm() const noexcept { return component_count > 0; }
+    /// Whether clip classification adds the characters' label votes to DTW.
+    constexpr bool has_votes() const noexcept { return vote_weight > 0.0f && character_votes != nullptr; }
     /// Length of the vectors the tree is built on and descends with: the GMM
     /// posterior (J), or without a GMM the projected pose (d).
     constexpr std::size_t tree_dim() const noexcept { return has_gmm() ? component_count : feature_dim; }
@@ -327,6 +329,12 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     }
     for (std::size_t c = 0; c < m.total_representative_chars(); ++c)
         if (m.representative_chars[c] >= K) return refuse(problem, "representative_chars: not below K");
+    // Votes: log-probabilities, finite, so a sum over any string stays finite.
+    if (!(m.vote_weight >= 0.0f && m.vote_weight <= 1000.0f))
+        return refuse(problem, "vote_weight: negative, non-finite or beyond 1000");
+    if (m.vote_weight > 0.0f &&
+        !detail::all_within(m.character_votes, std::size_t{m.label_count} * K, min_log_weight, 0.0f))
+        return refuse(problem, "character_votes: missing, or not log-probabilities in [-1e4, 0]");
     // Matching.
     if (m.variant > MatchVariant::subsequence) return refuse(problem, "variant: unknown");
     if (m.normalization > LengthNormalization::query) return refuse(problem, "normalization: unknown");

@@ -83,6 +83,10 @@
     SCALAR(std::uint16_t, step_chars, 0, 1, 65535)         /* a window opens every step_chars */          \
     SCALAR(std::uint16_t, neighbours, 1, 1, 64)            /* k of the kNN vote */                        \
     SCALAR(float, unknown_distance, detail::infinity(), 0, 0) /* best distance above it: unknown */     \
+    /* the characters' label votes beside DTW (design §1.8): weight λ (0 = none) and log P(c | label), */ \
+    /* label by label (K floats each) */                                                                  \
+    SCALAR(float, vote_weight, 0.0f, 0, 0)                                                                \
+    TABLE(float, character_votes, (m.vote_weight > 0.0f ? std::size_t{m.label_count} * m.character_count : 0u), 0, 0) \
     /* --- online settings of the segmenter (design §1.8), chosen at training --- */                      \
     SCALAR(std::uint32_t, settle_delay_us, 2000000, 0, 600000000) /* a character's label is final then */ \
     SCALAR(float, segment_penalty, 3.0f, 0, 0)             /* cost of starting another segment */         \

@@ -19,7 +19,9 @@ Classification classify_string(const ModelView& model, const std::vector<Charact
                             MatchOptions{model.variant, model.normalization}, workspace.data(), &distances[r]);
         }
     }
-    return classify_distances(model, distances.data());
+    std::vector<float> penalties(model.label_count, 0.0f);
+    vote_penalties(model, string.data(), string.size(), penalties.data());
+    return classify_distances(model, distances.data(), model.has_votes() ? penalties.data() : nullptr);
 }
 
 double clip_accuracy(const ModelView& model, const std::vector<LabelledClip>& clips) {

@@ -14,7 +14,8 @@ namespace actionstring {
 namespace host {
 
 /// Label of a whole clip's string: the runtime's batch distance to every
-/// representative (the string is the query), then the runtime's kNN.
+/// representative (the string is the query), plus the characters' label votes
+/// when the model has them (vote_penalties()), then the runtime's kNN.
 Classification classify_string(const ModelView& model, const std::vector<Character>& string);
 
 /// Fraction of clips whose predicted label name equals their label.

@@ -56,6 +56,14 @@ struct TrainingOptions {
     double sigma = 6.0;            ///< Merge clusters while their centroid distance ≤ σ.
     bool keep_singletons = false;  ///< Paper: clusters of one string are noise.
     // Labelling.
+    /// λ: weight of the characters' label votes beside DTW in clip
+    /// classification (vote_penalties() in classify.hpp); 0 = DTW alone. 1 was
+    /// chosen on the training subjects' folds of HDM05, MSR Action3D and
+    /// UTKinect (models/README.md).
+    double vote_weight = 1.0;
+    /// α: added to every character's count when estimating P(c | label), so an
+    /// unseen key-pose costs a finite amount.
+    double vote_smoothing = 0.01;
     int neighbours = 1;
     double window_seconds = 2.0;
     double step_seconds = 0.5;

@@ -67,6 +67,8 @@ void check_options(const TrainingOptions& o) {
     require(o.max_characters >= 1 && o.max_characters <= 4096, "the character limit must be between 1 and 4096");
     require(o.velocity_weight >= 0 && o.velocity_weight <= 1000, "the velocity weight must be between 0 and 1000");
     require(o.velocity_span_s >= 0.01 && o.velocity_span_s <= 2, "the velocity span must be between 0.01 and 2 s");
+    require(o.vote_weight >= 0 && o.vote_weight <= 1000, "the vote weight must be between 0 and 1000");
+    require(o.vote_smoothing >= 1e-6 && o.vote_smoothing <= 1e3, "the vote smoothing must be between 1e-6 and 1000");
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
             "the settle delay must be 0 to 60 s");
 }
@@ -351,6 +353,33 @@ void choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips
                                     "or use --keep-singletons");
 }
 
+// Stage 6b: the characters' label votes, log P(c | label): each training
+// clip adds its characters' shares (1 / its length each, so long clips weigh
+// as much as short ones), α smooths, and the table is stored label by label.
+void set_votes(ModelData& m, const std::vector<LabelledClip>& clips,
+               const std::vector<std::vector<Character>>& strings, const TrainingOptions& options) {
+    m.vote_weight = static_cast<float>(options.vote_weight);
+    m.character_votes.clear();
+    if (!(options.vote_weight > 0)) return;
+    const std::size_t K = m.character_count, L = m.label_names.size();
+    std::map<std::string, std::size_t> label_index;
+    for (std::size_t l = 0; l < L; ++l) label_index[m.label_names[l]] = l;
+    std::vector<double> counts(L * K, 0.0), clips_of(L, 0.0);
+    for (std::size_t i = 0; i < clips.size(); ++i) {
+        const std::vector<Character>& s = strings[i];
+        if (s.empty()) continue;
+        const std::size_t l = label_index.at(clips[i].label);
+        for (const Character c : s) counts[l * K + c] += 1.0 / static_cast<double>(s.size());
+        clips_of[l] += 1.0;
+    }
+    const double alpha = options.vote_smoothing;
+    for (std::size_t l = 0; l < L; ++l)
+        for (std::size_t c = 0; c < K; ++c) {
+            const double p = (counts[l * K + c] + alpha) / (clips_of[l] + alpha * static_cast<double>(K));
+            m.character_votes.push_back(static_cast<float>(std::max(std::log(p), static_cast<double>(min_log_weight))));
+        }
+}
+
 // Stage 7: the matching and labelling settings, in characters.
 void set_matching(ModelData& m, const TrainingOptions& options, int representatives) {
     m.variant = options.variant;
@@ -425,6 +454,7 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
 
     stage.start("agglomerating representatives");
     choose_representatives(m, clips, strings, options, r);
+    set_votes(m, clips, strings, options);
     stage.finish("representatives");
 
     set_matching(m, options, r.representatives);

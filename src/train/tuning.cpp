@@ -60,6 +60,7 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
         {"epsilon", {0.5, 0.7, 1.0}, [](TrainingOptions& o, double v) { o.epsilon = v; }},
         {"sigma", {0.3, 0.75, 1.5}, [](TrainingOptions& o, double v) { o.sigma = v; }},
         {"pca", {16.0, 24.0, 32.0}, [](TrainingOptions& o, double v) { o.pca_dim = static_cast<int>(v); }},
+        {"vote-weight", {0.0, 0.5, 2.0}, [](TrainingOptions& o, double v) { o.vote_weight = v; }},
     };
     auto describe = [](const Axis& axis, double v) {
         if (std::string(axis.name) == "scale") return std::string("scale ") + (v > 0 ? "bones" : "none");
@@ -132,7 +133,8 @@ std::string options_as_config(const TrainingOptions& o) {
         << variant[static_cast<int>(o.variant)] << "\nnormalization "
         << normalization[static_cast<int>(o.normalization)] << "\nsigma " << number(o.sigma) << "\nkeep-singletons "
         << (o.keep_singletons ? "true" : "false") << "\nmirror " << (o.mirror ? "true" : "false") << "\nneighbours "
-        << o.neighbours << "\nseed " << o.seed << "\nsettle " << number(us_to_seconds(o.online.settle_delay_us))
+        << o.neighbours << "\nvote-weight " << number(o.vote_weight) << "\nvote-smoothing "
+        << number(o.vote_smoothing) << "\nseed " << o.seed << "\nsettle " << number(us_to_seconds(o.online.settle_delay_us))
         << "\nsegment-penalty " << number(o.online.segment_penalty) << "\nstay-penalty "
         << number(o.online.stay_penalty) << "\nskip-penalty " << number(o.online.skip_penalty) << "\nunknown-cost "
         << number(o.online.unknown_cost) << "\n";

@@ -1,7 +1,8 @@
 // Writes the fuzz_model seeds: the toy world's model artifact, whole and as a
 // bare body (which the target gives a valid checksum), with full and diagonal
-// covariance; with BLOB_DIR also the fuzz_blob seeds, the same models as blobs.
+// covariance, and one with the characters' votes; with BLOB_DIR also the fuzz_blob seeds, the same models as blobs.
 //   actionstring_fuzz_model_seed OUT_DIR [BLOB_DIR]
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -26,5 +27,13 @@ int main(int argc, char** argv) {
         write_file(out + "/" + name + "_body.txt", serialize_fields(world.model));
         if (argc == 3) write_file(std::string(argv[2]) + "/" + name + ".blob", write_blob(world.model));
     }
+    // With the characters' votes (uniform: every character equally likely under every label).
+    ToyWorld voting = make_toy_world();
+    voting.model.vote_weight = 1.0f;
+    voting.model.character_votes.assign(voting.model.label_names.size() * voting.model.character_count,
+                                        -std::log(static_cast<float>(voting.model.character_count)));
+    write_file(out + "/votes.model", serialize_model(voting.model));
+    write_file(out + "/votes_body.txt", serialize_fields(voting.model));
+    if (argc == 3) write_file(std::string(argv[2]) + "/votes.blob", write_blob(voting.model));
     return 0;
 }
