@@ -33,7 +33,7 @@ int run_annotate(int argc, char** argv) {
                 "                             [--json | --events] [--min-action S] [--time-unit s|ms|us] [--body N]\n"
                 "                             [--columns time=COL,JOINT=X:Y:Z,...]\n"
                 "                             [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
-                "                             [--skip-penalty X] [--unknown-cost X]\n\n"
+                "                             [--skip-penalty X] [--unknown-cost X] [--segment-votes X]\n\n"
                 "Streams FILE frame by frame through the annotator, as a device would, and prints\n"
                 "the timeline of settled labels: start and end time in seconds, label (or\n"
                 "'unknown') and the confidence, the share of the span's frames whose live label\n"

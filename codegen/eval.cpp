@@ -29,7 +29,8 @@ void print_eval_usage(std::FILE* out) {
                  "usage: actionstring eval --model MODEL --clips LIST [--train LIST] [--json FILE]\n"
                  "                         [--online] [--seed N] [--rate HZ] [--roles R,L,R]\n"
                  "                         [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
-                 "                         [--skip-penalty X] [--unknown-cost X] [--report DIR]\n"
+                 "                         [--skip-penalty X] [--unknown-cost X] [--segment-votes X]\n"
+                 "                         [--report DIR]\n"
                  "\n"
                  "Classifies every clip of LIST with the runtime's own code and reports clip\n"
                  "accuracy, per-class precision and recall, the confusion matrix, the unknown rate\n"
@@ -46,7 +47,8 @@ void print_eval_usage(std::FILE* out) {
                  "intervals of continuous recordings: clips are the intervals, and --online\n"
                  "streams each recording whole (frames outside every interval: no action).\n"
                  "The segmenter options are AnnotatorConfig's\n"
-                 "(defaults in segmenter.hpp; --unknown-cost inf turns 'no action' off).\n"
+                 "(defaults in segmenter.hpp; --unknown-cost inf turns 'no action' off;\n"
+                 "--segment-votes X weighs the characters' label votes in the explanation).\n"
                  "--report DIR writes SVG pictures (confusion matrix, true vs predicted timelines)\n"
                  "and a Markdown summary linking them.\n");
 }

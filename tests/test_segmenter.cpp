@@ -25,6 +25,7 @@ struct Tables {
     std::vector<std::uint32_t> offsets{0};
     std::vector<Character> strings;
     std::vector<LabelId> labels;
+    std::vector<float> votes;  // log P(c | label), label by label, when the model has votes
     static constexpr char names_text[] = "a\0b\0c\0d";
     static constexpr std::uint32_t names_offsets[5] = {0, 2, 4, 6, 8};
     ModelView view;
@@ -42,6 +43,10 @@ struct Tables {
         view.step_chars = 2;
         view.neighbours = 1;
         view.string_period_us = 100000;  // 10 characters per second
+        if (!votes.empty()) {
+            view.vote_weight = 1.0f;
+            view.character_votes = votes.data();
+        }
     }
     void add(const std::vector<Character>& rep, LabelId label) {
         strings.insert(strings.end(), rep.begin(), rep.end());
@@ -61,6 +66,8 @@ Tables random_tables(std::mt19937& rng) {
         for (auto& c : rep) c = static_cast<Character>(uniform(0, K - 1));
         t.add(rep, static_cast<LabelId>(uniform(0, 3)));
     }
+    if (uniform(0, 1) == 1)  // half the models carry the characters' votes (multiples of 1/4: exact sums)
+        for (int v = 0; v < 4 * K; ++v) t.votes.push_back(-static_cast<float>(uniform(0, 16)) * 0.25f);
     t.finish(K);
     return t;
 }
@@ -87,6 +94,14 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
     std::vector<LabelId> settled(T, unknown_label);
     auto weight = [&](Character a, Character b) { return m.character_distances[a * m.character_count + b]; };
     auto label = [&](int rep) { return rep < 0 ? unknown_label : m.representative_labels[rep]; };
+    // The characters' votes: what character c costs label l's explanations.
+    auto vote = [&](LabelId l, Character c) {
+        if (!(config.vote_weight > 0.0f) || !m.has_votes()) return 0.0f;
+        const std::size_t K = m.character_count;
+        float best_vote = -inf;
+        for (std::size_t k = 0; k < m.label_count; ++k) best_vote = std::max(best_vote, m.character_votes[k * K + c]);
+        return config.vote_weight * (best_vote - m.character_votes[l * K + c]);
+    };
     for (std::size_t t = 0; t < T; ++t) {
         const float before = t == 0 ? 0.0f : end_cost[t - 1];
         const float entry = before + config.segment_penalty;
@@ -105,7 +120,7 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
                 const float skip =
                     i >= 3 ? cost[r][i - 2] + config.skip_penalty : (i == 2 ? entry + config.skip_penalty : inf);
                 if (skip < v) v = skip, from = i >= 3 ? start[r][i - 2] : t;
-                next[r][i] = v + weight(rep[i - 1], stream[t]);
+                next[r][i] = v + (weight(rep[i - 1], stream[t]) + vote(m.representative_labels[r], stream[t]));
                 next_start[r][i] = from;
             }
         }
@@ -156,6 +171,7 @@ TEST_CASE("settled labels equal a full-table reference of the same recurrence") 
         config.skip_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
         if (trial % 3 == 0)
             config.unknown_cost = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
+        if (trial % 2 == 0) config.vote_weight = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
         REQUIRE(segmenter.init(t.view, config) == Status::ok);
         const std::uint32_t settle = segmenter->settle_chars();
         CHECK(settle == static_cast<std::uint32_t>(config.settle_delay_us / 100000));

@@ -48,6 +48,12 @@ struct SegmenterConfig {
     float skip_penalty = 0.3f;
     /// Cost per character of "no action" (labelled unknown); infinity turns it off.
     float unknown_cost = detail::infinity();
+    /// Weight of the characters' label votes (design.md §1.8) in the
+    /// explanation: each stream character also costs a label's
+    /// representatives vote_weight × (best log P(c | l) − their label's), so
+    /// an explanation pays for key-poses its action rarely shows. 0 = off;
+    /// without votes in the model it has no effect.
+    float vote_weight = 0.0f;
 };
 
 /// The online settings a model carries (chosen at training); a device uses
@@ -59,6 +65,7 @@ constexpr SegmenterConfig segmenter_config(const ModelView& m) noexcept {
     c.stay_penalty = m.stay_penalty;
     c.skip_penalty = m.skip_penalty;
     c.unknown_cost = m.unknown_cost;
+    c.vote_weight = m.segment_vote_weight;
     return c;
 }
 
@@ -94,6 +101,7 @@ public:
         starts_ = detail::storage_at<std::uint32_t>(storage, p.starts);
         ends_ = detail::storage_at<SegmentEnd>(storage, p.ends);
         settled_ = detail::storage_at<LabelId>(storage, p.settled);
+        vote_costs_ = p.votes_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.votes);
         config_ = config;
         model_ = &model;
         reset();
@@ -109,7 +117,8 @@ public:
         if (!(config.settle_delay_us >= 0) || !(config.segment_penalty >= 0.0f) || !(config.stay_penalty >= 0.0f) ||
             !(config.skip_penalty >= 0.0f) || !(config.unknown_cost >= 0.0f) ||
             !detail::is_finite(config.segment_penalty) || !detail::is_finite(config.stay_penalty) ||
-            !detail::is_finite(config.skip_penalty))
+            !detail::is_finite(config.skip_penalty) || !(config.vote_weight >= 0.0f) ||
+            !(config.vote_weight <= 1000.0f))
             return Status::invalid_argument;
         if (model.representative_count >= unknown_rep) return Status::model_exceeds_capacity;
         if (model.string_period_us == 0) return Status::invalid_model;
@@ -143,6 +152,15 @@ public:
         const ModelView& m = *model_;
         const CharacterWeights w = character_weights(m);
         const std::uint32_t now = static_cast<std::uint32_t>(pushed_);
+        // What this character costs each label's explanations (0 without votes).
+        if (vote_costs_ != nullptr) {
+            const std::size_t K = m.character_count;
+            float best_vote = -detail::infinity();
+            for (std::size_t l = 0; l < m.label_count; ++l)
+                if (m.character_votes[l * K + character] > best_vote) best_vote = m.character_votes[l * K + character];
+            for (std::size_t l = 0; l < m.label_count; ++l)
+                vote_costs_[l] = config_.vote_weight * (best_vote - m.character_votes[l * K + character]);
+        }
         // Costs are stored relative to the previous step's best so they stay small on endless streams.
         const float shift = best_.cost;
         const float previous_end = pushed_ == 0 ? 0.0f : last_end_ - shift;
@@ -164,6 +182,7 @@ public:
             // best below is the same cell a single pass over all cells finds).
             float rep_best = detail::infinity();
             std::uint32_t rep_from = now;
+            const float vote = vote_costs_ == nullptr ? 0.0f : vote_costs_[m.representative_labels[r]];
             // Descending, so cells i−1 and i−2 still hold the previous step.
             for (std::size_t i = n; i >= 1; --i) {
                 float value = i >= 2 ? cost[i - 2] - shift : entry;
@@ -173,7 +192,7 @@ public:
                 const float skip = i >= 3 ? cost[i - 3] - shift + config_.skip_penalty
                                           : (i == 2 ? entry + config_.skip_penalty : detail::infinity());
                 if (skip < value) value = skip, from = i >= 3 ? start[i - 3] : now;
-                value += w(rep[i - 1], character);
+                value += w(rep[i - 1], character) + vote;
                 cost[i - 1] = value;
                 start[i - 1] = from;
                 if (value < rep_best) rep_best = value, rep_from = from;
@@ -248,7 +267,8 @@ private:
     static constexpr std::uint16_t unknown_rep = 0xFFFF;
 
     struct Plan {
-        std::size_t costs = 0, starts = 0, ends = 0, settled = 0, ring_size = 0, bytes = unsatisfiable_bytes;
+        std::size_t costs = 0, starts = 0, ends = 0, settled = 0, votes = 0, votes_bytes = 0, ring_size = 0,
+                    bytes = unsatisfiable_bytes;
     };
     static constexpr Plan plan(const ModelView& model, const SegmenterConfig& config) noexcept;
 
@@ -298,6 +318,7 @@ private:
     std::uint32_t* starts_ = nullptr;  // the start of each cell's segment
     SegmentEnd* ends_ = nullptr;       // ring_size_: the best explanation ending at each character
     LabelId* settled_ = nullptr;       // ring_size_: the settled labels
+    float* vote_costs_ = nullptr;      // label_count: the newest character's vote cost per label (votes on only)
 };
 
 constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, const SegmenterConfig& config) noexcept {
@@ -311,6 +332,10 @@ constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, co
     p.starts = layout.add<std::uint32_t>(model.total_representative_chars());
     p.ends = layout.add<SegmentEnd>(p.ring_size);
     p.settled = layout.add<LabelId>(p.ring_size);
+    if (config.vote_weight > 0.0f && model.has_votes()) {
+        p.votes = layout.add<float>(model.label_count);
+        p.votes_bytes = std::size_t{model.label_count} * sizeof(float);
+    }
     p.bytes = layout.bytes();
     return p;
 }

@@ -74,6 +74,7 @@ typedef struct actionstring_online_settings {
     float stay_penalty;      /**< cost of two stream characters on one representative character */
     float skip_penalty;      /**< cost of skipping a representative character */
     float unknown_cost;      /**< cost per character of "no action"; INFINITY turns it off */
+    float vote_weight;       /**< weight of the characters' label votes in the explanation; 0 = off */
 } actionstring_online_settings;
 
 /** Everything a state is set up with. actionstring_default_config() gives the model's own. */

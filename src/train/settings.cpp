@@ -56,6 +56,7 @@ bool apply_segmenter_setting(const std::string& name, const std::string& value, 
     else if (name == "stay-penalty") config.stay_penalty = static_cast<float>(number(name, value, 0, 1e6));
     else if (name == "skip-penalty") config.skip_penalty = static_cast<float>(number(name, value, 0, 1e6));
     else if (name == "unknown-cost") config.unknown_cost = static_cast<float>(number(name, value, 0, unbounded));
+    else if (name == "segment-votes") config.vote_weight = static_cast<float>(number(name, value, 0, 1000));
     else return false;
     return true;
 }
@@ -185,6 +186,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "stay-penalty",
                                                 "skip-penalty",
                                                 "unknown-cost",
+                                                "segment-votes",
                                                 "rate",
                                                 "roles",
                                                 "time-unit",

@@ -124,6 +124,9 @@ static void contract_checks(const actionstring_model* model) {
     const actionstring_online_settings own = actionstring_model_online_settings(model);
     CHECK(own.settle_delay_us > 0 && own.segment_penalty >= 0.0f);
     actionstring_online_settings bad = own;
+    bad.vote_weight = -1.0f; /* a negative vote weight is refused */
+    CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
+    bad = own;
     bad.segment_penalty = -1.0f;
     CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
     bad = own;
@@ -137,6 +140,7 @@ static void contract_checks(const actionstring_model* model) {
     actionstring_online_settings eager = own;
     eager.settle_delay_us = 1000000;
     eager.unknown_cost = 0.5f;
+    eager.vote_weight = 0.25f;
     CHECK(actionstring_set_online_settings(state, &eager) == ACTIONSTRING_OK);
     CHECK(actionstring_set_online_settings(state, &own) == ACTIONSTRING_OK);
 
