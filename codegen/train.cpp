@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "common/json.hpp"
 #include "io/clip_list.hpp"
+#include "io/recordings.hpp"
 #include "io/text.hpp"
 #include "model/artifact.hpp"
 #include "options.hpp"
@@ -287,12 +288,19 @@ int run_train(int argc, char** argv) {
             std::fprintf(stderr, "train: %s\n", stage);
             stage_start = std::chrono::steady_clock::now();
         };
+        // A list of intervals of recordings: what lies outside every interval is no action.
+        std::vector<host::LabelledClip> no_action;
+        const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
+        if (host::has_intervals(entries)) no_action = host::unlabelled_stretches(host::read_recordings(entries, read), 1.0);
         host::TrainingReport report;
-        host::ModelData model = host::train_model(train, options, &report);
+        host::ModelData model = host::train_model(train, options, &report, &no_action);
         host::save_model(model, out_path);
         const ModelView view = model.view();
         std::printf("model:            %s\n", out_path.c_str());
         if (!report.skeleton.empty()) std::printf("skeleton:         %s\n", report.skeleton.c_str());
+        if (report.no_action_stretches > 0)
+            std::printf("no action:        votes learned from %d unlabelled stretches of the recordings (>= 1 s)\n",
+                        report.no_action_stretches);
         std::printf("frames:           %zu read, %zu rejected; %zu feature samples at %g Hz\n", report.frames_read,
                     report.frames_rejected, report.feature_samples, options.feature_rate_hz);
         if (view.has_gmm()) {

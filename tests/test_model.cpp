@@ -63,6 +63,20 @@ TEST_CASE("each kind of corruption is refused") {
              m.character_votes.assign(m.label_names.size() * m.character_count, -1.0f);
              m.character_votes[3] = kNaN;
          }},
+        {"no-action votes flagged but missing",
+         [](host::ModelData& m) {
+             m.vote_weight = 1.0f;
+             m.character_votes.assign(m.label_names.size() * m.character_count, -1.0f);
+             m.has_no_action_votes = 1;
+         }},
+        {"NaN no-action vote",
+         [](host::ModelData& m) {
+             m.vote_weight = 1.0f;
+             m.character_votes.assign(m.label_names.size() * m.character_count, -1.0f);
+             m.has_no_action_votes = 1;
+             m.no_action_votes.assign(m.character_count, -2.0f);
+             m.no_action_votes[1] = kNaN;
+         }},
         {"vote not a log-probability",
          [](host::ModelData& m) {
              m.vote_weight = 1.0f;

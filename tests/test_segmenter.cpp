@@ -26,6 +26,7 @@ struct Tables {
     std::vector<Character> strings;
     std::vector<LabelId> labels;
     std::vector<float> votes;  // log P(c | label), label by label, when the model has votes
+    std::vector<float> none;   // log P(c | no action), when it has those too
     static constexpr char names_text[] = "a\0b\0c\0d";
     static constexpr std::uint32_t names_offsets[5] = {0, 2, 4, 6, 8};
     ModelView view;
@@ -46,6 +47,10 @@ struct Tables {
         if (!votes.empty()) {
             view.vote_weight = 1.0f;
             view.character_votes = votes.data();
+        }
+        if (!none.empty()) {
+            view.has_no_action_votes = 1;
+            view.no_action_votes = none.data();
         }
     }
     void add(const std::vector<Character>& rep, LabelId label) {
@@ -68,6 +73,8 @@ Tables random_tables(std::mt19937& rng) {
     }
     if (uniform(0, 1) == 1)  // half the models carry the characters' votes (multiples of 1/4: exact sums)
         for (int v = 0; v < 4 * K; ++v) t.votes.push_back(-static_cast<float>(uniform(0, 16)) * 0.25f);
+    if (!t.votes.empty() && uniform(0, 1) == 1)
+        for (int v = 0; v < K; ++v) t.none.push_back(-static_cast<float>(uniform(0, 16)) * 0.25f);
     t.finish(K);
     return t;
 }
@@ -95,17 +102,20 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
     auto weight = [&](Character a, Character b) { return m.character_distances[a * m.character_count + b]; };
     auto label = [&](int rep) { return rep < 0 ? unknown_label : m.representative_labels[rep]; };
     // The characters' votes: what character c costs label l's explanations.
+    // The characters' votes: what character c costs label l's explanations
+    // (l = unknown_label: "no action", when the model learned its votes).
     auto vote = [&](LabelId l, Character c) {
         if (!(config.vote_weight > 0.0f) || !m.has_votes()) return 0.0f;
         const std::size_t K = m.character_count;
-        float best_vote = -inf;
+        float best_vote = m.has_no_action_votes ? m.no_action_votes[c] : -inf;
         for (std::size_t k = 0; k < m.label_count; ++k) best_vote = std::max(best_vote, m.character_votes[k * K + c]);
+        if (l == unknown_label) return m.has_no_action_votes ? config.vote_weight * (best_vote - m.no_action_votes[c]) : 0.0f;
         return config.vote_weight * (best_vote - m.character_votes[l * K + c]);
     };
     for (std::size_t t = 0; t < T; ++t) {
         const float before = t == 0 ? 0.0f : end_cost[t - 1];
         const float entry = before + config.segment_penalty;
-        float best = before + config.unknown_cost, best_end = best;
+        float best = before + (config.unknown_cost + vote(unknown_label, stream[t])), best_end = best;
         int best_rep = -1, end_rep = -1;
         std::size_t best_start = t, end_start = t;
         std::vector<std::vector<float>> next = cost;
@@ -134,7 +144,7 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
         }
         if (margins != nullptr) {
             const LabelId live = label(best_rep);
-            float rival = live == unknown_label ? inf : before + config.unknown_cost;
+            float rival = live == unknown_label ? inf : before + (config.unknown_cost + vote(unknown_label, stream[t]));
             for (std::size_t r = 0; r < R; ++r)
                 if (label(static_cast<int>(r)) != live)
                     for (std::size_t i = 1; i <= m.representative_length(r); ++i) rival = std::min(rival, next[r][i]);
@@ -348,4 +358,40 @@ TEST_CASE("segmenter refuses bad settings and storage too small for them") {
     REQUIRE(segmenter.init(t.view, segmenter_config(t.view), block, sizeof block) == Status::ok);
     CHECK(!segmenter.push(static_cast<Character>(t.view.character_count)));
     CHECK(segmenter.characters_pushed() == 0);
+}
+
+TEST_CASE("votes learned for 'no action' make the segmenter reject what only they explain") {
+    // Label a: characters 0 and 1. Character 3 sits 1 from everything, so without
+    // votes label a explains a stream of 3s more cheaply than "no action" (cost 2).
+    Tables t;
+    const int K = 4;
+    for (int a = 0; a < K; ++a)
+        for (int b = 0; b < K; ++b) t.w.push_back(a == b ? 0.0f : 1.0f);
+    t.add({0, 1, 0, 1}, 0);
+    t.votes.assign(4 * K, -8.0f);  // every label: all characters unlikely …
+    t.votes[0] = t.votes[1] = -0.75f;  // … but label a's own
+    t.none = {-8.0f, -8.0f, -8.0f, -0.25f};  // no action: character 3
+    t.finish(K);
+    SegmenterConfig config;
+    config.settle_delay_us = 0;
+    config.unknown_cost = 2.0f;
+    host::Stateful<ActionSegmenter> segmenter;
+    const std::vector<Character> stream{0, 1, 0, 1, 3, 3, 3, 3, 3, 3, 0, 1, 0, 1};
+    auto labels = [&](float vote_weight) {
+        config.vote_weight = vote_weight;
+        REQUIRE(segmenter.init(t.view, config) == Status::ok);
+        std::vector<LabelId> out;
+        for (const Character c : stream) {
+            segmenter->push(c);
+            out.push_back(segmenter->settled_label());
+        }
+        return out;
+    };
+    const std::vector<LabelId> plain = labels(0.0f);
+    for (std::size_t i = 4; i < 10; ++i) CHECK(plain[i] == 0);  // no votes: the 3s are "a"
+    const std::vector<LabelId> voted = labels(1.0f);
+    for (std::size_t i = 0; i < 4; ++i) CHECK(voted[i] == 0);
+    for (std::size_t i = 4; i < 10; ++i) CHECK(voted[i] == unknown_label);  // rejected
+    for (std::size_t i = 10; i < stream.size(); ++i) CHECK(voted[i] == 0);
+    CHECK(labels(1.0f) == voted);  // deterministic
 }

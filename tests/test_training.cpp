@@ -10,6 +10,7 @@
 
 #include "actionstring/annotator.hpp"
 #include "actionstring/string_distance.hpp"
+#include "io/recordings.hpp"
 #include "model/artifact.hpp"
 #include "model/header.hpp"
 #include "io/stream.hpp"
@@ -296,4 +297,47 @@ TEST_CASE("EM restarts run in parallel yet give identical models, keeping the be
     const auto best = std::max_element(first.em_restart_objectives.begin(), first.em_restart_objectives.end());
     CHECK(first.em_restart_chosen == static_cast<int>(best - first.em_restart_objectives.begin()));
     CHECK(first.em_restart_objectives == second.em_restart_objectives);
+}
+
+TEST_CASE("'no action' votes: learned from the unlabelled stretches of recordings") {
+    // A 10 s recording at 10 Hz with two labelled intervals.
+    LabelledRecording recording;
+    recording.subject = "s9";
+    recording.clip.joint_names = {"a"};
+    for (int f = 0; f < 100; ++f) {
+        recording.clip.times.push_back(f * 0.1);
+        recording.clip.positions.insert(recording.clip.positions.end(), {static_cast<float>(f), 0.0f, 0.0f});
+    }
+    recording.intervals = {{"wave", 2.0, 4.0}, {"clap", 6.0, 6.5}};
+    const std::vector<LabelledClip> long_enough = unlabelled_stretches({recording}, 1.0);
+    REQUIRE(long_enough.size() == 3);  // 0–1.9 s, 4.1–5.9 s, 6.6–9.9 s
+    CHECK(long_enough[0].clip.frame_count() == 20);
+    CHECK(long_enough[1].clip.times.front() == doctest::Approx(4.1));
+    CHECK(long_enough[2].clip.frame_count() == 34);
+    CHECK(long_enough[2].clip.positions.front() == 66.0f);
+    CHECK(long_enough[2].subject == "s9");
+    CHECK(long_enough[2].label.empty());
+    CHECK(unlabelled_stretches({recording}, 2.0).size() == 1);
+
+    // Training with stretches of no action stores log P(c | no action), a distribution.
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 4, 100);
+    TrainingOptions options = toy_options();
+    options.components = 0;
+    options.pca_dim = 6;
+    options.epsilon = 0.5;
+    options.sigma = 0.5;
+    const std::vector<LabelledClip> stretches(train.begin(), train.begin() + 3);
+    TrainingReport report;
+    const ModelData model = train_model(train, options, &report, &stretches);
+    const ModelView view = model.view();
+    CHECK(validate_model(view) == Status::ok);
+    CHECK(report.no_action_stretches == 3);
+    REQUIRE(view.has_no_action_votes == 1);
+    double total = 0;
+    for (std::size_t c = 0; c < view.character_count; ++c) total += std::exp(static_cast<double>(view.no_action_votes[c]));
+    CHECK(total == doctest::Approx(1.0).epsilon(1e-5));
+    // Without votes there is nothing to learn them for.
+    options.vote_weight = 0;
+    CHECK(train_model(train, options, nullptr, &stretches).has_no_action_votes == 0);
 }

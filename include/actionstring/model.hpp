@@ -335,6 +335,9 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     if (m.vote_weight > 0.0f &&
         !detail::all_within(m.character_votes, std::size_t{m.label_count} * K, min_log_weight, 0.0f))
         return refuse(problem, "character_votes: missing, or not log-probabilities in [-1e4, 0]");
+    if (m.has_no_action_votes > 1) return refuse(problem, "has_no_action_votes: not 0 or 1");
+    if (m.vote_weight > 0.0f && m.has_no_action_votes && !detail::all_within(m.no_action_votes, K, min_log_weight, 0.0f))
+        return refuse(problem, "no_action_votes: missing, or not log-probabilities in [-1e4, 0]");
     // Matching.
     if (m.variant > MatchVariant::subsequence) return refuse(problem, "variant: unknown");
     if (m.normalization > LengthNormalization::query) return refuse(problem, "normalization: unknown");

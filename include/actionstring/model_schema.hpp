@@ -87,6 +87,9 @@
     /* label by label (K floats each) */                                                                  \
     SCALAR(float, vote_weight, 0.0f, 0, 0)                                                                \
     TABLE(float, character_votes, (m.vote_weight > 0.0f ? std::size_t{m.label_count} * m.character_count : 0u), 0, 0) \
+    /* and log P(c | no action), learned from the unlabelled stretches of training recordings (or none) */ \
+    SCALAR(std::uint8_t, has_no_action_votes, 0, 0, 1)                                                    \
+    TABLE(float, no_action_votes, (m.vote_weight > 0.0f && m.has_no_action_votes ? m.character_count : 0u), 0, 0) \
     /* --- online settings of the segmenter (design §1.8), chosen at training --- */                      \
     SCALAR(std::uint32_t, settle_delay_us, 2000000, 0, 600000000) /* a character's label is final then */ \
     SCALAR(float, segment_penalty, 3.0f, 0, 0)             /* cost of starting another segment */         \

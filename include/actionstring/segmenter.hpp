@@ -152,14 +152,18 @@ public:
         const ModelView& m = *model_;
         const CharacterWeights w = character_weights(m);
         const std::uint32_t now = static_cast<std::uint32_t>(pushed_);
-        // What this character costs each label's explanations (0 without votes).
+        // What this character costs each label's explanations, and "no action"
+        // when the model learned its votes (0 without votes).
+        float no_action_vote = 0.0f;
         if (vote_costs_ != nullptr) {
             const std::size_t K = m.character_count;
-            float best_vote = -detail::infinity();
+            const bool no_action = m.has_no_action_votes != 0;
+            float best_vote = no_action ? m.no_action_votes[character] : -detail::infinity();
             for (std::size_t l = 0; l < m.label_count; ++l)
                 if (m.character_votes[l * K + character] > best_vote) best_vote = m.character_votes[l * K + character];
             for (std::size_t l = 0; l < m.label_count; ++l)
                 vote_costs_[l] = config_.vote_weight * (best_vote - m.character_votes[l * K + character]);
+            if (no_action) no_action_vote = config_.vote_weight * (best_vote - m.no_action_votes[character]);
         }
         // Costs are stored relative to the previous step's best so they stay small on endless streams.
         const float shift = best_.cost;
@@ -168,7 +172,7 @@ public:
 
         // "No action" for this one character is the first candidate for both.
         SegmentEnd end{unknown_rep, now};
-        float end_cost = previous_end + config_.unknown_cost;
+        float end_cost = previous_end + (config_.unknown_cost + no_action_vote);
         Hypothesis best{end_cost, unknown_rep, now};
         // The best explanation whose newest character has another label than
         // best's (for live_margin()): kept beside best as each candidate comes.

@@ -26,5 +26,39 @@ std::vector<LabelledRecording> read_recordings(const std::vector<ClipListEntry>&
     return recordings;
 }
 
+std::vector<LabelledClip> unlabelled_stretches(const std::vector<LabelledRecording>& recordings, double min_seconds) {
+    std::vector<LabelledClip> stretches;
+    for (const LabelledRecording& recording : recordings) {
+        const Clip& whole = recording.clip;
+        const std::size_t stride = whole.joint_count() * 3;
+        auto inside = [&](double t) {
+            for (const auto& interval : recording.intervals)
+                if (t >= interval.start_s && t <= interval.end_s) return true;
+            return false;
+        };
+        for (std::size_t f = 0; f < whole.frame_count();) {
+            if (inside(whole.times[f])) {
+                ++f;
+                continue;
+            }
+            std::size_t g = f;
+            while (g < whole.frame_count() && !inside(whole.times[g])) ++g;
+            if (whole.times[g - 1] - whole.times[f] >= min_seconds) {
+                Clip cut = whole;
+                cut.times.assign(whole.times.begin() + static_cast<std::ptrdiff_t>(f),
+                                 whole.times.begin() + static_cast<std::ptrdiff_t>(g));
+                cut.positions.assign(whole.positions.begin() + static_cast<std::ptrdiff_t>(f * stride),
+                                     whole.positions.begin() + static_cast<std::ptrdiff_t>(g * stride));
+                if (!whole.lost.empty())
+                    cut.lost.assign(whole.lost.begin() + static_cast<std::ptrdiff_t>(f),
+                                    whole.lost.begin() + static_cast<std::ptrdiff_t>(g));
+                stretches.push_back({std::move(cut), "", recording.subject});
+            }
+            f = g;
+        }
+    }
+    return stretches;
+}
+
 }  // namespace host
 }  // namespace actionstring

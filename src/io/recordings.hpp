@@ -26,5 +26,10 @@ struct LabelledRecording {
 /// reads each file once, whole. Entries without an interval are refused.
 std::vector<LabelledRecording> read_recordings(const std::vector<ClipListEntry>& entries, const ReadOptions& read = {});
 
+/// The stretches of each recording outside every labelled interval, at least
+/// `min_seconds` long, as clips (label "", the recording's subject): examples
+/// of no action, for train_model().
+std::vector<LabelledClip> unlabelled_stretches(const std::vector<LabelledRecording>& recordings, double min_seconds);
+
 }  // namespace host
 }  // namespace actionstring

@@ -85,6 +85,7 @@ struct TrainingReport {
     int strings = 0, representatives = 0;
     std::vector<int> representatives_per_label;
     std::vector<std::pair<std::string, double>> stage_seconds;
+    int no_action_stretches = 0;  ///< Stretches of no action the model learned its "no action" votes from.
     std::string skeleton;  ///< Which joints were kept, e.g. "CC_Base rig: 23 of 100 joints" ("" all of them).
 };
 

@@ -380,6 +380,35 @@ void set_votes(ModelData& m, const std::vector<LabelledClip>& clips,
         }
 }
 
+// Stage 6c: log P(c | no action) from stretches that are no action, each
+// counting as one as a clip does; their joints are read onto the model's.
+void set_no_action_votes(ModelData& m, const std::vector<LabelledClip>& stretches, const TrainingOptions& options,
+                         TrainingReport& r) {
+    m.has_no_action_votes = 0;
+    m.no_action_votes.clear();
+    if (!(options.vote_weight > 0)) return;
+    const ModelView view = m.view();
+    const std::size_t K = m.character_count;
+    std::vector<double> counts(K, 0.0);
+    double used = 0;
+    for (const LabelledClip& stretch : stretches) {
+        Clip clip = stretch.clip;
+        conform_to_model(view, clip);
+        const std::vector<Character> s = clip_string(view, clip);
+        if (s.empty()) continue;
+        for (const Character c : s) counts[c] += 1.0 / static_cast<double>(s.size());
+        used += 1.0;
+    }
+    r.no_action_stretches = static_cast<int>(used);
+    if (used == 0) return;
+    const double alpha = options.vote_smoothing;
+    for (std::size_t c = 0; c < K; ++c) {
+        const double p = (counts[c] + alpha) / (used + alpha * static_cast<double>(K));
+        m.no_action_votes.push_back(static_cast<float>(std::max(std::log(p), static_cast<double>(min_log_weight))));
+    }
+    m.has_no_action_votes = 1;
+}
+
 // Stage 7: the matching and labelling settings, in characters.
 void set_matching(ModelData& m, const TrainingOptions& options, int representatives) {
     m.variant = options.variant;
@@ -405,7 +434,8 @@ void set_matching(ModelData& m, const TrainingOptions& options, int representati
 
 }  // namespace
 
-ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOptions& options, TrainingReport* report) {
+ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOptions& options, TrainingReport* report,
+                      const std::vector<LabelledClip>* no_action) {
     check_options(options);
     TrainingReport local;
     TrainingReport& r = report != nullptr ? *report : local;
@@ -456,6 +486,7 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
     stage.start("agglomerating representatives");
     choose_representatives(m, clips, strings, options, r);
     set_votes(m, clips, strings, options);
+    if (no_action != nullptr && !no_action->empty()) set_no_action_votes(m, *no_action, options, r);
     stage.finish("representatives");
 
     set_matching(m, options, r.representatives);

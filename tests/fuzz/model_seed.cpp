@@ -27,10 +27,14 @@ int main(int argc, char** argv) {
         write_file(out + "/" + name + "_body.txt", serialize_fields(world.model));
         if (argc == 3) write_file(std::string(argv[2]) + "/" + name + ".blob", write_blob(world.model));
     }
-    // With the characters' votes (uniform: every character equally likely under every label).
+    // With the characters' votes (uniform: every character equally likely under every label and
+    // under no action).
     ToyWorld voting = make_toy_world();
     voting.model.vote_weight = 1.0f;
     voting.model.character_votes.assign(voting.model.label_names.size() * voting.model.character_count,
+                                        -std::log(static_cast<float>(voting.model.character_count)));
+    voting.model.has_no_action_votes = 1;
+    voting.model.no_action_votes.assign(voting.model.character_count,
                                         -std::log(static_cast<float>(voting.model.character_count)));
     write_file(out + "/votes.model", serialize_model(voting.model));
     write_file(out + "/votes_body.txt", serialize_fields(voting.model));
