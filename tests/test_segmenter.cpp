@@ -65,6 +65,9 @@ Tables random_tables(std::mt19937& rng) {
     Tables t;
     const int K = uniform(2, 10);
     for (int a = 0; a < K * K; ++a) t.w.push_back(static_cast<float>(uniform(0, 8)) * 0.25f);
+    if (uniform(0, 1) == 1)  // half the models have a symmetric W, as trained ones do (the segmenter reads its rows)
+        for (int a = 0; a < K; ++a)
+            for (int b = 0; b < a; ++b) t.w[static_cast<std::size_t>(b * K + a)] = t.w[static_cast<std::size_t>(a * K + b)];
     const int R = uniform(1, 6);
     for (int r = 0; r < R; ++r) {
         std::vector<Character> rep(static_cast<std::size_t>(uniform(1, 12)));

@@ -18,7 +18,7 @@
 // the index where its segment started, and a short ring of segment ends lets
 // the best current hypothesis be traced back: the label of the character
 // `settle_chars` back is final and is emitted; the newest one is the live guess.
-// State: two words per representative character plus the ring; work per
+// State: two words per representative character, the ring, and K floats; work per
 // character: one pass over the representative characters.
 #pragma once
 
@@ -104,6 +104,15 @@ public:
         vote_costs_ = p.votes_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.votes);
         config_ = config;
         model_ = &model;
+        column_ = detail::storage_at<float>(storage, p.column);
+        w_symmetric_ = true;
+        const std::size_t K = model.character_count;
+        for (std::size_t a = 0; a < K && w_symmetric_; ++a)
+            for (std::size_t b = a + 1; b < K; ++b)
+                if (!(model.character_distances[a * K + b] == model.character_distances[b * K + a])) {
+                    w_symmetric_ = false;
+                    break;
+                }
         reset();
         return Status::ok;
     }
@@ -150,13 +159,19 @@ public:
     bool push(Character character) noexcept {
         if (model_ == nullptr || character >= model_->character_count) return false;
         const ModelView& m = *model_;
-        const CharacterWeights w = character_weights(m);
         const std::uint32_t now = static_cast<std::uint32_t>(pushed_);
+        // W(·, character) as one contiguous array, so each cell reads it from
+        // the cache: W's own row when W is symmetric (every trained model's), else a copy.
+        const std::size_t K = m.character_count;
+        const float* column = m.character_distances + std::size_t{character} * K;
+        if (!w_symmetric_) {
+            for (std::size_t a = 0; a < K; ++a) column_[a] = m.character_distances[a * K + character];
+            column = column_;
+        }
         // What this character costs each label's explanations, and "no action"
         // when the model learned its votes (0 without votes).
         float no_action_vote = 0.0f;
         if (vote_costs_ != nullptr) {
-            const std::size_t K = m.character_count;
             const bool no_action = m.has_no_action_votes != 0;
             float best_vote = no_action ? m.no_action_votes[character] : -detail::infinity();
             for (std::size_t l = 0; l < m.label_count; ++l)
@@ -188,18 +203,52 @@ public:
             std::uint32_t rep_from = now;
             const float vote = vote_costs_ == nullptr ? 0.0f : vote_costs_[m.representative_labels[r]];
             // Descending, so cells i−1 and i−2 still hold the previous step.
-            for (std::size_t i = n; i >= 1; --i) {
-                float value = i >= 2 ? cost[i - 2] - shift : entry;
-                std::uint32_t from = i >= 2 ? start[i - 2] : now;
-                const float stay = cost[i - 1] - shift + config_.stay_penalty;
-                if (stay < value) value = stay, from = start[i - 1];
-                const float skip = i >= 3 ? cost[i - 3] - shift + config_.skip_penalty
-                                          : (i == 2 ? entry + config_.skip_penalty : detail::infinity());
-                if (skip < value) value = skip, from = i >= 3 ? start[i - 3] : now;
-                value += w(rep[i - 1], character) + vote;
+            // The previous step's cells i, i−1 (shifted) ride down the loop in
+            // registers, so each cell loads one old value; cells 2 and 1, whose
+            // moves start a segment, follow the loop.
+            const float stay_penalty = config_.stay_penalty, skip_penalty = config_.skip_penalty;
+            float here = cost[n - 1] - shift;                     // old cell i
+            std::uint32_t here_from = start[n - 1];
+            float below = n >= 2 ? cost[n - 2] - shift : 0.0f;  // old cell i − 1
+            std::uint32_t below_from = n >= 2 ? start[n - 2] : 0u;
+            // Each choice is one comparison selecting both the cost and its start,
+            // written so compilers emit selects, not jumps: the comparisons
+            // depend on the data and would be mispredicted half the time.
+            auto choose = [](float& value, std::uint32_t& from, float other, std::uint32_t other_from) {
+                const bool take = other < value;
+                value = take ? other : value;
+                from = take ? other_from : from;
+            };
+            auto finish = [&](std::size_t i, float value, std::uint32_t from) {
+                value += column[rep[i - 1]] + vote;
                 cost[i - 1] = value;
                 start[i - 1] = from;
-                if (value < rep_best) rep_best = value, rep_from = from;
+                choose(rep_best, rep_from, value, from);
+            };
+            for (std::size_t i = n; i >= 3; --i) {
+                const float further = cost[i - 3] - shift;  // old cell i − 2
+                const std::uint32_t further_from = start[i - 3];
+                float value = below;
+                std::uint32_t from = below_from;
+                choose(value, from, here + stay_penalty, here_from);
+                choose(value, from, further + skip_penalty, further_from);
+                finish(i, value, from);
+                here = below, here_from = below_from;
+                below = further, below_from = further_from;
+            }
+            if (n >= 2) {  // cell 2: advance from cell 1, stay, or skip in from the segment's entry
+                float value = below;
+                std::uint32_t from = below_from;
+                choose(value, from, here + stay_penalty, here_from);
+                choose(value, from, entry + skip_penalty, now);
+                finish(2, value, from);
+                here = below, here_from = below_from;
+            }
+            {  // cell 1: enter the segment, or stay
+                float value = entry;
+                std::uint32_t from = now;
+                choose(value, from, here + stay_penalty, here_from);
+                finish(1, value, from);
             }
             const bool other_label = m.representative_labels[r] != label_of(best.rep);
             if (rep_best < best.cost) {
@@ -271,8 +320,8 @@ private:
     static constexpr std::uint16_t unknown_rep = 0xFFFF;
 
     struct Plan {
-        std::size_t costs = 0, starts = 0, ends = 0, settled = 0, votes = 0, votes_bytes = 0, ring_size = 0,
-                    bytes = unsatisfiable_bytes;
+        std::size_t costs = 0, starts = 0, ends = 0, settled = 0, votes = 0, votes_bytes = 0, column = 0,
+                    ring_size = 0, bytes = unsatisfiable_bytes;
     };
     static constexpr Plan plan(const ModelView& model, const SegmenterConfig& config) noexcept;
 
@@ -323,6 +372,8 @@ private:
     SegmentEnd* ends_ = nullptr;       // ring_size_: the best explanation ending at each character
     LabelId* settled_ = nullptr;       // ring_size_: the settled labels
     float* vote_costs_ = nullptr;      // label_count: the newest character's vote cost per label (votes on only)
+    float* column_ = nullptr;          // K: W(·, newest character), when W is not symmetric
+    bool w_symmetric_ = true;
 };
 
 constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, const SegmenterConfig& config) noexcept {
@@ -336,6 +387,7 @@ constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, co
     p.starts = layout.add<std::uint32_t>(model.total_representative_chars());
     p.ends = layout.add<SegmentEnd>(p.ring_size);
     p.settled = layout.add<LabelId>(p.ring_size);
+    p.column = layout.add<float>(model.character_count);
     if (config.vote_weight > 0.0f && model.has_votes()) {
         p.votes = layout.add<float>(model.label_count);
         p.votes_bytes = std::size_t{model.label_count} * sizeof(float);
