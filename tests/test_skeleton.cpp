@@ -198,9 +198,10 @@ TEST_CASE("a 100-joint engine rig trains end to end on its body joints, files of
     std::uint32_t seed = 1;
     for (const std::string subject : {"a", "b"})
         for (const std::string action : {"raise", "kick"})
-            for (const Rig* rig : {&full, &with_root, &without_face})
-                clips.push_back({perform(*rig, action, seed++, subject + action + std::to_string(seed) + ".bvh"),
-                                 action, subject});
+            for (const Rig* rig : {&full, &with_root, &without_face}) {
+                const std::string name = subject + action + std::to_string(seed) + ".bvh";
+                clips.push_back({perform(*rig, action, seed++, name), action, subject});
+            }
     std::string rig_found;
     CHECK(body_joints(clips.front().clip, &rig_found).size() == 22);
     CHECK(rig_found == "Mixamo rig");
