@@ -16,6 +16,7 @@
 #include "run/classify.hpp"
 #include "train/cross_validation.hpp"
 #include "train/pipeline.hpp"
+#include "train/online_tuning.hpp"
 #include "train/tuning.hpp"
 
 namespace actionstring {
@@ -166,6 +167,27 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const std:
     return tuned;
 }
 
+// With no settings given, after the clip settings: the segmenter's online
+// settings by leave-one-subject-out streaming (the held-out subject's clips
+// joined, or its whole recordings), shown as a table.
+SegmenterConfig tune_online_settings(const std::vector<host::LabelledClip>& clips, const host::TrainingOptions& options,
+                                     const std::vector<host::LabelledRecording>* recordings) {
+    std::fprintf(stderr, "train: choosing the online settings by streaming each held-out subject's %s\n",
+                 recordings != nullptr ? "recordings" : "clips joined");
+    const host::OnlineTuningResult tuned = host::tune_online(clips, options, recordings);
+    if (tuned.steps.empty()) return tuned.chosen;
+    std::printf("online tuning:    %zu settings in %.0f s; mean over the held-out subjects' streams:\n",
+                tuned.steps.size(), tuned.seconds);
+    for (const host::OnlineTuningStep& step : tuned.steps)
+        std::printf("  %-60s segment F1 %.3f  settled frames %.3f%s\n", step.settings.c_str(), step.segment_f1,
+                    step.frame_accuracy, step.kept ? "  <- chosen" : "");
+    std::printf("the chosen online settings (with those above, keep them with --config):\n"
+                "segment-votes %g\nsegment-penalty %g\nunknown-cost %g\n",
+                static_cast<double>(tuned.chosen.vote_weight), static_cast<double>(tuned.chosen.segment_penalty),
+                static_cast<double>(tuned.chosen.unknown_cost));
+    return tuned.chosen;
+}
+
 // Leave-one-subject-out over the list's subjects: a fold table, then the mean.
 int run_cross_validation(const std::vector<host::LabelledClip>& clips, const host::TrainingOptions& options) {
     std::fprintf(stderr, "train: leave-one-subject-out cross-validation\n");
@@ -282,16 +304,20 @@ int run_train(int argc, char** argv) {
         if (!validate_path.empty()) validation = host::load_labelled_clips(validate_path, read);
         if (sweep) return run_sweep(train, validation, options);
         if (cv) return run_cross_validation(train, options);
-        if (!settings_given && !no_tune) options = tune(train, options.pose_joints).options;
+        // A list of intervals of recordings: what lies outside every interval is no action.
+        std::vector<host::LabelledRecording> recordings;
+        const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
+        if (host::has_intervals(entries)) recordings = host::read_recordings(entries, read);
+        const std::vector<host::LabelledClip> no_action = host::unlabelled_stretches(recordings, 1.0);
+        if (!settings_given && !no_tune) {
+            options = tune(train, options.pose_joints).options;
+            options.online = tune_online_settings(train, options, recordings.empty() ? nullptr : &recordings);
+        }
         auto stage_start = std::chrono::steady_clock::now();
         options.progress = [&](const char* stage) {
             std::fprintf(stderr, "train: %s\n", stage);
             stage_start = std::chrono::steady_clock::now();
         };
-        // A list of intervals of recordings: what lies outside every interval is no action.
-        std::vector<host::LabelledClip> no_action;
-        const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
-        if (host::has_intervals(entries)) no_action = host::unlabelled_stretches(host::read_recordings(entries, read), 1.0);
         host::TrainingReport report;
         host::ModelData model = host::train_model(train, options, &report, &no_action);
         host::save_model(model, out_path);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "toy/toy.hpp"
+#include "train/online_tuning.hpp"
 #include "train/tuning.hpp"
 
 using namespace actionstring::host;
@@ -63,4 +64,33 @@ TEST_CASE("cross-validation needs two subjects") {
     ToyWorld world = make_toy_world();
     std::vector<LabelledClip> clips = toy_clips(world, 1, 3, 15.0);
     CHECK_THROWS_AS(cross_validate(clips, tuning_start()), std::invalid_argument);
+}
+
+TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic, the best segment F1") {
+    ToyWorld world = make_toy_world();
+    const std::vector<LabelledClip> clips = noisy_clips(world, 3);  // three subjects: three folds
+    TrainingOptions options = tuning_start();
+    options.pca_dim = 6;
+    const OnlineTuningResult a = tune_online(clips, options);
+    const OnlineTuningResult b = tune_online(clips, options);
+    REQUIRE(a.steps.size() == 6);  // segment votes 0 / 0.1 / 0.25 × segment penalty 1 / 3; no recordings
+    REQUIRE(b.steps.size() == a.steps.size());
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < a.steps.size(); ++i) {
+        CHECK(a.steps[i].segment_f1 == b.steps[i].segment_f1);
+        CHECK(a.steps[i].frame_accuracy >= 0.0);
+        CHECK(a.steps[i].frame_accuracy <= 1.0);
+        if (!a.steps[i].kept) continue;
+        ++kept;
+        CHECK(a.chosen.vote_weight == a.steps[i].config.vote_weight);
+        CHECK(a.chosen.segment_penalty == a.steps[i].config.segment_penalty);
+        for (const OnlineTuningStep& other : a.steps) CHECK(other.segment_f1 <= a.steps[i].segment_f1);
+    }
+    CHECK(kept == 1);
+    // One subject: nothing to hold out, the given settings come back.
+    std::vector<LabelledClip> one = clips;
+    for (LabelledClip& c : one) c.subject = "s";
+    const OnlineTuningResult single = tune_online(one, options);
+    CHECK(single.steps.empty());
+    CHECK(single.chosen.segment_penalty == options.online.segment_penalty);
 }

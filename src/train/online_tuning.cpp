@@ -1,0 +1,89 @@
+// The segmenter's online settings chosen by leave-one-subject-out cross-validation.
+#include "train/online_tuning.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <limits>
+#include <set>
+
+#include "eval/online.hpp"
+#include "model/model_data.hpp"
+#include "train/pipeline.hpp"
+
+namespace actionstring {
+namespace host {
+namespace {
+
+std::string number(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", v);
+    return buffer;
+}
+
+// Stretches of no action shorter than this are not learned from (as `train` does).
+constexpr double min_no_action_seconds = 1.0;
+
+}  // namespace
+
+OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const TrainingOptions& options,
+                               const std::vector<LabelledRecording>* recordings,
+                               const std::function<void(const OnlineTuningStep&)>& progress) {
+    const auto began = std::chrono::steady_clock::now();
+    OnlineTuningResult result;
+    result.chosen = options.online;
+    std::set<std::string> subjects;
+    for (const LabelledClip& c : clips) subjects.insert(c.subject);
+    if (subjects.size() < 2) return result;
+
+    // The grid, in order of preference on ties (simpler first).
+    const float infinity = std::numeric_limits<float>::infinity();
+    std::vector<OnlineTuningStep> steps;
+    for (const float unknown : recordings != nullptr ? std::vector<float>{0.0f, 0.2f} : std::vector<float>{infinity})
+        for (const float votes : {0.0f, 0.1f, 0.25f})
+            for (const float penalty : {1.0f, 3.0f}) {
+                OnlineTuningStep step;
+                step.config = options.online;
+                step.config.vote_weight = votes;
+                step.config.segment_penalty = penalty;
+                step.config.unknown_cost = unknown;
+                step.settings = "segment-votes " + number(votes) + ", segment-penalty " + number(penalty) +
+                                ", unknown-cost " + number(static_cast<double>(unknown));
+                steps.push_back(step);
+            }
+
+    // One model per fold, every setting streamed through it.
+    for (const std::string& held_out : subjects) {
+        std::vector<LabelledClip> train, test;
+        for (const LabelledClip& c : clips) (c.subject == held_out ? test : train).push_back(c);
+        std::vector<LabelledRecording> train_recordings, test_recordings;
+        if (recordings != nullptr)
+            for (const LabelledRecording& r : *recordings)
+                (r.subject == held_out ? test_recordings : train_recordings).push_back(r);
+        const std::vector<LabelledClip> no_action = unlabelled_stretches(train_recordings, min_no_action_seconds);
+        const ModelData model = train_model(train, options, nullptr, &no_action);
+        const ModelView view = model.view();
+        for (OnlineTuningStep& step : steps) {
+            AnnotatorConfig config = annotator_config(view);
+            config.segmenter = step.config;
+            const OnlineReport report = recordings != nullptr ? evaluate_recordings(view, test_recordings, config)
+                                                              : evaluate_online(view, test, 1, config);
+            step.segment_f1 += report.settled.segment_f1 / static_cast<double>(subjects.size());
+            step.frame_accuracy += report.settled.frame_accuracy / static_cast<double>(subjects.size());
+        }
+    }
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < steps.size(); ++i)
+        if (steps[i].segment_f1 > steps[best].segment_f1 ||
+            (steps[i].segment_f1 == steps[best].segment_f1 && steps[i].frame_accuracy > steps[best].frame_accuracy))
+            best = i;
+    steps[best].kept = true;
+    result.chosen = steps[best].config;
+    for (const OnlineTuningStep& step : steps)
+        if (progress) progress(step);
+    result.steps = std::move(steps);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    return result;
+}
+
+}  // namespace host
+}  // namespace actionstring

@@ -1,0 +1,48 @@
+// actionstring host library — the segmenter's online settings chosen by
+// leave-one-subject-out cross-validation at training, so a model carries
+// settings that were judged on streams of people it did not see.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "actionstring/segmenter.hpp"
+#include "io/clip_list.hpp"
+#include "io/recordings.hpp"
+#include "train/options.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// One set of online settings tried, and what the held-out streams gave.
+struct OnlineTuningStep {
+    std::string settings;  ///< As config lines joined by ", ": "segment-votes 0.1, segment-penalty 1".
+    SegmenterConfig config;
+    double segment_f1 = 0;      ///< Mean over the folds of the settled labels' segment F1 (IoU ≥ 0.5).
+    double frame_accuracy = 0;  ///< Mean over the folds of settled frame accuracy.
+    bool kept = false;
+};
+
+struct OnlineTuningResult {
+    SegmenterConfig chosen;
+    std::vector<OnlineTuningStep> steps;
+    double seconds = 0;
+};
+
+/// For each subject of `clips`, trains a model with `options` on the other
+/// subjects and streams the held-out subject: its clips concatenated
+/// (evaluate_online()), or, when `recordings` is given, its whole recordings
+/// (evaluate_recordings(); the training subjects' unlabelled stretches then
+/// teach the model its "no action" votes, and "no action" needs no flat cost).
+/// Tries the characters' votes in the explanation (segment-votes 0, 0.1, 0.25),
+/// the segment penalty (1, 3) and, with recordings, the flat unknown cost
+/// (0, 0.2), the rest as in `options.online`; keeps the best mean segment F1
+/// (ties: frame accuracy, then the earlier, simpler settings). Deterministic.
+/// Needs two subjects or more (otherwise returns options.online, no steps).
+OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const TrainingOptions& options,
+                               const std::vector<LabelledRecording>* recordings = nullptr,
+                               const std::function<void(const OnlineTuningStep&)>& progress = {});
+
+}  // namespace host
+}  // namespace actionstring
