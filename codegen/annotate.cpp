@@ -53,12 +53,7 @@ int run_annotate(int argc, char** argv) {
             return 0;
         }
         if (arg == "--model") model_path = args.value(arg);
-        else if (arg == "--skeleton") skeleton = args.value(arg);
-        else if (arg == "--rate") read.frame_rate_hz = args.number(arg, 0.001, 1e6);
-        else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
-        else if (arg == "--time-unit") read.time_unit_s = parse_time_unit(args, args.value(arg));
-        else if (arg == "--body") read.body = static_cast<int>(args.number(arg, 0, 63));
-        else if (arg == "--columns") read.columns = args.value(arg);
+        else if (parse_read_option(args, arg, read, skeleton)) continue;
         else if (arg == "--json") json = true;
         else if (arg == "--events") events = true;
         else if (arg == "--live") live = true;

@@ -44,14 +44,9 @@ int run_info(int argc, char** argv) {
             print_info_usage(stdout);
             return 0;
         }
-        if (arg == "--skeleton") skeleton = args.value(arg);
-        else if (arg == "--rate") options.frame_rate_hz = args.number(arg, 0.001, 1e6);
+        if (parse_read_option(args, arg, options, skeleton)) continue;
         else if (arg == "--scale") options.length_scale = args.number(arg, 1e-9, 1e9);
         else if (arg == "--up") options.up_axis = static_cast<int>(args.number(arg, 0, 2));
-        else if (arg == "--roles") options.roles = parse_roles(args, args.value(arg));
-        else if (arg == "--time-unit") options.time_unit_s = parse_time_unit(args, args.value(arg));
-        else if (arg == "--body") options.body = static_cast<int>(args.number(arg, 0, 63));
-        else if (arg == "--columns") options.columns = args.value(arg);
         else if (arg == "--joints") list_joints = true;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;

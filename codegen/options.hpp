@@ -94,6 +94,21 @@ inline double parse_time_unit(ArgumentReader& args, const std::string& text) {
     }
 }
 
+/// Reads one of the options every command that reads a motion file takes
+/// (--skeleton ASF, --rate HZ, --roles R,L,R, --time-unit s|ms|us, --body N,
+/// --columns SPEC) into `read` and `skeleton`. Returns false when `option` is not one.
+inline bool parse_read_option(ArgumentReader& args, const std::string& option, host::ReadOptions& read,
+                              std::string& skeleton) {
+    if (option == "--skeleton") skeleton = args.value(option);
+    else if (option == "--rate") read.frame_rate_hz = args.number(option, 0.001, 1e6);
+    else if (option == "--roles") read.roles = parse_roles(args, args.value(option));
+    else if (option == "--time-unit") read.time_unit_s = parse_time_unit(args, args.value(option));
+    else if (option == "--body") read.body = static_cast<int>(args.number(option, 0, 63));
+    else if (option == "--columns") read.columns = args.value(option);
+    else return false;
+    return true;
+}
+
 /// Applies one of the segmenter's settings by name (host::apply_segmenter_setting),
 /// a bad value reported through `args`. Returns false when `name` is not one of them.
 inline bool apply_segmenter_setting(ArgumentReader& args, const std::string& name, const std::string& value,

@@ -42,12 +42,7 @@ int run_view(int argc, char** argv) {
         else if (arg == "--out") out_path = args.value(arg);
         else if (arg == "--label") label = args.value(arg);
         else if (arg == "--title") title = args.value(arg);
-        else if (arg == "--skeleton") skeleton = args.value(arg);
-        else if (arg == "--rate") read.frame_rate_hz = args.number(arg, 0.001, 1e6);
-        else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
-        else if (arg == "--time-unit") read.time_unit_s = parse_time_unit(args, args.value(arg));
-        else if (arg == "--body") read.body = static_cast<int>(args.number(arg, 0, 63));
-        else if (arg == "--columns") read.columns = args.value(arg);
+        else if (parse_read_option(args, arg, read, skeleton)) continue;
         else if (parse_segmenter_option(args, arg, overrides)) continue;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;

@@ -9,16 +9,13 @@
 #include "eval/online.hpp"
 #include "model/model_data.hpp"
 #include "train/pipeline.hpp"
+#include "train/settings.hpp"
 
 namespace actionstring {
 namespace host {
 namespace {
 
-std::string number(double v) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%g", v);
-    return buffer;
-}
+std::string number(double v) { return setting_value_text(v); }
 
 // Stretches of no action shorter than this are not learned from (as `train` does).
 constexpr double min_no_action_seconds = 1.0;

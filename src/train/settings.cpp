@@ -61,6 +61,12 @@ bool apply_segmenter_setting(const std::string& name, const std::string& value, 
     return true;
 }
 
+std::string setting_value_text(double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", value);
+    return buffer;
+}
+
 double parse_time_unit(const std::string& text) {
     if (text == "s") return 1.0;
     if (text == "ms") return 1e-3;

@@ -47,5 +47,8 @@ double parse_time_unit(const std::string& text);
 /// "ROOT,LEFT_HIP,RIGHT_HIP" → role names; throws std::invalid_argument.
 RoleNames parse_role_names(const std::string& text);
 
+/// A setting's value as a config file writes it ("%g": 0.25, 1e-06, inf).
+std::string setting_value_text(double value);
+
 }  // namespace host
 }  // namespace actionstring

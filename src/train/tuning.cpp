@@ -2,6 +2,7 @@
 #include "train/tuning.hpp"
 
 #include "common/time.hpp"
+#include "train/settings.hpp"
 
 #include <chrono>
 #include <cstdint>
@@ -13,11 +14,7 @@ namespace actionstring {
 namespace host {
 namespace {
 
-std::string number(double v) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%g", v);
-    return buffer;
-}
+std::string number(double v) { return setting_value_text(v); }
 
 // One setting and the values tried for it.
 struct Axis {
