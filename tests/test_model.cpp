@@ -56,6 +56,8 @@ TEST_CASE("each kind of corruption is refused") {
         {"NaN threshold", [](host::ModelData& m) { m.unknown_distance = kNaN; }},
         {"bad variant", [](host::ModelData& m) { m.variant = static_cast<MatchVariant>(7); }},
         {"negative vote weight", [](host::ModelData& m) { m.vote_weight = -1.0f; }},
+        {"NaN online vote weight", [](host::ModelData& m) { m.segment_vote_weight = kNaN; }},
+        {"online vote weight beyond 1000", [](host::ModelData& m) { m.segment_vote_weight = 2000.0f; }},
         {"votes missing", [](host::ModelData& m) { m.vote_weight = 1.0f; }},
         {"NaN vote",
          [](host::ModelData& m) {

@@ -354,6 +354,8 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
         !(m.skip_penalty >= 0.0f && m.skip_penalty <= max_table_value))
         return refuse(problem, "segment_penalty: a penalty negative, non-finite or beyond 1e6");
     if (!(m.unknown_cost >= 0.0f)) return refuse(problem, "unknown_cost: negative or NaN");
+    if (!(m.segment_vote_weight >= 0.0f && m.segment_vote_weight <= 1000.0f))
+        return refuse(problem, "segment_vote_weight: negative, non-finite or beyond 1000");
     return Status::ok;
 }
 
