@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "actionstring/detail/axpy.hpp"
 #include "actionstring/detail/math.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/status.hpp"
@@ -31,12 +32,34 @@ inline float gmm_mahalanobis_sq(const ModelView& model, std::size_t component, c
     }
     // U packed column by column (LAPACK 'U' packed): column c holds U[0..c][c].
     // Accumulating y[r] column by column keeps every sum in one fixed order
-    // while the inner loop over r is independent, so it vectorises.
+    // (increasing c) while the inner loop over r is independent, so it
+    // vectorises; four columns go per pass over y (detail/axpy.hpp), and the
+    // rows only the later of the four reach finish after it, in the same order.
     float* y = scratch;
     for (std::size_t r = 0; r < d; ++r) y[r] = 0.0f;
-    for (std::size_t c = 0; c < d; ++c) {
-        const float dc = feature[c] - mean[c];
-        for (std::size_t r = 0; r <= c; ++r) y[r] += factor[r] * dc;
+    std::size_t c = 0;
+    for (; c + 4 <= d; c += 4) {
+        const float* u0 = factor;          // column c:     rows 0..c
+        const float* u1 = u0 + (c + 1);    // column c + 1: rows 0..c + 1
+        const float* u2 = u1 + (c + 2);
+        const float* u3 = u2 + (c + 3);
+        const float e0 = feature[c] - mean[c], e1 = feature[c + 1] - mean[c + 1];
+        const float e2 = feature[c + 2] - mean[c + 2], e3 = feature[c + 3] - mean[c + 3];
+        detail::axpy4(y, c + 1, u0, e0, u1, e1, u2, e2, u3, e3);
+        float sum = y[c + 1];
+        sum += u1[c + 1] * e1;
+        sum += u2[c + 1] * e2;
+        sum += u3[c + 1] * e3;
+        y[c + 1] = sum;
+        sum = y[c + 2];
+        sum += u2[c + 2] * e2;
+        sum += u3[c + 2] * e3;
+        y[c + 2] = sum;
+        y[c + 3] += u3[c + 3] * e3;
+        factor = u3 + (c + 4);
+    }
+    for (; c < d; ++c) {
+        detail::axpy1(y, c + 1, factor, feature[c] - mean[c]);
         factor += c + 1;
     }
     for (std::size_t r = 0; r < d; ++r) q += y[r] * y[r];

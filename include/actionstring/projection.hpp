@@ -3,6 +3,7 @@
 
 #include <cstddef>
 
+#include "actionstring/detail/axpy.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/status.hpp"
 
@@ -26,14 +27,16 @@ inline Status project_pose(const ModelView& model, const float* pose, float* fea
         return Status::ok;
     }
     // Column by column: the d outputs are independent accumulators, each summed
-    // in one fixed order.
+    // in one fixed order (increasing c), four columns per pass (detail/axpy.hpp).
     const std::size_t d = model.feature_dim;
+    const float* mean = model.projection_mean;
     for (std::size_t r = 0; r < d; ++r) feature[r] = 0.0f;
     const float* column = model.projection_matrix;
-    for (std::size_t c = 0; c < pose_dim; ++c, column += d) {
-        const float centred = pose[c] - model.projection_mean[c];
-        for (std::size_t r = 0; r < d; ++r) feature[r] += column[r] * centred;
-    }
+    std::size_t c = 0;
+    for (; c + 4 <= pose_dim; c += 4, column += 4 * d)
+        detail::axpy4(feature, d, column, pose[c] - mean[c], column + d, pose[c + 1] - mean[c + 1], column + 2 * d,
+                      pose[c + 2] - mean[c + 2], column + 3 * d, pose[c + 3] - mean[c + 3]);
+    for (; c < pose_dim; ++c, column += d) detail::axpy1(feature, d, column, pose[c] - mean[c]);
     return Status::ok;
 }
 

@@ -1,0 +1,38 @@
+// actionstring — y += Σ columns · scalars, four columns per pass over y.
+//
+// The projection and the GMM's triangular product both accumulate a vector
+// column by column: y[r] += a_c[r] · x_c for c = 0, 1, …. One pass per column
+// loads and stores every y[r] once per column; four columns per pass keep y[r]
+// in a register across them, which on a Cortex-M4 (no SIMD, one load per
+// float) cuts the instructions per multiply-add from about six to three.
+//
+// Every y[r] still adds its terms in increasing c, each rounded as before
+// (a product, then a sum: the runtime is built without contraction into fused
+// multiply-adds), so the result is bit-identical to one column at a time.
+#pragma once
+
+#include <cstddef>
+
+namespace actionstring {
+namespace detail {
+
+/// y[r] += a0[r]·x0, then a1[r]·x1, a2[r]·x2, a3[r]·x3, for r < n.
+inline void axpy4(float* y, std::size_t n, const float* a0, float x0, const float* a1, float x1, const float* a2,
+                  float x2, const float* a3, float x3) noexcept {
+    for (std::size_t r = 0; r < n; ++r) {
+        float sum = y[r];
+        sum += a0[r] * x0;
+        sum += a1[r] * x1;
+        sum += a2[r] * x2;
+        sum += a3[r] * x3;
+        y[r] = sum;
+    }
+}
+
+/// y[r] += a[r]·x for r < n.
+inline void axpy1(float* y, std::size_t n, const float* a, float x) noexcept {
+    for (std::size_t r = 0; r < n; ++r) y[r] += a[r] * x;
+}
+
+}  // namespace detail
+}  // namespace actionstring
