@@ -214,12 +214,13 @@ public:
             // Each choice is one comparison selecting both the cost and its start,
             // written so compilers emit selects, not jumps: the comparisons
             // depend on the data and would be mispredicted half the time.
-            auto choose = [](float& value, std::uint32_t& from, float other, std::uint32_t other_from) {
+            auto choose = [](float& value, std::uint32_t& from, float other,
+                             std::uint32_t other_from) ACTIONSTRING_DETAIL_INLINE_LAMBDA {
                 const bool take = other < value;
                 value = take ? other : value;
                 from = take ? other_from : from;
             };
-            auto finish = [&](std::size_t i, float value, std::uint32_t from) {
+            auto finish = [&](std::size_t i, float value, std::uint32_t from) ACTIONSTRING_DETAIL_INLINE_LAMBDA {
                 value += column[rep[i - 1]] + vote;
                 cost[i - 1] = value;
                 start[i - 1] = from;
@@ -262,14 +263,14 @@ public:
                 end = SegmentEnd{static_cast<std::uint16_t>(r), start[n - 1]};
             }
         }
-        ends_[now % ring_size_] = end;
+        ends_[slot(now)] = end;
         last_end_ = end_cost;
         best_ = best;
         margin_ = runner_up - best.cost;
         ++pushed_;
         if (pushed_ <= settle_chars_) return false;
         const std::uint64_t settled = pushed_ - 1 - settle_chars_;
-        settled_[settled % ring_size_] = label_at(settled);
+        settled_[slot(settled)] = label_at(settled);
         return true;
     }
 
@@ -292,7 +293,7 @@ public:
     LabelId settled_label(std::uint64_t index) const noexcept {
         if (!has_settled() || index > settled_character() || settled_character() - index >= ring_size_)
             return unknown_label;
-        return settled_[index % ring_size_];
+        return settled_[slot(index)];
     }
     /// How many settled labels settled_label(index) remembers.
     std::size_t settled_history() const noexcept { return ring_size_; }
@@ -335,6 +336,12 @@ private:
         std::uint32_t start = 0;
     };
 
+    // The ring slot of a character index: index mod 2^32 mod ring_size_, a mask
+    // as ring_size_ is a power of two (no 64-bit division on a 32-bit core).
+    std::size_t slot(std::uint64_t index) const noexcept {
+        return static_cast<std::size_t>(static_cast<std::uint32_t>(index) & static_cast<std::uint32_t>(ring_size_ - 1u));
+    }
+
     LabelId label_of(std::uint16_t rep) const noexcept {
         return rep == unknown_rep ? unknown_label : model_->representative_labels[rep];
     }
@@ -350,7 +357,7 @@ private:
             const std::uint32_t start_age = newest - start;
             if (start_age >= target_age) return label_of(rep);
             const std::uint32_t previous = start - 1u;  // the end of the segment before
-            const SegmentEnd& end = ends_[previous % ring_size_];
+            const SegmentEnd& end = ends_[slot(previous)];
             rep = end.rep;
             start = end.start;
         }

@@ -7,6 +7,15 @@
 #include <cstring>
 #include <limits>
 
+// Forces a small helper lambda inline where it sits in a hot loop: -Os keeps a
+// lambda called from three places out of line, and the call then costs more
+// than its body (the segmenter's cells on a Cortex-M4).
+#if defined(__GNUC__) || defined(__clang__)
+#define ACTIONSTRING_DETAIL_INLINE_LAMBDA __attribute__((always_inline))
+#else
+#define ACTIONSTRING_DETAIL_INLINE_LAMBDA
+#endif
+
 namespace actionstring {
 namespace detail {
 
