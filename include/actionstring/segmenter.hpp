@@ -97,8 +97,7 @@ public:
         detail::clear_storage(storage, p.bytes);
         settle_chars_ = settle_chars_for(model, config);
         ring_size_ = p.ring_size;
-        costs_ = detail::storage_at<float>(storage, p.costs);
-        starts_ = detail::storage_at<std::uint32_t>(storage, p.starts);
+        cells_ = detail::storage_at<Cell>(storage, p.cells);
         ends_ = detail::storage_at<SegmentEnd>(storage, p.ends);
         settled_ = detail::storage_at<LabelId>(storage, p.settled);
         vote_costs_ = p.votes_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.votes);
@@ -142,10 +141,7 @@ public:
         margin_ = 0.0f;
         best_ = Hypothesis{};
         const std::size_t cells = model_->total_representative_chars();
-        for (std::size_t i = 0; i < cells; ++i) {
-            costs_[i] = detail::infinity();
-            starts_[i] = 0;
-        }
+        for (std::size_t i = 0; i < cells; ++i) cells_[i] = Cell{detail::infinity(), 0u};
         for (std::size_t i = 0; i < ring_size_; ++i) {
             ends_[i] = SegmentEnd{};
             settled_[i] = unknown_label;
@@ -195,8 +191,7 @@ public:
         for (std::size_t r = 0; r < m.representative_count; ++r) {
             const Character* rep = m.representative_chars + m.representative_offsets[r];
             const std::size_t n = m.representative_length(r);
-            float* cost = costs_ + m.representative_offsets[r];  // cell i is cost[i − 1]
-            std::uint32_t* start = starts_ + m.representative_offsets[r];
+            Cell* cells = cells_ + m.representative_offsets[r];  // cell i is cells[i − 1]
             // This representative's best cell (the first strict minimum, so
             // best below is the same cell a single pass over all cells finds).
             float rep_best = detail::infinity();
@@ -207,49 +202,54 @@ public:
             // registers, so each cell loads one old value; cells 2 and 1, whose
             // moves start a segment, follow the loop.
             const float stay_penalty = config_.stay_penalty, skip_penalty = config_.skip_penalty;
-            float here = cost[n - 1] - shift;                     // old cell i
-            std::uint32_t here_from = start[n - 1];
-            float below = n >= 2 ? cost[n - 2] - shift : 0.0f;  // old cell i − 1
-            std::uint32_t below_from = n >= 2 ? start[n - 2] : 0u;
+            float here = cells[n - 1].cost - shift;                     // old cell i
+            std::uint32_t here_from = cells[n - 1].start;
+            float below = n >= 2 ? cells[n - 2].cost - shift : 0.0f;  // old cell i − 1
+            std::uint32_t below_from = n >= 2 ? cells[n - 2].start : 0u;
             // Each choice is one comparison selecting both the cost and its start,
             // written so compilers emit selects, not jumps: the comparisons
             // depend on the data and would be mispredicted half the time.
             auto choose = [](float& value, std::uint32_t& from, float other,
-                             std::uint32_t other_from) ACTIONSTRING_DETAIL_INLINE_LAMBDA {
+                             std::uint32_t other_from) ACTIONSTRING_DETAIL_ALWAYS_INLINE {
                 const bool take = other < value;
                 value = take ? other : value;
                 from = take ? other_from : from;
             };
-            auto finish = [&](std::size_t i, float value, std::uint32_t from) ACTIONSTRING_DETAIL_INLINE_LAMBDA {
-                value += column[rep[i - 1]] + vote;
-                cost[i - 1] = value;
-                start[i - 1] = from;
+            auto finish = [&](Cell& cell, Character c, float value,
+                              std::uint32_t from) ACTIONSTRING_DETAIL_ALWAYS_INLINE {
+                value += column[c] + vote;
+                cell = Cell{value, from};
                 choose(rep_best, rep_from, value, from);
             };
-            for (std::size_t i = n; i >= 3; --i) {
-                const float further = cost[i - 3] - shift;  // old cell i − 2
-                const std::uint32_t further_from = start[i - 3];
-                float value = below;
-                std::uint32_t from = below_from;
-                choose(value, from, here + stay_penalty, here_from);
-                choose(value, from, further + skip_penalty, further_from);
-                finish(i, value, from);
-                here = below, here_from = below_from;
-                below = further, below_from = further_from;
+            // Cells n down to 3, walking pointers (cell i, its character) so the
+            // loop's state fits a Cortex-M4's registers.
+            if (n >= 3) {
+                const Character* c = rep + (n - 1);
+                for (Cell* cell = cells + (n - 1); cell != cells + 1; --cell, --c) {
+                    const float further = cell[-2].cost - shift;  // old cell i − 2
+                    const std::uint32_t further_from = cell[-2].start;
+                    float value = below;
+                    std::uint32_t from = below_from;
+                    choose(value, from, here + stay_penalty, here_from);
+                    choose(value, from, further + skip_penalty, further_from);
+                    finish(*cell, *c, value, from);
+                    here = below, here_from = below_from;
+                    below = further, below_from = further_from;
+                }
             }
             if (n >= 2) {  // cell 2: advance from cell 1, stay, or skip in from the segment's entry
                 float value = below;
                 std::uint32_t from = below_from;
                 choose(value, from, here + stay_penalty, here_from);
                 choose(value, from, entry + skip_penalty, now);
-                finish(2, value, from);
+                finish(cells[1], rep[1], value, from);
                 here = below, here_from = below_from;
             }
             {  // cell 1: enter the segment, or stay
                 float value = entry;
                 std::uint32_t from = now;
                 choose(value, from, here + stay_penalty, here_from);
-                finish(1, value, from);
+                finish(cells[0], rep[0], value, from);
             }
             const bool other_label = m.representative_labels[r] != label_of(best.rep);
             if (rep_best < best.cost) {
@@ -258,9 +258,9 @@ public:
             } else if (other_label && rep_best < runner_up) {
                 runner_up = rep_best;
             }
-            if (cost[n - 1] < end_cost) {
-                end_cost = cost[n - 1];
-                end = SegmentEnd{static_cast<std::uint16_t>(r), start[n - 1]};
+            if (cells[n - 1].cost < end_cost) {
+                end_cost = cells[n - 1].cost;
+                end = SegmentEnd{static_cast<std::uint16_t>(r), cells[n - 1].start};
             }
         }
         ends_[slot(now)] = end;
@@ -321,7 +321,7 @@ private:
     static constexpr std::uint16_t unknown_rep = 0xFFFF;
 
     struct Plan {
-        std::size_t costs = 0, starts = 0, ends = 0, settled = 0, votes = 0, votes_bytes = 0, column = 0,
+        std::size_t cells = 0, ends = 0, settled = 0, votes = 0, votes_bytes = 0, column = 0,
                     ring_size = 0, bytes = unsatisfiable_bytes;
     };
     static constexpr Plan plan(const ModelView& model, const SegmenterConfig& config) noexcept;
@@ -334,6 +334,13 @@ private:
     struct SegmentEnd {
         std::uint16_t rep = unknown_rep;
         std::uint32_t start = 0;
+    };
+    // One cell of a representative's explanation: its cost (relative to the
+    // previous step's best) and where its segment started, side by side so
+    // one pointer reaches both.
+    struct Cell {
+        float cost;
+        std::uint32_t start;
     };
 
     // The ring slot of a character index: index mod 2^32 mod ring_size_, a mask
@@ -374,8 +381,7 @@ private:
     // A power of two above settle_chars_, so that slot = index mod 2^32 mod
     // ring_size_ stays consistent when the 32-bit index wraps.
     std::size_t ring_size_ = 0;
-    float* costs_ = nullptr;           // one per representative character
-    std::uint32_t* starts_ = nullptr;  // the start of each cell's segment
+    Cell* cells_ = nullptr;            // one per representative character
     SegmentEnd* ends_ = nullptr;       // ring_size_: the best explanation ending at each character
     LabelId* settled_ = nullptr;       // ring_size_: the settled labels
     float* vote_costs_ = nullptr;      // label_count: the newest character's vote cost per label (votes on only)
@@ -390,8 +396,7 @@ constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, co
         return p;
     p.ring_size = detail::next_power_of_two(std::size_t{settle_chars_for(model, config)} + 1u);
     detail::StorageLayout layout;
-    p.costs = layout.add<float>(model.total_representative_chars());
-    p.starts = layout.add<std::uint32_t>(model.total_representative_chars());
+    p.cells = layout.add<Cell>(model.total_representative_chars());
     p.ends = layout.add<SegmentEnd>(p.ring_size);
     p.settled = layout.add<LabelId>(p.ring_size);
     p.column = layout.add<float>(model.character_count);
