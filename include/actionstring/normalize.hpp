@@ -53,7 +53,7 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     // Validate only the joints the model reads: engine rigs carry many more
     // (with bone lengths, every joint: each one places its children).
     bool any_non_zero = false;
-    auto check = [&](std::size_t index) {
+    auto check = [&](std::size_t index) ACTIONSTRING_DETAIL_ALWAYS_INLINE {
         const float* p = raw(index);
         for (int a = 0; a < 3; ++a) {
             if (!detail::is_finite(p[a])) return false;
