@@ -2,6 +2,7 @@
 #include <chrono>
 #include <set>
 #include <cstdio>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -317,6 +318,17 @@ int run_train(int argc, char** argv) {
         options.progress = [&](const char* stage) {
             std::fprintf(stderr, "train: %s\n", stage);
             stage_start = std::chrono::steady_clock::now();
+        };
+        // EM: every tenth iteration, re-seeds and the last (restarts report from two threads).
+        std::mutex em_lines;
+        options.em_progress = [&em_lines](int restart, const host::EmProgress& step) {
+            const bool last = step.converged || step.iteration == step.max_iterations;
+            if (step.iteration % 10 != 0 && !step.reseeded && !last) return;
+            const std::lock_guard<std::mutex> lock(em_lines);
+            std::fprintf(stderr, "train: EM restart %d, iteration %d of at most %d: objective %.1f, change %.2g%s%s\n",
+                         restart + 1, step.iteration, step.max_iterations, step.objective, step.change,
+                         step.reseeded ? " (a component re-seeded)" : "",
+                         !last ? "" : step.converged ? ", converged" : ", NOT converged");
         };
         host::TrainingReport report;
         host::ModelData model = host::train_model(train, options, &report, &no_action);

@@ -8,6 +8,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "common/parallel.hpp"
 #include "train/gmm_em.hpp"
 
 namespace actionstring {
@@ -60,7 +61,8 @@ std::vector<int> kmeans_plus_plus(const Eigen::MatrixXd& x, int k, std::mt19937_
 }  // namespace
 
 GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, double covariance_floor,
-               int max_iterations, double tolerance, std::uint32_t seed) {
+               int max_iterations, double tolerance, std::uint32_t seed, std::size_t workers,
+               const std::function<void(const EmProgress&)>& progress) {
     const Eigen::Index d = x.rows(), n = x.cols();
     const int J = components;
     if (J < 1) throw std::invalid_argument("the GMM needs at least one component");
@@ -89,15 +91,16 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
     std::vector<int> reseed_count(static_cast<std::size_t>(J), 0);
     double previous = -std::numeric_limits<double>::infinity();
     for (int iteration = 0; iteration <= max_iterations; ++iteration) {
-        // M-step (MAP covariance).
+        // M-step (MAP covariance), component by component on the workers.
         bool reseeded = false;
         int current = static_cast<int>(fit.means.size());
-        std::vector<bool> empty(static_cast<std::size_t>(current), false);
-        for (int j = 0; j < current; ++j) {
+        std::vector<char> empty(static_cast<std::size_t>(current), 0);  // (not vector<bool>: written by threads)
+        parallel_for(static_cast<std::size_t>(current), workers, [&](std::size_t component) {
+            const auto j = static_cast<Eigen::Index>(component);
             const double nj = resp.row(j).sum();
             if (nj < 1e-6 * static_cast<double>(n) || nj < 1e-3) {
-                empty[static_cast<std::size_t>(j)] = true;
-                continue;
+                empty[component] = 1;
+                return;
             }
             const Eigen::VectorXd mean = x * resp.row(j).transpose() / nj;
             const Eigen::MatrixXd centred = x.colwise() - mean;
@@ -112,10 +115,10 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
                       nj;
                 cov = 0.5 * (cov + cov.transpose());
             }
-            fit.means[static_cast<std::size_t>(j)] = mean;
-            fit.covariances[static_cast<std::size_t>(j)] = cov;
-            fit.weights[static_cast<std::size_t>(j)] = nj / static_cast<double>(n);
-        }
+            fit.means[component] = mean;
+            fit.covariances[component] = cov;
+            fit.weights[component] = nj / static_cast<double>(n);
+        });
         // Recovery for components that lost (almost) every sample: re-seed at the
         // sample the mixture explains worst, with the others' mean covariance and
         // an average weight; one that collapses a third time is dropped (J shrinks).
@@ -153,12 +156,15 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
             fit.report.reseeded.push_back(iteration);
         }
         const int J_now = current;
-        // E-step in the log domain.
+        // E-step in the log domain, component by component on the workers; the
+        // penalty's terms are summed afterwards in component order.
         Eigen::MatrixXd log_joint(J_now, n);
-        double penalty = 0;
-        for (int j = 0; j < J_now; ++j) {
-            const Eigen::MatrixXd& cov = fit.covariances[static_cast<std::size_t>(j)];
-            const Eigen::MatrixXd centred = x.colwise() - fit.means[static_cast<std::size_t>(j)];
+        std::vector<double> penalties(static_cast<std::size_t>(J_now), 0.0);
+        parallel_for(static_cast<std::size_t>(J_now), workers, [&](std::size_t component) {
+            const auto j = static_cast<Eigen::Index>(component);
+            double& penalty = penalties[component];
+            const Eigen::MatrixXd& cov = fit.covariances[component];
+            const Eigen::MatrixXd centred = x.colwise() - fit.means[component];
             Eigen::RowVectorXd q;
             double log_det = 0;
             if (diagonal) {
@@ -175,10 +181,11 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
                 log_det = 2.0 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
                 penalty += llt.solve(Eigen::MatrixXd::Identity(d, d)).trace();
             }
-            log_joint.row(j) = (std::log(fit.weights[static_cast<std::size_t>(j)]) -
-                                0.5 * (static_cast<double>(d) * kLog2Pi + log_det)) -
+            log_joint.row(j) = (std::log(fit.weights[component]) - 0.5 * (static_cast<double>(d) * kLog2Pi + log_det)) -
                                0.5 * q.array();
-        }
+        });
+        double penalty = 0;
+        for (const double term : penalties) penalty += term;
         const Eigen::RowVectorXd peak = log_joint.colwise().maxCoeff();
         const Eigen::RowVectorXd lse = peak.array() + (log_joint.rowwise() - peak).array().exp().colwise().sum().log();
         resp = (log_joint.rowwise() - lse).array().exp().matrix();
@@ -188,7 +195,12 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
         if (!std::isfinite(objective)) throw std::runtime_error("EM: the log-likelihood is not finite");
         fit.report.log_likelihood.push_back(log_likelihood);
         fit.report.objective.push_back(objective);
-        if (iteration > 0 && !reseeded && std::fabs(objective - previous) <= tolerance * std::fabs(objective)) {
+        const double change = iteration == 0 ? std::numeric_limits<double>::infinity()
+                                             : std::fabs(objective - previous) / std::fabs(objective);
+        const bool converged =
+            iteration > 0 && !reseeded && std::fabs(objective - previous) <= tolerance * std::fabs(objective);
+        if (progress) progress(EmProgress{iteration, max_iterations, J_now, objective, change, reseeded, converged});
+        if (converged) {
             fit.report.converged = true;
             break;
         }

@@ -1,7 +1,9 @@
 // actionstring host library — the GMM of key-poses fitted by EM (design §1.3).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -18,6 +20,17 @@ struct EmReport {
     std::vector<int> reseeded;           ///< Iterations at which an emptied component was re-seeded.
     int dropped = 0;                     ///< Components dropped after collapsing a third time.
     bool converged = false;
+};
+
+/// One EM iteration, as it ends (for progress reports).
+struct EmProgress {
+    int iteration = 0;         ///< 0 is the fit of the k-means start.
+    int max_iterations = 0;
+    int components = 0;        ///< J now (a component that collapses a third time is dropped).
+    double objective = 0.0;    ///< Penalised log-likelihood.
+    double change = 0.0;       ///< |objective − previous| / |objective|; infinity at iteration 0.
+    bool reseeded = false;     ///< An emptied component was re-seeded this iteration.
+    bool converged = false;    ///< The change is within the tolerance: this was the last iteration.
 };
 
 /// A GMM fitted in double precision.
@@ -37,8 +50,15 @@ struct GmmFit {
 /// third time is dropped, so the fit may return fewer than J components.
 /// Both are recorded in the report (the objective may drop at those iterations). Throws std::invalid_argument for fewer samples
 /// than components or non-finite samples.
+///
+/// Each iteration's M-step and E-step run component by component on up to
+/// `workers` threads; every component's sums keep one order and the shared
+/// sums run in component order afterwards, so the fit is the same for any
+/// number of workers. `progress`, when set, is called after every iteration
+/// (from the calling thread).
 GmmFit fit_gmm(const Eigen::MatrixXd& samples, int components, Covariance covariance, double covariance_floor,
-               int max_iterations, double tolerance, std::uint32_t seed);
+               int max_iterations, double tolerance, std::uint32_t seed, std::size_t workers = 1,
+               const std::function<void(const EmProgress&)>& progress = {});
 
 }  // namespace host
 }  // namespace actionstring

@@ -73,6 +73,9 @@ struct TrainingOptions {
     std::uint32_t seed = 1;
     /// Called with the name of each stage as it starts (progress reports); may be empty.
     std::function<void(const char*)> progress;
+    /// Called after every EM iteration with the restart's index (restarts run
+    /// on two threads at once: the callee must be thread-safe); may be empty.
+    std::function<void(int restart, const EmProgress&)> em_progress;
 };
 
 /// Timings and sizes of one training run.

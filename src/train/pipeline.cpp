@@ -259,11 +259,17 @@ TreeFeatures projected_features(ModelData& m, const std::vector<float>& poses, c
 // the choice is fixed (highest final objective, earliest on ties), so threads
 // change nothing.
 void fit_gmm_tables(ModelData& m, const Eigen::MatrixXd& samples, const TrainingOptions& options, TrainingReport& r) {
+    // One restart: its components go to the workers; several: the restarts do
+    // (a nested parallel_for runs inline). Either way the fits are the same.
     std::vector<GmmFit> fits(static_cast<std::size_t>(options.em_restarts));
-    parallel_for(fits.size(), std::min<std::size_t>(2, hardware_workers()), [&](std::size_t k) {
-        fits[k] =
-            fit_gmm(samples, options.components, options.covariance, options.covariance_floor,
-                    options.em_max_iterations, options.em_tolerance, options.seed + static_cast<std::uint32_t>(k));
+    const std::size_t workers = hardware_workers();
+    parallel_for(fits.size(), std::min<std::size_t>(2, workers), [&](std::size_t k) {
+        std::function<void(const EmProgress&)> progress;
+        if (options.em_progress)
+            progress = [&options, k](const EmProgress& step) { options.em_progress(static_cast<int>(k), step); };
+        fits[k] = fit_gmm(samples, options.components, options.covariance, options.covariance_floor,
+                          options.em_max_iterations, options.em_tolerance, options.seed + static_cast<std::uint32_t>(k),
+                          workers, progress);
     });
     std::size_t chosen = 0;
     for (std::size_t k = 0; k < fits.size(); ++k) {
