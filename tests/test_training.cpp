@@ -6,6 +6,7 @@
 #include <memory>
 #include <random>
 #include <set>
+#include <thread>
 #include <string>
 
 #include "actionstring/annotator.hpp"
@@ -17,6 +18,7 @@
 #include "train/clustering.hpp"
 #include "toy/toy.hpp"
 #include "run/classify.hpp"
+#include "common/parallel.hpp"
 #include "run/encode.hpp"
 #include "run/state.hpp"
 #include "train/gmm_em.hpp"
@@ -76,6 +78,70 @@ TEST_CASE("EM: the penalised log-likelihood never decreases and the blobs are fo
             found.insert(static_cast<int>(std::lround(mean[0])) * 10 + static_cast<int>(std::lround(mean[1])));
         CHECK(found == std::set<int>{0, 30, 4});
         for (double w : fit.weights) CHECK(w == doctest::Approx(1.0 / 3).epsilon(0.05));
+    }
+}
+
+TEST_CASE("parallel_for: every job once, nested loops inline, the lowest failure rethrown") {
+    for (const std::size_t workers : {std::size_t{1}, std::size_t{3}, std::size_t{16}}) {
+        std::vector<int> runs(10, 0);
+        std::vector<std::vector<int>> inner(10, std::vector<int>(4, 0));
+        std::vector<std::vector<char>> same_thread(10, std::vector<char>(4, 0));
+        parallel_for(runs.size(), workers, [&](std::size_t k) {
+            ++runs[k];
+            // Nested inside a started thread: runs on that thread. (With one
+            // worker the outer loop is inline and the inner one may use threads.)
+            const std::thread::id here = std::this_thread::get_id();
+            parallel_for(4, 4, [&](std::size_t i) {
+                same_thread[k][i] = std::this_thread::get_id() == here;
+                ++inner[k][i];
+            });
+        });
+        CHECK(runs == std::vector<int>(10, 1));
+        for (std::size_t k = 0; k < 10; ++k) {
+            CHECK(inner[k] == std::vector<int>(4, 1));
+            if (workers > 1) CHECK(same_thread[k] == std::vector<char>(4, 1));
+        }
+        try {
+            parallel_for(10, workers, [](std::size_t k) {
+                if (k == 7 || k == 4) throw std::runtime_error("job " + std::to_string(k));
+            });
+            FAIL("no exception");
+        } catch (const std::runtime_error& error) {
+            CHECK(std::string(error.what()) == "job 4");
+        }
+    }
+}
+
+TEST_CASE("EM: the same fit on any number of workers, and a progress report per iteration") {
+    for (const Covariance kind : {Covariance::full, Covariance::diagonal}) {
+        // Re-seeds and drops included: more components than the blobs support.
+        Eigen::MatrixXd x = blobs(300, 4);
+        x.row(0) *= 0.3;
+        const GmmFit one = fit_gmm(x, 8, kind, 1e-3, 300, 1e-12, 5, 1);
+        std::vector<EmProgress> steps;
+        const GmmFit three =
+            fit_gmm(x, 8, kind, 1e-3, 300, 1e-12, 5, 3, [&](const EmProgress& step) { steps.push_back(step); });
+        REQUIRE(one.means.size() == three.means.size());
+        CHECK(one.report.objective == three.report.objective);  // exactly: the sums keep their order
+        CHECK(one.report.reseeded == three.report.reseeded);
+        for (std::size_t j = 0; j < one.means.size(); ++j) {
+            CHECK(one.means[j] == three.means[j]);
+            CHECK(one.covariances[j] == three.covariances[j]);
+            CHECK(one.weights[j] == three.weights[j]);
+        }
+        // One report per iteration, in order, the last one saying whether EM converged.
+        REQUIRE(steps.size() == three.report.objective.size());
+        for (std::size_t i = 0; i < steps.size(); ++i) {
+            CHECK(steps[i].iteration == static_cast<int>(i));
+            CHECK(steps[i].max_iterations == 300);
+            CHECK(steps[i].objective == three.report.objective[i]);
+            CHECK(steps[i].converged == (i + 1 == steps.size() && three.report.converged));
+            const bool reseeded = std::find(three.report.reseeded.begin(), three.report.reseeded.end(),
+                                            static_cast<int>(i)) != three.report.reseeded.end();
+            CHECK(steps[i].reseeded == reseeded);
+        }
+        CHECK(std::isinf(steps.front().change));
+        CHECK(steps.back().components == static_cast<int>(three.means.size()));
     }
 }
 
