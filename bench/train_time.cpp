@@ -2,7 +2,7 @@
 //
 //   actionstring_train_time [LIST]   (default: hdm05/train.tsv)
 // Reads the clips once (timed separately), then trains 3 times; prints the
-// median total and each stage's median. Single-threaded, like the trainer.
+// median total and each stage's median. EM uses every core, like the trainer.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
