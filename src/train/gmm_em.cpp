@@ -164,11 +164,12 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
             const auto j = static_cast<Eigen::Index>(component);
             double& penalty = penalties[component];
             const Eigen::MatrixXd& cov = fit.covariances[component];
-            const Eigen::MatrixXd centred = x.colwise() - fit.means[component];
-            Eigen::RowVectorXd q;
+            const Eigen::VectorXd& mean = fit.means[component];
+            Eigen::RowVectorXd q(n);
             double log_det = 0;
             if (diagonal) {
                 const Eigen::VectorXd inv = cov.diagonal().cwiseInverse();
+                const Eigen::MatrixXd centred = x.colwise() - mean;
                 q = (centred.array().square().colwise() * inv.array()).colwise().sum().matrix();
                 log_det = cov.diagonal().array().log().sum();
                 penalty += inv.sum();
@@ -176,8 +177,17 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
                 Eigen::LLT<Eigen::MatrixXd> llt(cov);
                 if (llt.info() != Eigen::Success)
                     throw std::runtime_error("EM: a covariance lost positive definiteness");
-                const Eigen::MatrixXd solved = llt.matrixL().solve(centred);
-                q = solved.colwise().squaredNorm();
+                // Samples a block at a time, so the d × block temporaries stay in
+                // the cache (each sample's distance is its own column: the same
+                // numbers as one solve over all of them).
+                constexpr Eigen::Index block = 1024;
+                Eigen::MatrixXd solved;
+                for (Eigen::Index first = 0; first < n; first += block) {
+                    const Eigen::Index count = std::min(block, n - first);
+                    solved = x.middleCols(first, count).colwise() - mean;
+                    llt.matrixL().solveInPlace(solved);
+                    q.segment(first, count) = solved.colwise().squaredNorm();
+                }
                 log_det = 2.0 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
                 penalty += llt.solve(Eigen::MatrixXd::Identity(d, d)).trace();
             }
