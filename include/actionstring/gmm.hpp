@@ -33,8 +33,9 @@ inline float gmm_mahalanobis_sq(const ModelView& model, std::size_t component, c
     // U packed column by column (LAPACK 'U' packed): column c holds U[0..c][c].
     // Accumulating y[r] column by column keeps every sum in one fixed order
     // (increasing c) while the inner loop over r is independent, so it
-    // vectorises; four columns go per pass over y (detail/axpy.hpp), and the
-    // rows only the later of the four reach finish after it, in the same order.
+    // vectorises. Four columns go per pass over rows 0..c (detail/axpy.hpp);
+    // rows c + 1..c + 3, which only the later of the four columns reach, are
+    // finished after it, each adding its terms in the same column order.
     float* y = scratch;
     for (std::size_t r = 0; r < d; ++r) y[r] = 0.0f;
     std::size_t c = 0;
