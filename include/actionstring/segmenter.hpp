@@ -25,6 +25,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "actionstring/detail/lanes.hpp"
 #include "actionstring/detail/math.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/status.hpp"
@@ -97,7 +98,7 @@ public:
         detail::clear_storage(storage, p.bytes);
         settle_chars_ = settle_chars_for(model, config);
         ring_size_ = p.ring_size;
-        cells_ = detail::storage_at<Cell>(storage, p.cells);
+        cells_ = cells_in(storage, p);
         ends_ = detail::storage_at<SegmentEnd>(storage, p.ends);
         settled_ = detail::storage_at<LabelId>(storage, p.settled);
         vote_costs_ = p.votes_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.votes);
@@ -141,7 +142,10 @@ public:
         margin_ = 0.0f;
         best_ = Hypothesis{};
         const std::size_t cells = model_->total_representative_chars();
-        for (std::size_t i = 0; i < cells; ++i) cells_[i] = Cell{detail::infinity(), 0u};
+        for (std::size_t i = 0; i < cells; ++i) {
+            cells_.cost(i) = detail::infinity();
+            cells_.start(i) = 0u;
+        }
         for (std::size_t i = 0; i < ring_size_; ++i) {
             ends_[i] = SegmentEnd{};
             settled_[i] = unknown_label;
@@ -191,21 +195,13 @@ public:
         for (std::size_t r = 0; r < m.representative_count; ++r) {
             const Character* rep = m.representative_chars + m.representative_offsets[r];
             const std::size_t n = m.representative_length(r);
-            Cell* cells = cells_ + m.representative_offsets[r];  // cell i is cells[i − 1]
+            const Cells cells = cells_ + m.representative_offsets[r];  // cell i is cells.cost(i − 1), cells.start(i − 1)
             // This representative's best cell (the first strict minimum, so
             // best below is the same cell a single pass over all cells finds).
             float rep_best = detail::infinity();
             std::uint32_t rep_from = now;
             const float vote = vote_costs_ == nullptr ? 0.0f : vote_costs_[m.representative_labels[r]];
-            // Descending, so cells i−1 and i−2 still hold the previous step.
-            // The previous step's cells i, i−1 (shifted) ride down the loop in
-            // registers, so each cell loads one old value; cells 2 and 1, whose
-            // moves start a segment, follow the loop.
             const float stay_penalty = config_.stay_penalty, skip_penalty = config_.skip_penalty;
-            float here = cells[n - 1].cost - shift;                     // old cell i
-            std::uint32_t here_from = cells[n - 1].start;
-            float below = n >= 2 ? cells[n - 2].cost - shift : 0.0f;  // old cell i − 1
-            std::uint32_t below_from = n >= 2 ? cells[n - 2].start : 0u;
             // Each choice is one comparison selecting both the cost and its start,
             // written so compilers emit selects, not jumps: the comparisons
             // depend on the data and would be mispredicted half the time.
@@ -215,24 +211,71 @@ public:
                 value = take ? other : value;
                 from = take ? other_from : from;
             };
-            auto finish = [&](Cell& cell, Character c, float value,
-                              std::uint32_t from) ACTIONSTRING_DETAIL_ALWAYS_INLINE {
+            auto finish = [&](Cells cell, Character c, float value, std::uint32_t from) ACTIONSTRING_DETAIL_ALWAYS_INLINE {
                 value += column[c] + vote;
-                cell = Cell{value, from};
+                cell.cost(0) = value;
+                cell.start(0) = from;
                 choose(rep_best, rep_from, value, from);
             };
-            // Cells n down to 3, walking pointers (cell i, its character) so the
-            // loop's state fits a Cortex-M4's registers.
-            if (n >= 3) {
-                const Character* c = rep + (n - 1);
-                for (Cell* cell = cells + (n - 1); cell != cells + 1; --cell, --c) {
-                    const float further = cell[-2].cost - shift;  // old cell i − 2
-                    const std::uint32_t further_from = cell[-2].start;
+            // Descending, so cells i−1 and i−2 still hold the previous step.
+            // `top` is the highest cell (0-based) the scalar loop below still has to do.
+            std::size_t top = n - 1;
+#if ACTIONSTRING_DETAIL_LANES == 4
+            // Four cells at a time from the top while a block's cells are all
+            // ordinary (0-based index ≥ 2, so cells i−1 and i−2 exist). Only the
+            // block's best cost is kept; the cell it came from (rep_from) is
+            // found afterwards, and only for a representative that becomes the best.
+            bool blocks = false;
+            if (n >= 6) {
+                float* const costs = cells.costs;
+                std::uint32_t* const starts = cells.starts;
+                const detail::Lanes shift4 = detail::broadcast(shift), stay4 = detail::broadcast(stay_penalty),
+                                    skip4 = detail::broadcast(skip_penalty), vote4 = detail::broadcast(vote);
+                detail::Lanes best4 = detail::broadcast(detail::infinity());
+                for (; top >= 5; top -= 4) {
+                    const std::size_t low = top - 3;  // the block is cells low … top
+                    detail::Lanes value = detail::load_lanes(costs + low - 1) - shift4;
+                    detail::Lanes from = detail::load_lanes(starts + low - 1);
+                    const detail::Lanes here = detail::load_lanes(costs + low) - shift4;
+                    const detail::LaneMask take_stay = detail::less(here + stay4, value);
+                    value = detail::select(take_stay, here + stay4, value);
+                    from = detail::select(take_stay, detail::load_lanes(starts + low), from);
+                    const detail::Lanes further = detail::load_lanes(costs + low - 2) - shift4;
+                    const detail::LaneMask take_skip = detail::less(further + skip4, value);
+                    value = detail::select(take_skip, further + skip4, value);
+                    from = detail::select(take_skip, detail::load_lanes(starts + low - 2), from);
+                    const detail::Lanes w = detail::lanes_of(column[rep[low]], column[rep[low + 1]],
+                                                             column[rep[low + 2]], column[rep[low + 3]]);
+                    value = value + (w + vote4);
+                    detail::store_lanes(costs + low, value);
+                    detail::store_lanes(starts + low, from);
+                    best4 = detail::minimum(value, best4);
+                }
+                rep_best = detail::smallest_lane(best4);
+                blocks = true;
+            }
+#endif
+            // The cells the blocks left (all of them without SIMD), walking
+            // pointers: the previous step's cells i, i−1 (shifted) ride down
+            // the loop in registers, so each cell loads one old value and the
+            // loop's state fits a Cortex-M4's registers; cells 2 and 1, whose
+            // moves start a segment, follow the loop.
+            float here = cells.cost(top) - shift;  // old cell i
+            std::uint32_t here_from = cells.start(top);
+            float below = top >= 1 ? cells.cost(top - 1) - shift : 0.0f;  // old cell i − 1
+            std::uint32_t below_from = top >= 1 ? cells.start(top - 1) : 0u;
+            if (top >= 2) {
+                const Character* c = rep + top;
+                const Character* const last = rep + 1;
+                for (Cells cell = cells + top; c != last; cell.down(), --c) {
+                    const Cells two_below = cell - 2;
+                    const float further = two_below.cost(0) - shift;  // old cell i − 2
+                    const std::uint32_t further_from = two_below.start(0);
                     float value = below;
                     std::uint32_t from = below_from;
                     choose(value, from, here + stay_penalty, here_from);
                     choose(value, from, further + skip_penalty, further_from);
-                    finish(*cell, *c, value, from);
+                    finish(cell, *c, value, from);
                     here = below, here_from = below_from;
                     below = further, below_from = further_from;
                 }
@@ -242,15 +285,26 @@ public:
                 std::uint32_t from = below_from;
                 choose(value, from, here + stay_penalty, here_from);
                 choose(value, from, entry + skip_penalty, now);
-                finish(cells[1], rep[1], value, from);
+                finish(cells + 1, rep[1], value, from);
                 here = below, here_from = below_from;
             }
             {  // cell 1: enter the segment, or stay
                 float value = entry;
                 std::uint32_t from = now;
                 choose(value, from, here + stay_penalty, here_from);
-                finish(cells[0], rep[0], value, from);
+                finish(cells, rep[0], value, from);
             }
+#if ACTIONSTRING_DETAIL_LANES == 4
+            // The blocks' best is in rep_best, but the cell it came from was not
+            // tracked: the first strict minimum in descending order is the highest
+            // cell holding the minimum. Only the best representative needs it.
+            if (blocks && rep_best < best.cost)
+                for (std::size_t i = n; i-- > 0;)
+                    if (cells.cost(i) == rep_best) {
+                        rep_from = cells.start(i);
+                        break;
+                    }
+#endif
             const bool other_label = m.representative_labels[r] != label_of(best.rep);
             if (rep_best < best.cost) {
                 if (other_label) runner_up = best.cost;
@@ -258,9 +312,9 @@ public:
             } else if (other_label && rep_best < runner_up) {
                 runner_up = rep_best;
             }
-            if (cells[n - 1].cost < end_cost) {
-                end_cost = cells[n - 1].cost;
-                end = SegmentEnd{static_cast<std::uint16_t>(r), cells[n - 1].start};
+            if (cells.cost(n - 1) < end_cost) {
+                end_cost = cells.cost(n - 1);
+                end = SegmentEnd{static_cast<std::uint16_t>(r), cells.start(n - 1)};
             }
         }
         ends_[slot(now)] = end;
@@ -321,7 +375,7 @@ private:
     static constexpr std::uint16_t unknown_rep = 0xFFFF;
 
     struct Plan {
-        std::size_t cells = 0, ends = 0, settled = 0, votes = 0, votes_bytes = 0, column = 0,
+        std::size_t costs = 0, starts = 0, ends = 0, settled = 0, votes = 0, votes_bytes = 0, column = 0,
                     ring_size = 0, bytes = unsatisfiable_bytes;
     };
     static constexpr Plan plan(const ModelView& model, const SegmenterConfig& config) noexcept;
@@ -335,13 +389,43 @@ private:
         std::uint16_t rep = unknown_rep;
         std::uint32_t start = 0;
     };
-    // One cell of a representative's explanation: its cost (relative to the
-    // previous step's best) and where its segment started, side by side so
-    // one pointer reaches both.
-    struct Cell {
-        float cost;
-        std::uint32_t start;
+
+    // A representative's cells from a position on: each cell's cost (relative
+    // to the previous step's best) and the index where its segment started.
+    // The layout is the target's: with SIMD, costs and starts in two arrays so
+    // four neighbouring cells load as one vector; without, each cost beside its
+    // start so one pointer walks both (a Cortex-M4 has few registers to spare).
+    // Either way two words per cell.
+#if ACTIONSTRING_DETAIL_LANES == 4
+    struct Cells {
+        float* costs;
+        std::uint32_t* starts;
+        float& cost(std::size_t i) const noexcept { return costs[i]; }
+        std::uint32_t& start(std::size_t i) const noexcept { return starts[i]; }
+        Cells operator+(std::size_t k) const noexcept { return Cells{costs + k, starts + k}; }
+        Cells operator-(std::size_t k) const noexcept { return Cells{costs - k, starts - k}; }
+        void down() noexcept { --costs, --starts; }
     };
+    static Cells cells_in(void* storage, const Plan& p) noexcept {
+        return Cells{detail::storage_at<float>(storage, p.costs), detail::storage_at<std::uint32_t>(storage, p.starts)};
+    }
+#else
+    struct Cells {
+        struct Cell {
+            float cost;
+            std::uint32_t start;
+        };
+        Cell* cells;
+        float& cost(std::size_t i) const noexcept { return cells[i].cost; }
+        std::uint32_t& start(std::size_t i) const noexcept { return cells[i].start; }
+        Cells operator+(std::size_t k) const noexcept { return Cells{cells + k}; }
+        Cells operator-(std::size_t k) const noexcept { return Cells{cells - k}; }
+        void down() noexcept { --cells; }
+    };
+    static Cells cells_in(void* storage, const Plan& p) noexcept {
+        return Cells{detail::storage_at<Cells::Cell>(storage, p.costs)};
+    }
+#endif
 
     // The ring slot of a character index: index mod 2^32 mod ring_size_, a mask
     // as ring_size_ is a power of two (no 64-bit division on a 32-bit core).
@@ -381,7 +465,7 @@ private:
     // A power of two above settle_chars_, so that slot = index mod 2^32 mod
     // ring_size_ stays consistent when the 32-bit index wraps.
     std::size_t ring_size_ = 0;
-    Cell* cells_ = nullptr;            // one per representative character
+    Cells cells_{};                     // one per representative character
     SegmentEnd* ends_ = nullptr;       // ring_size_: the best explanation ending at each character
     LabelId* settled_ = nullptr;       // ring_size_: the settled labels
     float* vote_costs_ = nullptr;      // label_count: the newest character's vote cost per label (votes on only)
@@ -396,7 +480,12 @@ constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, co
         return p;
     p.ring_size = detail::next_power_of_two(std::size_t{settle_chars_for(model, config)} + 1u);
     detail::StorageLayout layout;
-    p.cells = layout.add<Cell>(model.total_representative_chars());
+#if ACTIONSTRING_DETAIL_LANES == 4
+    p.costs = layout.add<float>(model.total_representative_chars());
+    p.starts = layout.add<std::uint32_t>(model.total_representative_chars());
+#else
+    p.costs = layout.add<Cells::Cell>(model.total_representative_chars());
+#endif
     p.ends = layout.add<SegmentEnd>(p.ring_size);
     p.settled = layout.add<LabelId>(p.ring_size);
     p.column = layout.add<float>(model.character_count);

@@ -1,0 +1,71 @@
+// actionstring — four float lanes for the segmenter's cells, where the target has them.
+//
+// The segmenter's new cells depend only on the previous step's cells, so four
+// neighbouring cells of a representative are computed at once. Only the
+// operations the recurrence needs are here, each the exact lane-wise twin of
+// its scalar expression, so a vector block and the scalar loop give the same
+// bits (a comparison selects, an addition rounds once, no fused multiply-add):
+//
+//   less(a, b)            a < b per lane (false when either is NaN)
+//   select(mask, a, b)    mask ? a : b, bit for bit (costs and 32-bit starts alike)
+//   minimum(a, b)         a < b ? a : b (SSE's MINPS is defined exactly so)
+//
+// ACTIONSTRING_DETAIL_LANES is 4 with SSE2 (every x86-64 compiler) and 0
+// elsewhere: a Cortex-M4 has no float SIMD, and there the scalar loop, tuned
+// for its registers, does every cell. Define ACTIONSTRING_NO_SIMD to measure
+// or test the scalar path on a host.
+#pragma once
+
+#include <cstdint>
+
+#if !defined(ACTIONSTRING_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#include <emmintrin.h>
+#define ACTIONSTRING_DETAIL_LANES 4
+#else
+#define ACTIONSTRING_DETAIL_LANES 0
+#endif
+
+namespace actionstring {
+namespace detail {
+
+#if ACTIONSTRING_DETAIL_LANES == 4
+
+struct Lanes {
+    __m128 v;
+};
+struct LaneMask {
+    __m128 v;
+};
+
+inline Lanes load_lanes(const float* p) noexcept { return Lanes{_mm_loadu_ps(p)}; }
+// 32-bit integers travel in float registers as bits; select() moves bits only.
+inline Lanes load_lanes(const std::uint32_t* p) noexcept {
+    return Lanes{_mm_castsi128_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)))};
+}
+inline void store_lanes(float* p, Lanes a) noexcept { _mm_storeu_ps(p, a.v); }
+inline void store_lanes(std::uint32_t* p, Lanes a) noexcept {
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm_castps_si128(a.v));
+}
+inline Lanes broadcast(float x) noexcept { return Lanes{_mm_set1_ps(x)}; }
+inline Lanes broadcast_bits(std::uint32_t x) noexcept {
+    return Lanes{_mm_castsi128_ps(_mm_set1_epi32(static_cast<int>(x)))};
+}
+/// {x0, x1, x2, x3}, lane 0 first (lowest address when stored).
+inline Lanes lanes_of(float x0, float x1, float x2, float x3) noexcept { return Lanes{_mm_setr_ps(x0, x1, x2, x3)}; }
+inline Lanes operator+(Lanes a, Lanes b) noexcept { return Lanes{_mm_add_ps(a.v, b.v)}; }
+inline Lanes operator-(Lanes a, Lanes b) noexcept { return Lanes{_mm_sub_ps(a.v, b.v)}; }
+inline LaneMask less(Lanes a, Lanes b) noexcept { return LaneMask{_mm_cmplt_ps(a.v, b.v)}; }
+inline Lanes select(LaneMask m, Lanes a, Lanes b) noexcept {
+    return Lanes{_mm_or_ps(_mm_and_ps(m.v, a.v), _mm_andnot_ps(m.v, b.v))};
+}
+inline Lanes minimum(Lanes a, Lanes b) noexcept { return Lanes{_mm_min_ps(a.v, b.v)}; }
+/// The smallest lane (exact: the minimum of finite values or infinities does not round).
+inline float smallest_lane(Lanes a) noexcept {
+    const __m128 pairs = _mm_min_ps(a.v, _mm_movehl_ps(a.v, a.v));
+    return _mm_cvtss_f32(_mm_min_ss(pairs, _mm_shuffle_ps(pairs, pairs, 1)));
+}
+
+#endif
+
+}  // namespace detail
+}  // namespace actionstring
