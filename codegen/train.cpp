@@ -52,6 +52,9 @@ void print_train_usage(std::FILE* out) {
                  "  --normalization none|path|query                [none]\n"
                  "  --sigma S               merge string clusters while their distance <= S [%g]\n"
                  "  --keep-singletons       keep clusters of one string as representatives\n"
+                 "  --max-representative-chars N  bound on all representatives' characters, which the\n"
+                 "                          segmenter passes over once per character (its cost per\n"
+                 "                          frame): clusters keep merging past sigma until they fit [none]\n"
                  "  --mirror                also train on every clip mirrored (left and right swapped)\n"
                  "  --pose-joints A,B,...   the joints the model reads (root and hips added); default:\n"
                  "                          an engine rig's body joints (CC_Base, Mixamo, Unreal, Unity\n"
@@ -139,9 +142,12 @@ std::string training_json(const std::string& model_path, const ModelView& view, 
 
 // With no settings given: tune them by cross-validation over the list's
 // subjects (one subject only: the starting settings), showing each step.
-host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const std::vector<std::string>& pose_joints) {
+host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host::TrainingOptions& given) {
     host::TrainingOptions start = host::tuning_start();
-    start.pose_joints = pose_joints;  // the skeleton is the user's choice, not a tuned setting
+    // The skeleton and the cost bound are the user's choices, not tuned
+    // settings: the folds train with them, so the choice fits within the bound.
+    start.pose_joints = given.pose_joints;
+    start.max_representative_chars = given.max_representative_chars;
     std::set<std::string> subjects;
     for (const host::LabelledClip& c : clips) subjects.insert(c.subject);
     if (subjects.size() < 2) {
@@ -285,8 +291,9 @@ int run_train(int argc, char** argv) {
             const std::string name = arg.substr(2);
             const std::string value = args.value(arg);
             if (args.ok() && !apply(args, name, value, options, read)) return args.unknown(arg);
-            // Reading and skeleton choices are not tuned settings: self-tuning still runs.
-            if (name != "rate" && name != "roles" && name != "pose-joints") settings_given = true;
+            // Reading, skeleton and cost choices are not tuned settings: self-tuning still runs.
+            if (name != "rate" && name != "roles" && name != "pose-joints" && name != "max-representative-chars")
+                settings_given = true;
         } else {
             return args.unknown(arg);
         }
@@ -311,7 +318,7 @@ int run_train(int argc, char** argv) {
         if (host::has_intervals(entries)) recordings = host::read_recordings(entries, read);
         const std::vector<host::LabelledClip> no_action = host::unlabelled_stretches(recordings, 1.0);
         if (!settings_given && !no_tune) {
-            options = tune(train, options.pose_joints).options;
+            options = tune(train, options).options;
             options.online = tune_online_settings(train, options, recordings.empty() ? nullptr : &recordings);
         }
         auto stage_start = std::chrono::steady_clock::now();
@@ -358,9 +365,15 @@ int run_train(int argc, char** argv) {
                         view.pose_dim(), view.feature_dim);
         }
         std::printf("characters:       K %d (epsilon %g)\n", report.characters, options.epsilon);
-        std::printf("representatives:  %d of %d strings (sigma %g, %s, %s normalisation)\n", report.representatives,
-                    report.strings, options.sigma, variant_name(options.variant),
-                    normalization_name(options.normalization));
+        std::printf("representatives:  %d of %d strings, %zu characters (sigma %g, %s, %s normalisation)\n",
+                    report.representatives, report.strings, report.representative_chars, options.sigma,
+                    variant_name(options.variant), normalization_name(options.normalization));
+        if (options.max_representative_chars > 0)
+            std::printf("                  bounded to %d characters: %s\n", options.max_representative_chars,
+                        report.budget_merge_distance > 0
+                            ? ("clusters merged up to distance " + std::to_string(report.budget_merge_distance))
+                                  .c_str()
+                            : "sigma already fits");
         for (std::size_t l = 0; l < model.label_names.size(); ++l)
             std::printf("  %-32s %d%s\n", model.label_names[l].c_str(), report.representatives_per_label[l],
                         report.representatives_per_label[l] == 0

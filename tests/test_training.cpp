@@ -217,6 +217,65 @@ TEST_CASE("agglomeration merges while ≤ σ, keeps the medoid first, leaves sin
     CHECK(agglomerate(d, 1.0).size() == 6);
 }
 
+TEST_CASE("agglomeration past σ while over a budget: nearest first, down to one cluster") {
+    // Points on a line at 0, 1, 3, 7, 15: each gap twice the one before.
+    const std::vector<double> at{0, 1, 3, 7, 15};
+    std::vector<std::vector<double>> d(5, std::vector<double>(5));
+    for (std::size_t a = 0; a < 5; ++a)
+        for (std::size_t b = 0; b < 5; ++b) d[a][b] = std::fabs(at[a] - at[b]);
+    double last = -1;
+    CHECK(agglomerate(d, 0.5, {}, &last).size() == 5);
+    CHECK(last == 0.0);
+    // At most three clusters: σ = 0.5 merges nothing, the budget merges the two nearest pairs.
+    const ClusterBudget three = [](const std::vector<std::vector<std::size_t>>& clusters,
+                                   const std::vector<std::size_t>& medoids) {
+        CHECK(medoids.size() == clusters.size());
+        return clusters.size() > 3;
+    };
+    const auto clusters = agglomerate(d, 0.5, three, &last);
+    REQUIRE(clusters.size() == 3);
+    CHECK(clusters[0].size() == 3);  // 0, 1, 3: merged at 1, then at 2 or 3 from the medoid
+    CHECK(clusters[1] == std::vector<std::size_t>{3});
+    CHECK(clusters[2] == std::vector<std::size_t>{4});
+    CHECK(last > 0.5);
+    // A budget nothing satisfies stops at one cluster.
+    const auto one = agglomerate(d, 0.5, [](const auto&, const auto&) { return true; });
+    CHECK(one.size() == 1);
+    CHECK(one[0].size() == 5);
+}
+
+TEST_CASE("max_representative_chars bounds the representatives' characters, deterministically") {
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 6, 100);
+    TrainingOptions options = toy_options();
+    options.sigma = 0.0;  // merge only equal strings
+    options.keep_singletons = true;
+    TrainingReport free_report;
+    const ModelData free_model = train_model(train, options, &free_report);
+    CHECK(free_report.representative_chars == free_model.view().total_representative_chars());
+    CHECK(free_report.budget_merge_distance == 0.0);
+    REQUIRE(free_report.representatives >= 3);
+    // A bound the σ clusters already fit changes nothing.
+    options.max_representative_chars = static_cast<int>(free_report.representative_chars);
+    CHECK(serialize_model(train_model(train, options, nullptr)) == serialize_model(free_model));
+    // A tighter one merges past σ until the medoids fit.
+    const std::size_t budget = free_report.representative_chars - 1;
+    options.max_representative_chars = static_cast<int>(budget);
+    TrainingReport report;
+    const ModelData bounded = train_model(train, options, &report);
+    CHECK(report.representative_chars <= budget);
+    CHECK(report.representative_chars == bounded.view().total_representative_chars());
+    CHECK(report.representatives < free_report.representatives);
+    CHECK(report.budget_merge_distance > 0.0);
+    CHECK(validate_model(bounded.view()) == Status::ok);
+    // Deterministic: the same bytes again.
+    CHECK(serialize_model(train_model(train, options, nullptr)) == serialize_model(bounded));
+    // Below what one representative needs: a clear error.
+    options.max_representative_chars = 1;
+    CHECK_THROWS_WITH_AS(train_model(train, options, nullptr), doctest::Contains("max-representative-chars 1"),
+                         std::invalid_argument);
+}
+
 TEST_CASE("training on the toy world recognises held-out performances") {
     ToyWorld world = make_toy_world();
     const auto train = toy_clips(world, 6, 100);

@@ -158,7 +158,9 @@ ClusterTree build_cluster_tree(const std::vector<float>& features, std::size_t d
     return tree;
 }
 
-std::vector<std::vector<std::size_t>> agglomerate(const std::vector<std::vector<double>>& distance, double sigma) {
+std::vector<std::vector<std::size_t>> agglomerate(const std::vector<std::vector<double>>& distance, double sigma,
+                                                  const ClusterBudget& over_budget, double* last_merge) {
+    if (last_merge != nullptr) *last_merge = 0.0;
     const std::size_t n = distance.size();
     std::vector<std::vector<std::size_t>> clusters(n);
     std::vector<std::size_t> medoid(n);
@@ -174,7 +176,9 @@ std::vector<std::vector<std::size_t>> agglomerate(const std::vector<std::vector<
                 const double d = distance[medoid[i]][medoid[j]];
                 if (d < best) best = d, a = i, b = j;
             }
-        if (!(best <= sigma)) break;
+        if (clusters.size() < 2 || a == b) break;  // one cluster, or no two comparable
+        if (!(best <= sigma) && !(over_budget && over_budget(clusters, medoid))) break;
+        if (last_merge != nullptr) *last_merge = best;
         clusters[a].insert(clusters[a].end(), clusters[b].begin(), clusters[b].end());
         std::sort(clusters[a].begin(), clusters[a].end());
         clusters.erase(clusters.begin() + static_cast<long>(b));

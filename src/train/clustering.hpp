@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <cstdint>
 #include <vector>
 
@@ -34,7 +35,16 @@ ClusterTree build_cluster_tree(const std::vector<float>& features, std::size_t d
 /// whose centroids are nearest while that distance is ≤ σ; a cluster's
 /// centroid is its medoid, the member whose largest distance to the other
 /// members is smallest. Returns every cluster (singletons included), medoid first.
-std::vector<std::vector<std::size_t>> agglomerate(const std::vector<std::vector<double>>& distance, double sigma);
+///
+/// `over_budget`, when given, is asked once the nearest pair is farther than σ
+/// whether the clusters (members, and each one's medoid) still cost too much:
+/// merging then goes on past σ, nearest pair first, until it says no or one
+/// cluster is left. `last_merge`, when given, receives the distance of the last
+/// merge made (0 when none was).
+using ClusterBudget = std::function<bool(const std::vector<std::vector<std::size_t>>& clusters,
+                                         const std::vector<std::size_t>& medoids)>;
+std::vector<std::vector<std::size_t>> agglomerate(const std::vector<std::vector<double>>& distance, double sigma,
+                                                  const ClusterBudget& over_budget = {}, double* last_merge = nullptr);
 
 }  // namespace host
 }  // namespace actionstring

@@ -55,6 +55,12 @@ struct TrainingOptions {
     LengthNormalization normalization = LengthNormalization::none;
     double sigma = 6.0;            ///< Merge clusters while their centroid distance ≤ σ.
     bool keep_singletons = false;  ///< Paper: clusters of one string are noise.
+    /// Bound on the representatives' characters in all (0: none). The
+    /// segmenter and the window rule pass over every representative character
+    /// once per character, so this bounds their per-frame cost (README,
+    /// "Benchmarks"): clusters keep merging past σ, nearest first, until the
+    /// medoids kept fit.
+    int max_representative_chars = 0;
     // Labelling.
     /// λ: weight of the characters' label votes beside DTW in clip
     /// classification (vote_penalties() in classify.hpp); 0 = DTW alone. 1 was
@@ -86,6 +92,10 @@ struct TrainingReport {
     std::vector<double> em_restart_objectives;  ///< Final objective of each restart.
     int characters = 0;
     int strings = 0, representatives = 0;
+    std::size_t representative_chars = 0;  ///< Characters of all representatives (the segmenter's cells).
+    /// Distance of the last merge past σ that max_representative_chars asked
+    /// for (0: the bound, if any, needed none).
+    double budget_merge_distance = 0;
     std::vector<int> representatives_per_label;
     std::vector<std::pair<std::string, double>> stage_seconds;
     int no_action_stretches = 0;  ///< Stretches of no action the model learned its "no action" votes from.

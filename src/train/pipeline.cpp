@@ -340,8 +340,25 @@ void choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips
     m.label_names.assign(label_set.begin(), label_set.end());
     std::map<std::string, LabelId> label_index;
     for (std::size_t l = 0; l < m.label_names.size(); ++l) label_index[m.label_names[l]] = static_cast<LabelId>(l);
-    const auto clusters = agglomerate(
-        pairwise_distances(m.view(), strings, MatchOptions{options.variant, options.normalization}), options.sigma);
+    // The representatives' characters if the clusters stopped here: each kept
+    // cluster's medoid (singletons only when kept).
+    const auto medoid_chars = [&](const std::vector<std::vector<std::size_t>>& clusters,
+                                  const std::vector<std::size_t>& medoids) {
+        std::size_t chars = 0;
+        for (std::size_t c = 0; c < clusters.size(); ++c)
+            if (clusters[c].size() >= 2 || options.keep_singletons) chars += strings[medoids[c]].size();
+        return chars;
+    };
+    const std::size_t budget = static_cast<std::size_t>(options.max_representative_chars);
+    ClusterBudget over_budget;
+    if (budget > 0)
+        over_budget = [&](const std::vector<std::vector<std::size_t>>& clusters, const std::vector<std::size_t>& medoids) {
+            return medoid_chars(clusters, medoids) > budget;
+        };
+    const auto clusters =
+        agglomerate(pairwise_distances(m.view(), strings, MatchOptions{options.variant, options.normalization}),
+                    options.sigma, over_budget, &r.budget_merge_distance);
+    if (!(r.budget_merge_distance > options.sigma)) r.budget_merge_distance = 0;
     r.representatives_per_label.assign(m.label_names.size(), 0);
     for (const auto& cluster : clusters) {
         if (cluster.size() < 2 && !options.keep_singletons) continue;
@@ -353,6 +370,12 @@ void choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips
         ++r.representatives_per_label[label];
     }
     r.representatives = static_cast<int>(m.representative_labels.size());
+    r.representative_chars = m.representative_chars.size();
+    if (budget > 0 && r.representative_chars > budget)
+        throw std::invalid_argument("max-representative-chars " + std::to_string(budget) +
+                                    " is below what one representative needs (" +
+                                    std::to_string(r.representative_chars) +
+                                    " characters after merging every training string): raise it");
     if (r.representatives == 0)
         throw std::invalid_argument("σ = " + std::to_string(options.sigma) +
                                     " merges no two training strings, so there is no representative: raise --sigma "

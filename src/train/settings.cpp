@@ -125,6 +125,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
         o.normalization = static_cast<LengthNormalization>(choice(name, value, {"none", "path", "query"}));
     else if (name == "sigma") o.sigma = num(0, 1e9);
     else if (name == "keep-singletons") o.keep_singletons = flag(value);
+    else if (name == "max-representative-chars") o.max_representative_chars = static_cast<int>(num(0, 1e9));
     else if (name == "neighbours") o.neighbours = static_cast<int>(num(1, 64));
     else if (name == "vote-weight") o.vote_weight = num(0, 1000);
     else if (name == "vote-smoothing") o.vote_smoothing = num(1e-6, 1e3);
@@ -180,6 +181,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "normalization",
                                                 "sigma",
                                                 "keep-singletons",
+                                                "max-representative-chars",
                                                 "neighbours",
                                                 "vote-weight",
                                                 "vote-smoothing",
