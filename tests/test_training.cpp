@@ -227,8 +227,8 @@ TEST_CASE("agglomeration past σ while over a budget: nearest first, down to one
     CHECK(agglomerate(d, 0.5, {}, &last).size() == 5);
     CHECK(last == 0.0);
     // At most three clusters: σ = 0.5 merges nothing, the budget merges the two nearest pairs.
-    const ClusterBudget three = [](const std::vector<std::vector<std::size_t>>& clusters,
-                                   const std::vector<std::size_t>& medoids) {
+    ClusterBudget three;
+    three.over = [](const std::vector<std::vector<std::size_t>>& clusters, const std::vector<std::size_t>& medoids) {
         CHECK(medoids.size() == clusters.size());
         return clusters.size() > 3;
     };
@@ -239,14 +239,28 @@ TEST_CASE("agglomeration past σ while over a budget: nearest first, down to one
     CHECK(clusters[2] == std::vector<std::size_t>{4});
     CHECK(last > 0.5);
     // A budget nothing satisfies stops at one cluster.
-    const auto one = agglomerate(d, 0.5, [](const auto&, const auto&) { return true; });
+    ClusterBudget never;
+    never.over = [](const auto&, const auto&) { return true; };
+    const auto one = agglomerate(d, 0.5, never);
     CHECK(one.size() == 1);
     CHECK(one[0].size() == 5);
+    // ... or where no pair may merge: here 3 and 4 only with each other.
+    never.may_merge = [](const std::vector<std::size_t>& a, const std::vector<std::size_t>& b) {
+        return (a.front() >= 3) == (b.front() >= 3);
+    };
+    const auto two = agglomerate(d, 0.5, never);
+    REQUIRE(two.size() == 2);
+    CHECK(two[0] == std::vector<std::size_t>{1, 0, 2});  // medoid first: 1 is at most 2 from the others
+    CHECK(two[1] == std::vector<std::size_t>{3, 4});
 }
 
 TEST_CASE("max_representative_chars bounds the representatives' characters, deterministically") {
+    // Performances at three frame rates: some labels get two distinct strings.
     ToyWorld world = make_toy_world();
-    const auto train = toy_clips(world, 6, 100);
+    auto train = toy_clips(world, 6, 100);
+    for (const auto& more : {toy_clips(world, 6, 200, 30.0), toy_clips(world, 6, 300, 90.0)})
+        train.insert(train.end(), more.begin(), more.end());
+    const auto held_out = toy_clips(world, 5, 9000, 30.0);
     TrainingOptions options = toy_options();
     options.sigma = 0.0;  // merge only equal strings
     options.keep_singletons = true;
@@ -254,7 +268,7 @@ TEST_CASE("max_representative_chars bounds the representatives' characters, dete
     const ModelData free_model = train_model(train, options, &free_report);
     CHECK(free_report.representative_chars == free_model.view().total_representative_chars());
     CHECK(free_report.budget_merge_distance == 0.0);
-    REQUIRE(free_report.representatives >= 3);
+    REQUIRE(free_report.representatives > static_cast<int>(free_model.label_names.size()));
     // A bound the σ clusters already fit changes nothing.
     options.max_representative_chars = static_cast<int>(free_report.representative_chars);
     CHECK(serialize_model(train_model(train, options, nullptr)) == serialize_model(free_model));
@@ -268,11 +282,14 @@ TEST_CASE("max_representative_chars bounds the representatives' characters, dete
     CHECK(report.representatives < free_report.representatives);
     CHECK(report.budget_merge_distance > 0.0);
     CHECK(validate_model(bounded.view()) == Status::ok);
+    // Past σ only clusters of one label merge: every label keeps a representative.
+    for (int count : report.representatives_per_label) CHECK(count >= 1);
+    CHECK(clip_accuracy(bounded.view(), held_out) >= 0.9);
     // Deterministic: the same bytes again.
     CHECK(serialize_model(train_model(train, options, nullptr)) == serialize_model(bounded));
     // Below what one representative needs: a clear error.
     options.max_representative_chars = 1;
-    CHECK_THROWS_WITH_AS(train_model(train, options, nullptr), doctest::Contains("max-representative-chars 1"),
+    CHECK_THROWS_WITH_AS(train_model(train, options, nullptr), doctest::Contains("max-representative-chars 1 is below what one representative per label needs"),
                          std::invalid_argument);
 }
 

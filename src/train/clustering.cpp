@@ -159,7 +159,7 @@ ClusterTree build_cluster_tree(const std::vector<float>& features, std::size_t d
 }
 
 std::vector<std::vector<std::size_t>> agglomerate(const std::vector<std::vector<double>>& distance, double sigma,
-                                                  const ClusterBudget& over_budget, double* last_merge) {
+                                                  const ClusterBudget& budget, double* last_merge) {
     if (last_merge != nullptr) *last_merge = 0.0;
     const std::size_t n = distance.size();
     std::vector<std::vector<std::size_t>> clusters(n);
@@ -177,7 +177,20 @@ std::vector<std::vector<std::size_t>> agglomerate(const std::vector<std::vector<
                 if (d < best) best = d, a = i, b = j;
             }
         if (clusters.size() < 2 || a == b) break;  // one cluster, or no two comparable
-        if (!(best <= sigma) && !(over_budget && over_budget(clusters, medoid))) break;
+        if (!(best <= sigma)) {
+            // Past σ only while over the budget, and only pairs it lets merge.
+            if (!budget.over || !budget.over(clusters, medoid)) break;
+            if (budget.may_merge) {
+                best = std::numeric_limits<double>::infinity();
+                a = b = 0;
+                for (std::size_t i = 0; i < clusters.size(); ++i)
+                    for (std::size_t j = i + 1; j < clusters.size(); ++j) {
+                        const double d = distance[medoid[i]][medoid[j]];
+                        if (d < best && budget.may_merge(clusters[i], clusters[j])) best = d, a = i, b = j;
+                    }
+                if (a == b) break;  // nothing may merge
+            }
+        }
         if (last_merge != nullptr) *last_merge = best;
         clusters[a].insert(clusters[a].end(), clusters[b].begin(), clusters[b].end());
         std::sort(clusters[a].begin(), clusters[a].end());

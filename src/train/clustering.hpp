@@ -36,15 +36,20 @@ ClusterTree build_cluster_tree(const std::vector<float>& features, std::size_t d
 /// centroid is its medoid, the member whose largest distance to the other
 /// members is smallest. Returns every cluster (singletons included), medoid first.
 ///
-/// `over_budget`, when given, is asked once the nearest pair is farther than σ
-/// whether the clusters (members, and each one's medoid) still cost too much:
-/// merging then goes on past σ, nearest pair first, until it says no or one
-/// cluster is left. `last_merge`, when given, receives the distance of the last
-/// merge made (0 when none was).
-using ClusterBudget = std::function<bool(const std::vector<std::vector<std::size_t>>& clusters,
-                                         const std::vector<std::size_t>& medoids)>;
+/// A bound on what the clusters cost. Once the nearest pair is farther than σ,
+/// `over` is asked whether the clusters (members, and each one's medoid) still
+/// cost too much: merging then goes on past σ, nearest pair among those
+/// `may_merge` allows (any, when empty) first, until `over` says no or no pair
+/// may merge.
+struct ClusterBudget {
+    std::function<bool(const std::vector<std::vector<std::size_t>>& clusters, const std::vector<std::size_t>& medoids)>
+        over;
+    std::function<bool(const std::vector<std::size_t>& a, const std::vector<std::size_t>& b)> may_merge;
+};
+
+/// `last_merge`, when given, receives the distance of the last merge made (0 when none was).
 std::vector<std::vector<std::size_t>> agglomerate(const std::vector<std::vector<double>>& distance, double sigma,
-                                                  const ClusterBudget& over_budget = {}, double* last_merge = nullptr);
+                                                  const ClusterBudget& budget = {}, double* last_merge = nullptr);
 
 }  // namespace host
 }  // namespace actionstring

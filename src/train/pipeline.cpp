@@ -349,22 +349,33 @@ void choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips
             if (clusters[c].size() >= 2 || options.keep_singletons) chars += strings[medoids[c]].size();
         return chars;
     };
+    // A cluster's label: the majority of its members' (the lowest label on ties).
+    const auto majority = [&](const std::vector<std::size_t>& cluster) {
+        std::vector<int> votes(m.label_names.size(), 0);
+        for (std::size_t member : cluster) ++votes[label_index[clips[member].label]];
+        return static_cast<LabelId>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+    };
+    // Past σ, the budget merges only clusters of one label, so every label
+    // that has a representative keeps one (merging two clusters whose
+    // majority is l leaves l the majority).
     const std::size_t budget = static_cast<std::size_t>(options.max_representative_chars);
-    ClusterBudget over_budget;
-    if (budget > 0)
-        over_budget = [&](const std::vector<std::vector<std::size_t>>& clusters, const std::vector<std::size_t>& medoids) {
+    ClusterBudget bound;
+    if (budget > 0) {
+        bound.over = [&](const std::vector<std::vector<std::size_t>>& clusters, const std::vector<std::size_t>& medoids) {
             return medoid_chars(clusters, medoids) > budget;
         };
+        bound.may_merge = [&](const std::vector<std::size_t>& a, const std::vector<std::size_t>& b) {
+            return majority(a) == majority(b);
+        };
+    }
     const auto clusters =
         agglomerate(pairwise_distances(m.view(), strings, MatchOptions{options.variant, options.normalization}),
-                    options.sigma, over_budget, &r.budget_merge_distance);
+                    options.sigma, bound, &r.budget_merge_distance);
     if (!(r.budget_merge_distance > options.sigma)) r.budget_merge_distance = 0;
     r.representatives_per_label.assign(m.label_names.size(), 0);
     for (const auto& cluster : clusters) {
         if (cluster.size() < 2 && !options.keep_singletons) continue;
-        std::vector<int> votes(m.label_names.size(), 0);
-        for (std::size_t member : cluster) ++votes[label_index[clips[member].label]];
-        const auto label = static_cast<LabelId>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+        const LabelId label = majority(cluster);
         if (strings[cluster.front()].empty()) continue;
         m.add_representative(strings[cluster.front()], label);
         ++r.representatives_per_label[label];
@@ -373,9 +384,8 @@ void choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips
     r.representative_chars = m.representative_chars.size();
     if (budget > 0 && r.representative_chars > budget)
         throw std::invalid_argument("max-representative-chars " + std::to_string(budget) +
-                                    " is below what one representative needs (" +
-                                    std::to_string(r.representative_chars) +
-                                    " characters after merging every training string): raise it");
+                                    " is below what one representative per label needs (" +
+                                    std::to_string(r.representative_chars) + " characters): raise it");
     if (r.representatives == 0)
         throw std::invalid_argument("σ = " + std::to_string(options.sigma) +
                                     " merges no two training strings, so there is no representative: raise --sigma "
