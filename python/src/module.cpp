@@ -245,6 +245,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
         model = std::make_shared<ModelData>(host::train_model(clips, options, &training));
         py::gil_scoped_acquire acquire;
         report["representatives"] = training.representatives;
+        report["representative_chars"] = training.representative_chars;
         report["characters"] = training.characters;
         report["frames_used"] = training.frames_used;
         report["frames_rejected"] = training.frames_rejected;

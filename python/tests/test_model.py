@@ -21,6 +21,19 @@ def test_training_on_toy_clips(toy_model, toy_clips):
     assert 0.0 <= result.confidence <= 1.0
 
 
+def test_a_budget_bounds_the_representatives_characters(toy_clips):
+    free = actionstring.train(toy_clips, **dict(TOY_SETTINGS, sigma=0.0))
+    chars = free.training_report["representative_chars"]
+    labels = len(free.label_names)
+    assert free.representative_count > labels
+    bounded = actionstring.train(toy_clips, **dict(TOY_SETTINGS, sigma=0.0, max_representative_chars=chars - 1))
+    assert bounded.training_report["representative_chars"] <= chars - 1
+    assert labels <= bounded.representative_count < free.representative_count
+    assert "max-representative-chars %d" % (chars - 1) in bounded.training_report["settings"]
+    with pytest.raises(ValueError, match="below what one representative per label needs"):
+        actionstring.train(toy_clips, **dict(TOY_SETTINGS, max_representative_chars=1))
+
+
 def test_settings_are_checked(toy_clips):
     with pytest.raises(ValueError, match="unknown training setting 'pcaa'"):
         actionstring.train(toy_clips, pcaa=3)
