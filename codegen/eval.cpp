@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "common/json.hpp"
+#include "common/paths.hpp"
 #include "common/stats.hpp"
 #include "common/time.hpp"
 #include "eval/baselines.hpp"
@@ -165,7 +166,7 @@ int run_eval(int argc, char** argv) {
         const Evaluation e = evaluate(view, clips_path, train_path, read, online, seed, config);
         print_evaluation(e, clips_path, seed);
         if (!report_dir.empty()) {
-            host::write_report(report_dir, "Evaluation of " + model_path + " on " + clips_path, e.results,
+            host::write_report(report_dir, "Evaluation of " + host::short_path(model_path) + " on " + host::short_path(clips_path), e.results,
                                online ? &e.online_report : nullptr, model.label_names.strings());
             std::printf("\nreport: %s/report.md\n", report_dir.c_str());
         }

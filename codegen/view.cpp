@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/paths.hpp"
 #include "eval/online.hpp"
 #include "eval/viewer.hpp"
 #include "io/formats.hpp"
@@ -63,7 +64,7 @@ int run_view(int argc, char** argv) {
         const host::StreamTimeline timeline =
             host::stream_recording(view, clip, label.empty() ? nullptr : &whole, overrides.over(view, args));
         const std::string page =
-            host::viewer_html(timeline, model.label_names.strings(), title.empty() ? file + " with " + model_path : title);
+            host::viewer_html(timeline, model.label_names.strings(), title.empty() ? host::short_path(file) + " with " + host::short_path(model_path) : title);
         std::ofstream out(out_path, std::ios::binary);
         out << page;
         out.close();

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/paths.hpp"
 #include "eval/viewer.hpp"
 
 using namespace actionstring;
@@ -118,4 +119,11 @@ TEST_CASE("viewer: a stream without a skeleton still gets a page") {
     const std::string page = viewer_html(s, {"a", "b"}, "t");
     CHECK(field(page, "positions").empty());
     CHECK(page.find("\"rows\":[{\"name\":\"settled\"") != std::string::npos);  // no truth row when not known
+}
+
+TEST_CASE("pages and reports name files by their last two path components") {
+    CHECK(actionstring::host::short_path("/work/shared/data/msr-action3d/test.tsv") == "msr-action3d/test.tsv");
+    CHECK(actionstring::host::short_path("results/msr.model") == "results/msr.model");
+    CHECK(actionstring::host::short_path("msr.model") == "msr.model");
+    CHECK(actionstring::host::short_path("./msr.model") == "msr.model");
 }
