@@ -113,3 +113,23 @@ TEST_CASE("the characters' votes: penalties relative to the favoured label, and 
     vote_penalties(reps.view, nullptr, 4, penalties);
     CHECK(penalties[1] == 0.0f);
 }
+
+TEST_CASE("a label's own bound makes what lies beyond it unknown") {
+    Reps reps({0, 1, 2}, 1);
+    const float bounds[] = {2.0f, std::numeric_limits<float>::infinity(), 0.5f};
+    reps.view.has_label_bounds = 1;
+    reps.view.label_bounds = bounds;
+    const float within[] = {2.0f, 3.0f, 4.0f};  // label 0 at exactly its bound
+    CHECK(classify_distances(reps.view, within).label == 0);
+    const float beyond[] = {2.5f, 3.0f, 4.0f};
+    Classification c = classify_distances(reps.view, beyond);
+    CHECK(c.label == unknown_label);
+    CHECK(c.nearest_label == 0);
+    CHECK(c.distance == 2.5f);
+    const float unbounded[] = {5.0f, 3.0f, 4.0f};  // label 1 has no bound
+    CHECK(classify_distances(reps.view, unbounded).label == 1);
+    const float tight[] = {5.0f, 6.0f, 1.0f};  // label 2's bound is 0.5
+    CHECK(classify_distances(reps.view, tight).label == unknown_label);
+    reps.view.has_label_bounds = 0;  // the same distances without bounds
+    CHECK(classify_distances(reps.view, tight).label == 2);
+}

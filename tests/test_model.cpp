@@ -79,6 +79,18 @@ TEST_CASE("each kind of corruption is refused") {
              m.no_action_votes.assign(m.character_count, -2.0f);
              m.no_action_votes[1] = kNaN;
          }},
+        {"label bounds flagged but missing", [](host::ModelData& m) { m.has_label_bounds = 1; }},
+        {"NaN label bound",
+         [](host::ModelData& m) {
+             m.has_label_bounds = 1;
+             m.label_bounds.assign(m.label_names.size(), 2.0f);
+             m.label_bounds[1] = kNaN;
+         }},
+        {"negative label bound",
+         [](host::ModelData& m) {
+             m.has_label_bounds = 1;
+             m.label_bounds.assign(m.label_names.size(), -1.0f);
+         }},
         {"vote not a log-probability",
          [](host::ModelData& m) {
              m.vote_weight = 1.0f;

@@ -12,7 +12,8 @@ namespace actionstring {
 /// Label decided from one set of distances to the representatives.
 struct Classification {
     /// Winning label, or unknown_label when its nearest representative is
-    /// further than the model's unknown_distance.
+    /// further than the model's unknown_distance or than the label's own
+    /// bound (label_bounds, when the model learned them).
     LabelId label = unknown_label;
     /// The vote's winner even when `label` is unknown (for diagnostics).
     LabelId nearest_label = unknown_label;
@@ -103,6 +104,8 @@ inline Classification classify_distances(const ModelView& model, const float* di
     for (std::size_t r = 0; r < R; ++r)
         if (model.representative_labels[r] != result.nearest_label && distance(r) < other) other = distance(r);
     if (!(result.distance <= model.unknown_distance)) return result;  // unknown
+    if (model.has_label_bounds != 0 && !(result.distance <= model.label_bounds[result.nearest_label]))
+        return result;  // unknown: further than this label's positives go
     result.label = result.nearest_label;
     if (!detail::is_finite(other)) result.confidence = 1.0f;
     else if (other > result.distance) result.confidence = (other - result.distance) / other;

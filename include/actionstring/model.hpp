@@ -347,6 +347,12 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
         return refuse(problem, "neighbours: zero, over 64 or more than the representatives");
     if (detail::is_nan(m.unknown_distance) || m.unknown_distance < 0.0f)
         return refuse(problem, "unknown_distance: negative or NaN");
+    if (m.has_label_bounds > 1) return refuse(problem, "has_label_bounds: not 0 or 1");
+    if (m.has_label_bounds != 0) {
+        if (m.label_bounds == nullptr) return refuse(problem, "label_bounds: missing");
+        for (std::size_t l = 0; l < m.label_count; ++l)
+            if (!(m.label_bounds[l] >= 0.0f)) return refuse(problem, "label_bounds: negative or NaN");
+    }
     // Online settings.
     if (m.settle_delay_us > 600000000u) return refuse(problem, "settle_delay_us: over 10 minutes");
     if (!(m.segment_penalty >= 0.0f && m.segment_penalty <= max_table_value) ||

@@ -83,6 +83,10 @@
     SCALAR(std::uint16_t, step_chars, 0, 1, 65535)         /* a window opens every step_chars */          \
     SCALAR(std::uint16_t, neighbours, 1, 1, 64)            /* k of the kNN vote */                        \
     SCALAR(float, unknown_distance, detail::infinity(), 0, 0) /* best distance above it: unknown */     \
+    /* each label's own bound on that distance, learned at training from held-out positives and */       \
+    /* negatives (synthetic, and the unlabelled stretches of recordings); none when 0 */                 \
+    SCALAR(std::uint8_t, has_label_bounds, 0, 0, 1)                                                       \
+    TABLE(float, label_bounds, (m.has_label_bounds ? m.label_count : 0u), 0, 0)                           \
     /* the characters' label votes beside DTW (design §1.8): weight λ (0 = none) and log P(c | label), */ \
     /* label by label (K floats each) */                                                                  \
     SCALAR(float, vote_weight, 0.0f, 0, 0)                                                                \

@@ -18,7 +18,7 @@ namespace host {
 
 /// Artifact format version written and read by this build.
 /// Version 2 added the input skeleton's joint names.
-constexpr int artifact_version = 3;
+constexpr int artifact_version = 4;
 
 /// 64-bit FNV-1a of the bytes.
 std::uint64_t fnv1a64(std::string_view bytes);
