@@ -52,6 +52,11 @@ void print_train_usage(std::FILE* out) {
                  "  --normalization none|path|query                [none]\n"
                  "  --sigma S               merge string clusters while their distance <= S [%g]\n"
                  "  --keep-singletons       keep clusters of one string as representatives\n"
+                 "  --reject                learn each label's rejection bound from held-out training\n"
+                 "                          clips and synthetic negatives (spliced halves, sped-up and\n"
+                 "                          slowed-down clips; with recordings, their unlabelled\n"
+                 "                          stretches): what is unlike a label's clips is unknown\n"
+                 "  --reject-keep F         fraction of each label's held-out clips its bound keeps [0.95]\n"
                  "  --max-representative-chars N  bound on all representatives' characters, which the\n"
                  "                          segmenter passes over once per character (its cost per\n"
                  "                          frame): clusters keep merging past sigma until they fit [none]\n"
@@ -284,6 +289,8 @@ int run_train(int argc, char** argv) {
         else if (arg == "--keep-singletons") {
             options.keep_singletons = true;
             settings_given = true;
+        } else if (arg == "--reject") {
+            options.reject = true;  // a deployment choice, not a tuned setting: self-tuning still runs
         } else if (arg == "--config") {
             if (!read_config(args, args.value(arg), options, read)) return 2;
             settings_given = true;
@@ -292,7 +299,8 @@ int run_train(int argc, char** argv) {
             const std::string value = args.value(arg);
             if (args.ok() && !apply(args, name, value, options, read)) return args.unknown(arg);
             // Reading, skeleton and cost choices are not tuned settings: self-tuning still runs.
-            if (name != "rate" && name != "roles" && name != "pose-joints" && name != "max-representative-chars")
+            if (name != "rate" && name != "roles" && name != "pose-joints" && name != "max-representative-chars" &&
+                name != "reject" && name != "reject-keep")
                 settings_given = true;
         } else {
             return args.unknown(arg);
@@ -318,7 +326,10 @@ int run_train(int argc, char** argv) {
         if (host::has_intervals(entries)) recordings = host::read_recordings(entries, read);
         const std::vector<host::LabelledClip> no_action = host::unlabelled_stretches(recordings, 1.0);
         if (!settings_given && !no_tune) {
+            const bool reject = options.reject;
+            const double reject_keep = options.reject_keep;
             options = tune(train, options).options;
+            options.reject = reject, options.reject_keep = reject_keep;
             options.online = tune_online_settings(train, options, recordings.empty() ? nullptr : &recordings);
         }
         auto stage_start = std::chrono::steady_clock::now();
@@ -379,6 +390,18 @@ int run_train(int argc, char** argv) {
                         report.representatives_per_label[l] == 0
                             ? "   <- no representative: this class cannot be recognised"
                             : "");
+        if (!report.label_bounds.empty()) {
+            std::printf("rejection:        each label's bound, from its held-out training clips (positives) and\n"
+                        "                  what lands on it but is not it (negatives; keep >= %g of positives):\n",
+                        options.reject_keep);
+            for (std::size_t l = 0; l < report.label_bounds.size(); ++l) {
+                const host::LabelBoundReport& b = report.label_bounds[l];
+                std::printf("  %-32s bound %-9s positives %4zu kept %.2f  negatives %4zu rejected %.2f\n",
+                            model.label_names[l].c_str(),
+                            detail::is_finite(b.bound) ? std::to_string(b.bound).substr(0, 8).c_str() : "none",
+                            b.positives, b.positives_kept, b.negatives, b.negatives_rejected);
+            }
+        }
         std::printf("tables:           %zu bytes\n", host::table_bytes(view));
         double total = 0;
         for (const auto& stage : report.stage_seconds) {

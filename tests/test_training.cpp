@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 #include <set>
@@ -24,6 +25,7 @@
 #include "train/gmm_em.hpp"
 #include "train/pca.hpp"
 #include "train/pipeline.hpp"
+#include "train/rejection.hpp"
 
 using namespace actionstring;
 using namespace actionstring::host;
@@ -291,6 +293,75 @@ TEST_CASE("max_representative_chars bounds the representatives' characters, dete
     options.max_representative_chars = 1;
     CHECK_THROWS_WITH_AS(train_model(train, options, nullptr), doctest::Contains("max-representative-chars 1 is below what one representative per label needs"),
                          std::invalid_argument);
+}
+
+TEST_CASE("a label's bound: the J-best bound keeping enough positives, halfway to the next distance") {
+    const float inf = std::numeric_limits<float>::infinity();
+    // Negatives far from every positive: all positives kept, the bound halfway to the nearest negative.
+    CHECK(choose_label_bound({1, 2, 3}, {10, 11}, 0.95) == 6.5f);
+    // Negatives among the positives: keeping 3 of 4 rejects both negatives (J 1.75), keeping 4 only one (1.5).
+    CHECK(choose_label_bound({1, 2, 3, 4}, {3.5f, 5}, 0.75) == 3.25f);
+    // ... unless the positives to keep forbid it.
+    CHECK(choose_label_bound({1, 2, 3, 4}, {3.5f, 5}, 1.0) == 4.5f);
+    // Nothing to learn from, or every negative below the positives: no bound.
+    CHECK(choose_label_bound({1, 2}, {}, 0.95) == inf);
+    CHECK(choose_label_bound({}, {1}, 0.95) == inf);
+    CHECK(choose_label_bound({5, 6}, {1, 2}, 0.95) == inf);
+    CHECK_THROWS_AS(choose_label_bound({1}, {2}, 0.0), std::invalid_argument);
+}
+
+TEST_CASE("synthetic negatives: spliced halves of two labels, each clip faster and slower, seeded") {
+    const std::vector<std::vector<Character>> strings{{1, 1, 2, 2}, {3, 3, 4, 4, 5, 5}, {6}};
+    const std::vector<LabelId> labels{0, 1, 0};
+    const auto negatives = synthetic_negatives(strings, labels, 7);
+    REQUIRE(negatives.size() == 2 + 2 * 2);  // the one-character string makes none
+    CHECK(negatives[0].string == std::vector<Character>{1, 1, 4, 5, 5});  // string 0's half, string 1's half
+    CHECK(negatives[0].own == unknown_label);
+    CHECK(negatives[1].string == std::vector<Character>{3, 3, 4, 2, 2});
+    CHECK(negatives[2].string == std::vector<Character>{1, 2});  // twice as fast
+    CHECK(negatives[2].own == 0);
+    CHECK(negatives[3].string == std::vector<Character>{1, 1, 1, 1, 2, 2, 2, 2});  // half as fast
+    CHECK(synthetic_negatives(strings, labels, 7)[0].string == negatives[0].string);
+}
+
+TEST_CASE("learned rejection: the toy world's performances kept, what is none of them unknown, deterministic") {
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 6, 100);
+    const auto held_out = toy_clips(world, 5, 9000, 30.0);
+    TrainingOptions options = toy_options();
+    options.reject = true;
+    TrainingReport report;
+    const ModelData model = train_model(train, options, &report);
+    const ModelView view = model.view();
+    REQUIRE(validate_model(view) == Status::ok);
+    REQUIRE(view.has_label_bounds == 1);
+    REQUIRE(report.label_bounds.size() == view.label_count);
+    for (const LabelBoundReport& b : report.label_bounds) {
+        CHECK(b.positives > 0);
+        CHECK(b.positives_kept >= options.reject_keep);
+    }
+    CHECK(clip_accuracy(view, held_out) >= 0.9);
+    // A performance spliced from two actions' halves is none of them.
+    std::size_t rejected = 0, spliced = 0;
+    for (std::size_t i = 0; i + 1 < held_out.size(); ++i) {
+        if (held_out[i].label == held_out[i + 1].label) continue;
+        std::vector<Character> a = clip_string(view, held_out[i].clip), b = clip_string(view, held_out[i + 1].clip);
+        a.resize(a.size() / 2);
+        a.insert(a.end(), b.begin() + static_cast<long>(b.size() / 2), b.end());
+        ++spliced;
+        rejected += classify_string(view, a).label == unknown_label;
+    }
+    REQUIRE(spliced > 0);
+    CHECK(rejected > 0);
+    // A key-pose held still, unlike any action, must be rejected.
+    const std::vector<Character> still(40, view.representative_chars[0]);
+    CHECK(classify_string(view, still).label == unknown_label);
+    CHECK(serialize_model(train_model(train, options, nullptr)) == serialize_model(model));
+    // Without it, nothing is unknown.
+    options.reject = false;
+    const ModelData plain = train_model(train, options, nullptr);
+    CHECK(plain.view().has_label_bounds == 0);
+    CHECK(classify_string(plain.view(), still).label != unknown_label);
 }
 
 TEST_CASE("training on the toy world recognises held-out performances") {

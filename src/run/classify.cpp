@@ -1,12 +1,15 @@
 // Labelling whole strings with the runtime's batch distance and kNN.
 #include "run/classify.hpp"
 
+#include <limits>
+
 #include "run/encode.hpp"
 
 namespace actionstring {
 namespace host {
 
-Classification classify_string(const ModelView& model, const std::vector<Character>& string) {
+Classification classify_string(const ModelView& model, const std::vector<Character>& string,
+                               const std::vector<std::size_t>& excluded) {
     const std::size_t R = model.representative_count;
     std::vector<float> distances(R, detail::infinity());
     if (!string.empty()) {
@@ -19,6 +22,9 @@ Classification classify_string(const ModelView& model, const std::vector<Charact
                             MatchOptions{model.variant, model.normalization}, workspace.data(), &distances[r]);
         }
     }
+    // classify_distances() passes over NaN distances.
+    for (const std::size_t r : excluded)
+        if (r < R) distances[r] = std::numeric_limits<float>::quiet_NaN();
     std::vector<float> penalties(model.label_count, 0.0f);
     vote_penalties(model, string.data(), string.size(), penalties.data());
     return classify_distances(model, distances.data(), model.has_votes() ? penalties.data() : nullptr);

@@ -16,7 +16,10 @@ namespace host {
 /// Label of a whole clip's string: the runtime's batch distance to every
 /// representative (the string is the query), plus the characters' label votes
 /// when the model has them (vote_penalties()), then the runtime's kNN.
-Classification classify_string(const ModelView& model, const std::vector<Character>& string);
+/// `excluded` lists representatives left out of the vote (training measures a
+/// clip against those made from other people's clips).
+Classification classify_string(const ModelView& model, const std::vector<Character>& string,
+                               const std::vector<std::size_t>& excluded = {});
 
 /// Fraction of clips whose predicted label name equals their label.
 double clip_accuracy(const ModelView& model, const std::vector<LabelledClip>& clips);

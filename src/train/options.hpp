@@ -10,6 +10,7 @@
 #include "actionstring/model.hpp"
 #include "actionstring/segmenter.hpp"
 #include "train/gmm_em.hpp"
+#include "train/rejection.hpp"
 
 namespace actionstring {
 namespace host {
@@ -74,6 +75,11 @@ struct TrainingOptions {
     double window_seconds = 2.0;
     double step_seconds = 0.5;
     double unknown_distance = -1.0;  ///< < 0: never unknown.
+    /// Learn each label's rejection bound (train/rejection.hpp), so what is
+    /// unlike every label's training clips is unknown.
+    bool reject = false;
+    /// Fraction of a label's held-out training clips its bound must keep.
+    double reject_keep = 0.95;
     /// The segmenter's settings, stored in the model: a device uses them unless told otherwise.
     SegmenterConfig online;
     std::uint32_t seed = 1;
@@ -98,6 +104,7 @@ struct TrainingReport {
     double budget_merge_distance = 0;
     std::vector<int> representatives_per_label;
     std::vector<std::pair<std::string, double>> stage_seconds;
+    std::vector<LabelBoundReport> label_bounds;  ///< Per label, when reject is on.
     int no_action_stretches = 0;  ///< Stretches of no action the model learned its "no action" votes from.
     std::string skeleton;  ///< Which joints were kept, e.g. "CC_Base rig: 23 of 100 joints" ("" all of them).
 };

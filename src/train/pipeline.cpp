@@ -23,6 +23,7 @@
 #include "train/augment.hpp"
 #include "train/clustering.hpp"
 #include "train/pca.hpp"
+#include "train/rejection.hpp"
 
 namespace actionstring {
 namespace host {
@@ -331,10 +332,12 @@ std::vector<std::vector<double>> pairwise_distances(const ModelView& view,
 }
 
 // Stage 6: the label names, and the medoids of the agglomerated training
-// strings as representatives, each with its cluster's majority label.
-void choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips,
-                            const std::vector<std::vector<Character>>& strings, const TrainingOptions& options,
-                            TrainingReport& r) {
+// strings as representatives, each with its cluster's majority label. Returns,
+// per training clip, the representative made from it (or −1).
+std::vector<long> choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips,
+                                         const std::vector<std::vector<Character>>& strings,
+                                         const TrainingOptions& options, TrainingReport& r) {
+    std::vector<long> own(clips.size(), -1);
     std::set<std::string> label_set;
     for (const LabelledClip& c : clips) label_set.insert(c.label);
     m.label_names.assign(label_set.begin(), label_set.end());
@@ -377,6 +380,7 @@ void choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips
         if (cluster.size() < 2 && !options.keep_singletons) continue;
         const LabelId label = majority(cluster);
         if (strings[cluster.front()].empty()) continue;
+        own[cluster.front()] = static_cast<long>(m.representative_labels.size());
         m.add_representative(strings[cluster.front()], label);
         ++r.representatives_per_label[label];
     }
@@ -390,6 +394,7 @@ void choose_representatives(ModelData& m, const std::vector<LabelledClip>& clips
         throw std::invalid_argument("σ = " + std::to_string(options.sigma) +
                                     " merges no two training strings, so there is no representative: raise --sigma "
                                     "or use --keep-singletons");
+    return own;
 }
 
 // Stage 6b: the characters' label votes, log P(c | label): each training
@@ -446,6 +451,34 @@ void set_no_action_votes(ModelData& m, const std::vector<LabelledClip>& stretche
         m.no_action_votes.push_back(static_cast<float>(std::max(std::log(p), static_cast<double>(min_log_weight))));
     }
     m.has_no_action_votes = 1;
+}
+
+// Stage 8: each label's rejection bound (train/rejection.hpp), from the
+// training clips, synthetic negatives and the stretches of no action.
+void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips,
+                      const std::vector<std::vector<Character>>& strings, const std::vector<long>& own_representative,
+                      const std::vector<LabelledClip>* no_action, const TrainingOptions& options, TrainingReport& r) {
+    m.has_label_bounds = 0;
+    m.label_bounds.clear();
+    const ModelView view = m.view();
+    std::vector<LabelId> labels;
+    std::vector<std::string> subjects;
+    for (const LabelledClip& c : clips) {
+        labels.push_back(static_cast<LabelId>(
+            std::find(m.label_names.begin(), m.label_names.end(), c.label) - m.label_names.begin()));
+        subjects.push_back(c.subject);
+    }
+    std::vector<std::vector<Character>> stretches;
+    if (no_action != nullptr)
+        for (const LabelledClip& stretch : *no_action) {
+            Clip clip = stretch.clip;
+            conform_to_model(view, clip);
+            stretches.push_back(clip_string(view, clip));
+        }
+    const std::vector<float> bounds = learn_label_bounds(view, strings, labels, subjects, own_representative, stretches,
+                                                         options.reject_keep, options.seed, &r.label_bounds);
+    m.label_bounds = bounds;
+    m.has_label_bounds = 1;
 }
 
 // Stage 7: the matching and labelling settings, in characters.
@@ -523,12 +556,17 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
     stage.finish("training strings");
 
     stage.start("agglomerating representatives");
-    choose_representatives(m, clips, strings, options, r);
+    const std::vector<long> own_representative = choose_representatives(m, clips, strings, options, r);
     set_votes(m, clips, strings, options);
     if (no_action != nullptr && !no_action->empty()) set_no_action_votes(m, *no_action, options, r);
     stage.finish("representatives");
 
     set_matching(m, options, r.representatives);
+    if (options.reject) {
+        stage.start("learning each label's rejection bound");
+        set_label_bounds(m, clips, strings, own_representative, no_action, options, r);
+        stage.finish("rejection bounds");
+    }
     return m;
 }
 

@@ -126,6 +126,8 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "sigma") o.sigma = num(0, 1e9);
     else if (name == "keep-singletons") o.keep_singletons = flag(value);
     else if (name == "max-representative-chars") o.max_representative_chars = static_cast<int>(num(0, 1e9));
+    else if (name == "reject") o.reject = flag(value);
+    else if (name == "reject-keep") o.reject_keep = num(0.01, 1);
     else if (name == "neighbours") o.neighbours = static_cast<int>(num(1, 64));
     else if (name == "vote-weight") o.vote_weight = num(0, 1000);
     else if (name == "vote-smoothing") o.vote_smoothing = num(1e-6, 1e3);
@@ -182,6 +184,8 @@ const std::vector<std::string>& training_setting_names() {
                                                 "sigma",
                                                 "keep-singletons",
                                                 "max-representative-chars",
+                                                "reject",
+                                                "reject-keep",
                                                 "neighbours",
                                                 "vote-weight",
                                                 "vote-smoothing",

@@ -136,6 +136,7 @@ std::string options_as_config(const TrainingOptions& o) {
         << number(o.online.stay_penalty) << "\nskip-penalty " << number(o.online.skip_penalty) << "\nunknown-cost "
         << number(o.online.unknown_cost) << "\nsegment-votes " << number(o.online.vote_weight) << "\n";
     if (o.max_representative_chars > 0) out << "max-representative-chars " << o.max_representative_chars << "\n";
+    if (o.reject) out << "reject true\nreject-keep " << number(o.reject_keep) << "\n";
     if (!o.pose_joints.empty()) {
         out << "pose-joints ";
         for (std::size_t j = 0; j < o.pose_joints.size(); ++j) out << (j ? "," : "") << o.pose_joints[j];

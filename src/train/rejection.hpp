@@ -1,0 +1,76 @@
+// actionstring host library — each label's rejection bound, learned at
+// training from held-out positives and negatives (design.md §1.8).
+//
+// A clip or window is labelled by its nearest representatives; a label whose
+// nearest representative is further than that label's bound becomes unknown
+// (classify_distances()). The bound of label l is chosen where the training
+// data shows what l's own clips reach and what is not l but lands on l:
+//
+// - positives: every training clip, classified with the representatives made
+//   from its own subject's clips left out (a new person, as at test time; with
+//   one subject in the list, only the one made from the clip itself);
+// - negatives: what lands on l but is not l — synthetic strings (the first
+//   half of one clip joined to the second half of a clip of another label;
+//   each clip at twice and at half its speed, when it lands on another label
+//   than its own), training clips misclassified as l, and, from recordings,
+//   the unlabelled stretches (no action). Synthetic strings leave out their
+//   source subjects' representatives too, so both sides are measured alike.
+//
+// Among bounds that keep at least `keep` of l's positives, the one that keeps
+// the most positives plus rejects the most negatives (Youden's J) wins; the
+// bound sits halfway to the next distance above it. A label with no positive
+// or no negative gets no bound (infinity): there is nothing to learn it from.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "actionstring/model.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// What the bound of one label was learned from, and what it does on them.
+struct LabelBoundReport {
+    std::size_t positives = 0, negatives = 0;
+    float bound = 0.0f;               ///< infinity: none
+    double positives_kept = 1.0;      ///< Fraction of the positives within the bound.
+    double negatives_rejected = 0.0;  ///< Fraction of the negatives beyond it.
+};
+
+/// Learns label_count bounds for `model` (complete but for the bounds; its own
+/// has_label_bounds is ignored). `strings[i]` is training clip i's string,
+/// `labels[i]` its label, `subjects[i]` its performer, `own_representative[i]`
+/// the representative made from it (or −1); `no_action` holds strings of
+/// stretches that are no action (may be empty). `keep` in (0, 1].
+/// Deterministic for a seed, on any number of cores.
+std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<std::vector<Character>>& strings,
+                                      const std::vector<LabelId>& labels, const std::vector<std::string>& subjects,
+                                      const std::vector<long>& own_representative,
+                                      const std::vector<std::vector<Character>>& no_action, double keep,
+                                      std::uint32_t seed, std::vector<LabelBoundReport>* report = nullptr);
+
+/// A synthetic string that is no performance of a label: a spliced pair of
+/// halves (`own` unknown_label: no label fits it), or a clip at twice or half
+/// its speed (`own` its label: landing there, it is still that action, so it
+/// counts as a negative only against the others).
+struct SyntheticNegative {
+    std::vector<Character> string;
+    LabelId own = unknown_label;
+    std::size_t first = 0, second = 0;  ///< The strings it was made from (the same one when warped).
+};
+
+/// The synthetic negatives of `strings` (labels[i] is string i's): per string
+/// of two characters or more, its first half joined to the second half of a
+/// string of another label (picked by a generator seeded with `seed`), then
+/// the string sped up (every other character) and slowed down (each twice).
+std::vector<SyntheticNegative> synthetic_negatives(const std::vector<std::vector<Character>>& strings,
+                                                   const std::vector<LabelId>& labels, std::uint32_t seed);
+
+/// The bound for one label's positive and negative distances (the rule above).
+float choose_label_bound(std::vector<float> positives, std::vector<float> negatives, double keep);
+
+}  // namespace host
+}  // namespace actionstring
