@@ -94,6 +94,8 @@ void print_evaluation(const Evaluation& e, const std::string& clips_path, std::u
     const host::ClipResults& main = e.results.front();
     std::printf("%s: %zu clips\n", clips_path.c_str(), e.clips.size());
     for (const auto& r : e.results) print_results(r);
+    std::printf("  %-44s %zu of %zu synthetic non-actions from these clips come out unknown\n",
+                "rejection (model, label_bounds)", e.synthetic_unknown, e.synthetic_negatives);
     std::printf("\nper class (action strings):\n  %-32s %9s %7s\n", "label", "precision", "recall");
     for (std::size_t l = 0; l < main.labels.size(); ++l)
         std::printf("  %-32s %9.3f %7.3f\n", main.labels[l].c_str(), main.precision[l], main.recall[l]);
@@ -115,6 +117,9 @@ void print_evaluation(const Evaluation& e, const std::string& clips_path, std::u
         else
             std::printf("\nonline: clips concatenated per subject (seed %u), %zu frames, %.1f true label changes/min\n",
                         seed, stream.frames, stream.true_changes_per_min);
+        if (e.no_action_stretches > 0)
+            std::printf("  %-28s %zu of %zu unlabelled stretches (>= 1 s) classified as clips come out unknown\n",
+                        "rejection of no action", e.no_action_unknown, e.no_action_stretches);
         std::printf("  %-28s frame accuracy %.3f\n", "baseline: unknown everywhere",
                     e.online_report.settled.unknown_everywhere_accuracy);
         print_online("segmenter, settled labels", e.online_report.settled);

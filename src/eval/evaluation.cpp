@@ -1,12 +1,18 @@
 // One evaluation run, as `actionstring eval` and the Python package report it.
 #include "eval/evaluation.hpp"
 
+#include <algorithm>
+
 #include "common/json.hpp"
 #include "common/stats.hpp"
 #include "common/time.hpp"
 #include "eval/baselines.hpp"
 #include "eval/json.hpp"
+#include "model/model_data.hpp"
+#include "run/classify.hpp"
+#include "run/encode.hpp"
 #include "run/skeleton.hpp"
+#include "train/rejection.hpp"
 
 namespace actionstring {
 namespace host {
@@ -19,6 +25,23 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
     e.clips = std::move(clips);
     conform_to_model(view, e.clips);
     e.results.push_back(evaluate_model(view, e.clips));
+    {   // The classifier's rejection of synthetic non-actions made from these clips.
+        std::vector<std::vector<Character>> strings;
+        std::vector<LabelId> labels;
+        const std::vector<std::string> names = name_strings(view.label_names, view.label_count);
+        for (const LabelledClip& c : e.clips) {
+            const auto at = std::find(names.begin(), names.end(), c.label);
+            if (at == names.end()) continue;
+            strings.push_back(clip_string(view, c.clip));
+            labels.push_back(static_cast<LabelId>(at - names.begin()));
+        }
+        for (const SyntheticNegative& n : synthetic_negatives(strings, labels, seed)) {
+            const Classification c = classify_string(view, n.string);
+            if (n.own != unknown_label && c.nearest_label == n.own) continue;  // still its own action
+            ++e.synthetic_negatives;
+            e.synthetic_unknown += c.label == unknown_label;
+        }
+    }
     if (!train.empty()) {
         conform_to_model(view, train);
         e.results.push_back(evaluate_all_strings(view, train, e.clips));
@@ -29,6 +52,10 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
     e.online = online;
     if (online && e.recordings) {
         for (LabelledRecording& recording : recordings) conform_to_model(view, recording.clip);
+        for (const LabelledClip& stretch : unlabelled_stretches(recordings, 1.0)) {
+            ++e.no_action_stretches;
+            e.no_action_unknown += classify_string(view, clip_string(view, stretch.clip)).label == unknown_label;
+        }
         e.online_report = evaluate_recordings(view, recordings, config);
     } else if (online) {
         e.online_report = evaluate_online(view, e.clips, seed, config);
@@ -65,6 +92,17 @@ std::string evaluation_json(const Evaluation& e, const std::string& model_name, 
         write_json(out, e.online_report.window);
         out.end_object();
     }
+    out.key("synthetic_negatives")
+        .begin_object()
+        .field("count", static_cast<long long>(e.synthetic_negatives))
+        .field("unknown", static_cast<long long>(e.synthetic_unknown))
+        .end_object();
+    if (e.no_action_stretches > 0)
+        out.key("no_action_stretches")
+            .begin_object()
+            .field("count", static_cast<long long>(e.no_action_stretches))
+            .field("unknown", static_cast<long long>(e.no_action_unknown))
+            .end_object();
     return out.end_object().str();
 }
 

@@ -23,6 +23,14 @@ struct Evaluation {
     std::vector<double> frame_ns;      ///< The annotator's per-frame times, sorted.
     bool online = false;
     OnlineReport online_report;
+    /// With recordings: their unlabelled stretches of 1 s or more, each
+    /// classified as a clip, and how many came out unknown (the classifier's
+    /// rejection of real non-actions; label_bounds, unknown_distance).
+    std::size_t no_action_stretches = 0, no_action_unknown = 0;
+    /// Synthetic non-actions made from the evaluated clips (synthetic_negatives():
+    /// spliced halves, and clips sped up or slowed down that land on another
+    /// label than their own), and how many came out unknown.
+    std::size_t synthetic_negatives = 0, synthetic_unknown = 0;
 };
 
 /// Evaluates a model on labelled clips, conformed to its skeleton: the
