@@ -34,6 +34,13 @@ def test_a_budget_bounds_the_representatives_characters(toy_clips):
         actionstring.train(toy_clips, **dict(TOY_SETTINGS, max_representative_chars=1))
 
 
+def test_learned_rejection_keeps_the_toy_performances(toy_clips):
+    model = actionstring.train(toy_clips, **dict(TOY_SETTINGS, reject=True, reject_keep=0.9))
+    assert "reject true\nreject-keep 0.9" in model.training_report["settings"]
+    kept = sum(model.classify(c).label == c.label for c in toy_clips)
+    assert kept >= 0.9 * len(toy_clips)
+
+
 def test_settings_are_checked(toy_clips):
     with pytest.raises(ValueError, match="unknown training setting 'pcaa'"):
         actionstring.train(toy_clips, pcaa=3)
