@@ -219,6 +219,48 @@ TEST_CASE("agglomeration merges while ≤ σ, keeps the medoid first, leaves sin
     CHECK(agglomerate(d, 1.0).size() == 6);
 }
 
+TEST_CASE("pairwise string distances: one direction where both agree, bit for bit with both") {
+    std::mt19937 rng(5);
+    auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    for (int trial = 0; trial < 24; ++trial) {
+        const int K = uniform(2, 6);
+        std::vector<float> w(static_cast<std::size_t>(K * K));
+        for (auto& v : w) v = std::uniform_real_distribution<float>(0.0f, 3.0f)(rng);  // rounding-prone values
+        if (trial % 2 == 0)
+            for (int a = 0; a < K; ++a)
+                for (int b = 0; b < a; ++b) w[static_cast<std::size_t>(b * K + a)] = w[static_cast<std::size_t>(a * K + b)];
+        ModelView view;
+        view.character_count = static_cast<std::uint16_t>(K);
+        view.character_distances = w.data();
+        std::vector<std::vector<Character>> strings(9);
+        for (auto& s : strings) {
+            s.resize(static_cast<std::size_t>(uniform(0, 3) == 0 ? 0 : uniform(1, 6)));  // equal lengths are common
+            for (auto& c : s) c = static_cast<Character>(uniform(0, K - 1));
+        }
+        const MatchOptions match{static_cast<MatchVariant>(trial % 3), static_cast<LengthNormalization>((trial / 3) % 3)};
+        const auto fast = pairwise_string_distances(view, strings, match, 2);
+        std::vector<detail::Cell> workspace(64);
+        for (std::size_t a = 0; a < strings.size(); ++a)
+            for (std::size_t b = 0; b < strings.size(); ++b) {
+                if (a == b) {
+                    CHECK(fast[a][b] == 0.0);
+                    continue;
+                }
+                double expected = std::numeric_limits<double>::infinity();
+                if (!strings[a].empty() && !strings[b].empty()) {
+                    float ab = 0, ba = 0;
+                    REQUIRE(string_distance(strings[a].data(), strings[a].size(), strings[b].data(), strings[b].size(),
+                                            character_weights(view), match, workspace.data(), &ab) == Status::ok);
+                    REQUIRE(string_distance(strings[b].data(), strings[b].size(), strings[a].data(), strings[a].size(),
+                                            character_weights(view), match, workspace.data(), &ba) == Status::ok);
+                    expected = 0.5 * (static_cast<double>(ab) + static_cast<double>(ba));
+                }
+                CAPTURE(trial);
+                CHECK(fast[a][b] == expected);  // exact
+            }
+    }
+}
+
 TEST_CASE("agglomeration past σ while over a budget: nearest first, down to one cluster") {
     // Points on a line at 0, 1, 3, 7, 15: each gap twice the one before.
     const std::vector<double> at{0, 1, 3, 7, 15};

@@ -8,6 +8,8 @@
 
 #include "train/clustering.hpp"
 
+#include "common/parallel.hpp"
+
 namespace actionstring {
 namespace host {
 namespace {
@@ -156,6 +158,52 @@ ClusterTree build_cluster_tree(const std::vector<float>& features, std::size_t d
         if (tree.children[2 * node] < 0) tree.characters[node] = static_cast<Character>(next++);
     tree.character_count = next;
     return tree;
+}
+
+std::vector<std::vector<double>> pairwise_string_distances(const ModelView& model,
+                                                           const std::vector<std::vector<Character>>& strings,
+                                                           const MatchOptions& match, std::size_t workers) {
+    const CharacterWeights weights = character_weights(model);
+    const std::size_t K = model.character_count;
+    bool w_symmetric = true;
+    for (std::size_t a = 0; a < K && w_symmetric; ++a)
+        for (std::size_t b = a + 1; b < K; ++b)
+            if (!(model.character_distances[a * K + b] == model.character_distances[b * K + a])) {
+                w_symmetric = false;
+                break;
+            }
+    const bool transpose_same =
+        w_symmetric && match.variant == MatchVariant::whole && match.normalization == LengthNormalization::none;
+    const std::size_t n = strings.size();
+    std::vector<std::vector<double>> distance(n, std::vector<double>(n, 0.0));
+    std::vector<int> failed(n, 0);
+    // Row a fills distance[a][b] for b > a; the lower triangle is copied after.
+    parallel_for(n, workers, [&](std::size_t a) {
+        std::vector<detail::Cell> workspace;
+        auto measure = [&](const std::vector<Character>& x, const std::vector<Character>& y) {
+            workspace.resize(string_distance_cells(x.size(), y.size()));
+            float value = 0;
+            if (string_distance(x.data(), x.size(), y.data(), y.size(), weights, match, workspace.data(), &value) !=
+                Status::ok)
+                failed[a] = 1;
+            return static_cast<double>(value);
+        };
+        for (std::size_t b = a + 1; b < n; ++b) {
+            const std::vector<Character>&x = strings[a], &y = strings[b];
+            if (x.empty() || y.empty()) {
+                distance[a][b] = std::numeric_limits<double>::infinity();
+                continue;
+            }
+            const double there = measure(x, y);
+            const bool same = x.size() != y.size() ? match.normalization != LengthNormalization::query : transpose_same;
+            distance[a][b] = 0.5 * (there + (same ? there : measure(y, x)));
+        }
+    });
+    for (std::size_t a = 0; a < n; ++a) {
+        if (failed[a]) throw std::invalid_argument("a training string is too long to compare");
+        for (std::size_t b = a + 1; b < n; ++b) distance[b][a] = distance[a][b];
+    }
+    return distance;
 }
 
 std::vector<std::vector<std::size_t>> agglomerate(const std::vector<std::vector<double>>& distance, double sigma,

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "actionstring/model.hpp"
+#include "actionstring/string_distance.hpp"
 
 namespace actionstring {
 namespace host {
@@ -36,6 +37,19 @@ ClusterTree build_cluster_tree(const std::vector<float>& features, std::size_t d
 /// centroid is its medoid, the member whose largest distance to the other
 /// members is smallest. Returns every cluster (singletons included), medoid first.
 ///
+/// Symmetrised string distances between every pair of strings:
+/// ½ (d(a, b) + d(b, a)) with the runtime's string_distance(), ∞ when either is
+/// empty. The second direction is skipped where it is the same computation
+/// (strings of different lengths: A1 is the shorter either way, unless the
+/// query's length normalises) or provably the same value (equal lengths under
+/// `whole` without normalisation and a symmetric W: the transposed table holds
+/// the same minima), so results are bit-identical to computing both. Rows run
+/// on up to `workers` threads. Throws std::invalid_argument for a string too
+/// long to compare.
+std::vector<std::vector<double>> pairwise_string_distances(const ModelView& model,
+                                                           const std::vector<std::vector<Character>>& strings,
+                                                           const MatchOptions& match, std::size_t workers = 1);
+
 /// A bound on what the clusters cost. Once the nearest pair is farther than σ,
 /// `over` is asked whether the clusters (members, and each one's medoid) still
 /// cost too much: merging then goes on past σ, nearest pair among those

@@ -309,28 +309,6 @@ void build_characters(ModelData& m, const TreeFeatures& features, const Training
     r.characters = tree.character_count;
 }
 
-// Symmetrised string distances between every pair of training strings.
-std::vector<std::vector<double>> pairwise_distances(const ModelView& view,
-                                                    const std::vector<std::vector<Character>>& strings,
-                                                    const MatchOptions& match) {
-    const CharacterWeights weights = character_weights(view);
-    std::vector<std::vector<double>> distance(strings.size(), std::vector<double>(strings.size(), 0.0));
-    std::vector<detail::Cell> workspace;
-    auto measure = [&](const std::vector<Character>& a, const std::vector<Character>& b) {
-        if (a.empty() || b.empty()) return std::numeric_limits<double>::infinity();
-        workspace.resize(string_distance_cells(a.size(), b.size()));
-        float value = 0;
-        if (string_distance(a.data(), a.size(), b.data(), b.size(), weights, match, workspace.data(), &value) !=
-            Status::ok)
-            throw std::invalid_argument("a training string is too long to compare");
-        return static_cast<double>(value);
-    };
-    for (std::size_t a = 0; a < strings.size(); ++a)
-        for (std::size_t b = a + 1; b < strings.size(); ++b)
-            distance[a][b] = distance[b][a] = 0.5 * (measure(strings[a], strings[b]) + measure(strings[b], strings[a]));
-    return distance;
-}
-
 // Stage 6: the label names, and the medoids of the agglomerated training
 // strings as representatives, each with its cluster's majority label. Returns,
 // per training clip, the representative made from it (or −1).
@@ -372,7 +350,8 @@ std::vector<long> choose_representatives(ModelData& m, const std::vector<Labelle
         };
     }
     const auto clusters =
-        agglomerate(pairwise_distances(m.view(), strings, MatchOptions{options.variant, options.normalization}),
+        agglomerate(pairwise_string_distances(m.view(), strings, MatchOptions{options.variant, options.normalization},
+                                          hardware_workers()),
                     options.sigma, bound, &r.budget_merge_distance);
     if (!(r.budget_merge_distance > options.sigma)) r.budget_merge_distance = 0;
     r.representatives_per_label.assign(m.label_names.size(), 0);
