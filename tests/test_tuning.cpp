@@ -66,6 +66,25 @@ TEST_CASE("cross-validation needs two subjects") {
     CHECK_THROWS_AS(cross_validate(clips, tuning_start()), std::invalid_argument);
 }
 
+TEST_CASE("folds: one per subject, or at most max_folds with the subjects dealt round-robin") {
+    ToyWorld world = make_toy_world();
+    const std::vector<LabelledClip> clips = noisy_clips(world, 7);  // subjects toy0 … toy6
+    CHECK(subject_folds(clips).size() == 7);
+    CHECK(subject_folds(clips, 10).size() == 7);
+    const auto three = subject_folds(clips, 3);
+    REQUIRE(three.size() == 3);
+    CHECK(three[0] == std::vector<std::string>{"toy0", "toy3", "toy6"});
+    CHECK(three[1] == std::vector<std::string>{"toy1", "toy4"});
+    CHECK(three[2] == std::vector<std::string>{"toy2", "toy5"});
+    TrainingOptions options = tuning_start();
+    options.pca_dim = 8;
+    const auto folds = cross_validate(clips, options, 3);
+    REQUIRE(folds.size() == 3);
+    CHECK(folds[0].subject == "toy0+toy3+toy6");
+    CHECK(folds[0].clips == 3 * world.actions.size());
+    CHECK(folds[1].clips + folds[2].clips == 4 * world.actions.size());
+}
+
 TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic, the best segment F1") {
     ToyWorld world = make_toy_world();
     const std::vector<LabelledClip> clips = noisy_clips(world, 3);  // three subjects: three folds

@@ -1,13 +1,14 @@
 // The segmenter's online settings chosen by leave-one-subject-out cross-validation.
 #include "train/online_tuning.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <limits>
-#include <set>
 
 #include "eval/online.hpp"
 #include "model/model_data.hpp"
+#include "train/cross_validation.hpp"
 #include "train/pipeline.hpp"
 #include "train/settings.hpp"
 
@@ -28,9 +29,9 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     const auto began = std::chrono::steady_clock::now();
     OnlineTuningResult result;
     result.chosen = options.online;
-    std::set<std::string> subjects;
-    for (const LabelledClip& c : clips) subjects.insert(c.subject);
-    if (subjects.size() < 2) return result;
+    // The folds of self-tuning (at most tuning_max_folds, subjects dealt round-robin).
+    const std::vector<std::vector<std::string>> folds = subject_folds(clips, tuning_max_folds);
+    if (folds.size() < 2) return result;
 
     // The grid, in order of preference on ties (simpler first).
     const float infinity = std::numeric_limits<float>::infinity();
@@ -49,13 +50,16 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
             }
 
     // One model per fold, every setting streamed through it.
-    for (const std::string& held_out : subjects) {
+    for (const std::vector<std::string>& held : folds) {
+        auto held_out = [&held](const std::string& subject) {
+            return std::find(held.begin(), held.end(), subject) != held.end();
+        };
         std::vector<LabelledClip> train, test;
-        for (const LabelledClip& c : clips) (c.subject == held_out ? test : train).push_back(c);
+        for (const LabelledClip& c : clips) (held_out(c.subject) ? test : train).push_back(c);
         std::vector<LabelledRecording> train_recordings, test_recordings;
         if (recordings != nullptr)
             for (const LabelledRecording& r : *recordings)
-                (r.subject == held_out ? test_recordings : train_recordings).push_back(r);
+                (held_out(r.subject) ? test_recordings : train_recordings).push_back(r);
         const std::vector<LabelledClip> no_action = unlabelled_stretches(train_recordings, min_no_action_seconds);
         const ModelData model = train_model(train, options, nullptr, &no_action);
         const ModelView view = model.view();
@@ -64,8 +68,8 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
             config.segmenter = step.config;
             const OnlineReport report = recordings != nullptr ? evaluate_recordings(view, test_recordings, config)
                                                               : evaluate_online(view, test, 1, config);
-            step.segment_f1 += report.settled.segment_f1 / static_cast<double>(subjects.size());
-            step.frame_accuracy += report.settled.frame_accuracy / static_cast<double>(subjects.size());
+            step.segment_f1 += report.settled.segment_f1 / static_cast<double>(folds.size());
+            step.frame_accuracy += report.settled.frame_accuracy / static_cast<double>(folds.size());
         }
     }
     std::size_t best = 0;

@@ -79,7 +79,7 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
         for (std::uint32_t k = 0; k < 3; ++k) {
             TrainingOptions seeded = o;
             seeded.seed = o.seed + k;
-            std::vector<FoldResult> folds = cross_validate(clips, seeded);
+            std::vector<FoldResult> folds = cross_validate(clips, seeded, tuning_max_folds);
             sum += mean_accuracy(folds);
             if (k == 0) first_folds = std::move(folds);
         }
