@@ -123,6 +123,16 @@ struct ModelView {
                    ? 0u
                    : representative_offsets[representative_count];
     }
+    /// Whether W[a][b] == W[b][a] for every pair (every trained model's W is;
+    /// the segmenter then reads W by row, and training measures a pair of
+    /// equal-length strings in one direction).
+    constexpr bool character_distances_symmetric() const noexcept {
+        const std::size_t K = character_count;
+        for (std::size_t a = 0; a < K; ++a)
+            for (std::size_t b = a + 1; b < K; ++b)
+                if (!(character_distances[a * K + b] == character_distances[b * K + a])) return false;
+        return true;
+    }
     /// Windows that can be open at once: ceil(window / step).
     constexpr std::uint32_t max_open_windows() const noexcept {
         return step_chars == 0 ? 0u : (window_chars + step_chars - 1u) / step_chars;

@@ -105,14 +105,7 @@ public:
         config_ = config;
         model_ = &model;
         column_ = detail::storage_at<float>(storage, p.column);
-        w_symmetric_ = true;
-        const std::size_t K = model.character_count;
-        for (std::size_t a = 0; a < K && w_symmetric_; ++a)
-            for (std::size_t b = a + 1; b < K; ++b)
-                if (!(model.character_distances[a * K + b] == model.character_distances[b * K + a])) {
-                    w_symmetric_ = false;
-                    break;
-                }
+        w_symmetric_ = model.character_distances_symmetric();
         reset();
         return Status::ok;
     }

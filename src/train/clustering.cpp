@@ -164,16 +164,9 @@ std::vector<std::vector<double>> pairwise_string_distances(const ModelView& mode
                                                            const std::vector<std::vector<Character>>& strings,
                                                            const MatchOptions& match, std::size_t workers) {
     const CharacterWeights weights = character_weights(model);
-    const std::size_t K = model.character_count;
-    bool w_symmetric = true;
-    for (std::size_t a = 0; a < K && w_symmetric; ++a)
-        for (std::size_t b = a + 1; b < K; ++b)
-            if (!(model.character_distances[a * K + b] == model.character_distances[b * K + a])) {
-                w_symmetric = false;
-                break;
-            }
-    const bool transpose_same =
-        w_symmetric && match.variant == MatchVariant::whole && match.normalization == LengthNormalization::none;
+    const bool transpose_same = match.variant == MatchVariant::whole &&
+                                match.normalization == LengthNormalization::none &&
+                                model.character_distances_symmetric();
     const std::size_t n = strings.size();
     std::vector<std::vector<double>> distance(n, std::vector<double>(n, 0.0));
     std::vector<int> failed(n, 0);
