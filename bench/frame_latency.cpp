@@ -192,7 +192,7 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     // Stages, each called alone on every frame of the stream.
     std::vector<std::int64_t> normalise_ns, project_ns, posterior_ns, descent_ns;
     std::vector<float> pose_buffer(model.input_dim()), feature_buffer(model.feature_dim),
-        posterior_buffer(model.component_count), scratch_buffer(model.feature_dim),
+        posterior_buffer(model.component_count), scratch_buffer(gmm_scratch_floats(model)),
         skeleton_buffer(3u * model.joint_count);
     float* const pose = pose_buffer.data();
     float* const feature = feature_buffer.data();

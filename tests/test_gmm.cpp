@@ -88,7 +88,7 @@ TEST_CASE("posteriors match direct densities in double precision") {
                 for (Eigen::Index i = 0; i < d; ++i) x[i] += 0.3 * normal(rng);
                 const std::vector<double> expected = direct_posterior(g, x);
                 std::vector<float> feature(static_cast<std::size_t>(d)), posterior(static_cast<std::size_t>(J)),
-                    scratch(static_cast<std::size_t>(d));
+                    scratch(gmm_scratch_floats(view));
                 for (Eigen::Index i = 0; i < d; ++i) feature[static_cast<std::size_t>(i)] = static_cast<float>(x[i]);
                 float log_likelihood = 0;
                 REQUIRE(gmm_posterior(view, feature.data(), posterior.data(), scratch.data(), &log_likelihood) ==
@@ -111,7 +111,7 @@ TEST_CASE("far-away poses still give a finite posterior that sums to one") {
     RandomGmm g = make_gmm(rng, 6, 5, Covariance::full);
     const ModelView view = gmm_view(g.data);
     for (const float far : {50.0f, 1.0e3f, 2.0e4f, -2.0e4f}) {
-        std::vector<float> feature(6, far), posterior(5), scratch(6);
+        std::vector<float> feature(6, far), posterior(5), scratch(gmm_scratch_floats(view));
         feature[2] = -far;
         REQUIRE(gmm_posterior(view, feature.data(), posterior.data(), scratch.data()) == Status::ok);
         float sum = 0, peak = 0;

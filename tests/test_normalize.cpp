@@ -67,7 +67,7 @@ TEST_CASE("translation and rotation about the up axis leave the pose and feature
             const std::vector<float> base = with_up_axis(key, up);
             const std::vector<float> reference = normalized(view, base);
             std::vector<float> ref_posterior(view.component_count), posterior(view.component_count),
-                scratch(view.feature_dim);
+                scratch(gmm_scratch_floats(view));
             const bool projected_identity = !view.has_projection();
             REQUIRE(projected_identity);
             REQUIRE(gmm_posterior(view, reference.data(), ref_posterior.data(), scratch.data()) == Status::ok);

@@ -522,6 +522,27 @@ TEST_CASE("artifacts round-trip exactly and refuse corruption") {
     refused(serialize_model(world.model), "invalid model: representative_labels: not a label of the model");
 }
 
+TEST_CASE("a version-4 artifact (factors component by component) is read and reordered") {
+    const ToyWorld world = make_toy_world();
+    const ModelView view = world.model.view();
+    REQUIRE(view.component_count == 6);  // a block of four and a short one of two: the order matters
+    ModelData old = parse_model("copy.model", serialize_model(world.model));  // a copy
+    const std::size_t size = view.factor_size();
+    for (std::size_t j = 0; j < view.component_count; ++j)
+        for (std::size_t k = 0; k < size; ++k)
+            old.gmm_factors[j * size + k] = world.model.gmm_factors[view.gmm_factor_index(j, k)];
+    REQUIRE(old.gmm_factors != world.model.gmm_factors);
+    std::string text = serialize_model(old);  // the checksum covers the body, not the version line
+    const std::string current = "actionstring-model " + std::to_string(artifact_version) + "\n";
+    REQUIRE(text.rfind(current, 0) == 0);
+    text.replace(0, current.size(), "actionstring-model " + std::to_string(artifact_version - 1) + "\n");
+    const ModelData loaded = parse_model("old.model", text);
+    CHECK(loaded.gmm_factors == world.model.gmm_factors);
+    CHECK(serialize_model(loaded) == serialize_model(world.model));
+    // Read as the current version, the same body is another (wrong) model: the version line matters.
+    CHECK(parse_model("new.model", serialize_model(old)).gmm_factors != world.model.gmm_factors);
+}
+
 TEST_CASE("generated headers carry the banner, the checksum and exact literals") {
     ToyWorld world = make_toy_world();
     const std::string text = serialize_model(world.model);

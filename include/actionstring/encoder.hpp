@@ -168,7 +168,7 @@ private:
         p.skeleton = layout.add<float>(uses_bones(m.scale_mode) ? 3u * m.joint_count : 0u);
         p.feature = layout.add<float>(m.has_projection() ? m.feature_dim : 0u);
         p.posterior = layout.add<float>(m.component_count);
-        p.scratch = layout.add<float>(m.has_gmm() ? m.feature_dim : 0u);
+        p.scratch = layout.add<float>(gmm_scratch_floats(m));
         p.motion = layout.add<unsigned char>(MotionRing::required_bytes(m));
         p.bytes = layout.bytes();
         return p;
@@ -186,7 +186,7 @@ private:
     Character last_ = 0;
     float* feature_ = nullptr;    // the projected pose
     float* posterior_ = nullptr;  // component_count floats
-    float* scratch_ = nullptr;    // the GMM's feature_dim floats
+    float* scratch_ = nullptr;    // the GMM's gmm_scratch_floats()
 };
 
 }  // namespace actionstring

@@ -115,6 +115,20 @@ struct ModelView {
         return covariance == Covariance::full ? static_cast<std::size_t>(feature_dim) * (feature_dim + 1u) / 2u
                                               : feature_dim;
     }
+    /// Components are evaluated four at a time (gmm.hpp), so gmm_factors keeps
+    /// each block of four components interleaved: element k of component j is
+    /// at first · factor_size() + k · lanes + (j − first), where first = j − j mod 4
+    /// and lanes = min(4, J − first) (the last block may hold fewer). One
+    /// component's elements keep their order (U column by column, or the
+    /// diagonal); a block's four are side by side, so one vector load reads
+    /// an element of each.
+    constexpr std::size_t gmm_factor_index(std::size_t component, std::size_t element) const noexcept {
+        const std::size_t first = component - component % gmm_block;
+        const std::size_t lanes = component_count - first < gmm_block ? component_count - first : gmm_block;
+        return first * factor_size() + element * lanes + (component - first);
+    }
+    /// Components per block of gmm_factors.
+    static constexpr std::size_t gmm_block = 4;
     constexpr std::uint32_t representative_length(std::size_t r) const noexcept {
         return representative_offsets[r + 1] - representative_offsets[r];
     }

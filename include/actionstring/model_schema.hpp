@@ -56,7 +56,8 @@
     SCALAR(std::uint16_t, component_count, 0, 0, 65535)    /* J */                                        \
     SCALAR(Covariance, covariance, Covariance::full, 0, 1)                                                \
     TABLE(float, gmm_means, std::size_t{m.component_count} * m.feature_dim, 0, 0)                         \
-    /* precision = U^T U, U upper triangular: full packs U column by column, diagonal keeps sqrt(prec) */ \
+    /* precision = U^T U, U upper triangular: full packs U column by column, diagonal keeps sqrt(prec); */ \
+    /* four components interleaved element by element (ModelView::gmm_factor_index) */                    \
     TABLE(float, gmm_factors, m.component_count * m.factor_size(), 0, 0)                                  \
     TABLE(float, gmm_log_normalizers, m.component_count, 0, 0) /* -d/2 log 2pi + sum log U_ii */          \
     TABLE(float, gmm_log_weights, m.component_count, 0, 0)                                                \

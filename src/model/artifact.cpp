@@ -221,9 +221,13 @@ ModelData parse_model(const std::string& name, std::string_view text) {
     const auto magic = split_words(line);
     if (magic.size() != 2 || magic[0] != kMagic)
         scanner.fail("not an actionstring model (expected 'actionstring-model <version>')");
-    if (magic[1] != std::to_string(artifact_version))
-        scanner.fail("model format version " + std::string(magic[1]) + " is not supported; this build reads version " +
-                     std::to_string(artifact_version) + " (retrain or use a matching build)");
+    // Version 4 differs only in the order of gmm_factors (component by
+    // component); it is read and reordered, so a model trained before keeps working.
+    const bool component_major_factors = magic[1] == std::to_string(artifact_version - 1);
+    if (magic[1] != std::to_string(artifact_version) && !component_major_factors)
+        scanner.fail("model format version " + std::string(magic[1]) + " is not supported; this build reads versions " +
+                     std::to_string(artifact_version - 1) + " and " + std::to_string(artifact_version) +
+                     " (retrain or use a matching build)");
     if (!scanner.next(line)) scanner.fail("file ends where the checksum was expected (truncated?)");
     const auto checksum = split_words(line);
     if (checksum.size() != 3 || checksum[0] != "checksum" || checksum[1] != "fnv1a64")
@@ -236,6 +240,12 @@ ModelData parse_model(const std::string& name, std::string_view text) {
 
     FieldReader f(scanner);
     ModelData m = read_fields(f);
+    if (component_major_factors && !m.gmm_factors.empty()) {
+        if (const char* table = mismatched_table(m))
+            throw ReadError(name, 0, std::string("the size of table '") + table +
+                                         "' does not agree with the fields it depends on");
+        interleave_gmm_factors(m);
+    }
 
     check_model(m, name);
     return m;

@@ -89,6 +89,17 @@ std::size_t table_bytes(const ModelView& m) {
     return bytes;
 }
 
+void interleave_gmm_factors(ModelData& model) {
+    const ModelView view = model.view();
+    const std::size_t size = view.factor_size();
+    if (model.gmm_factors.size() != view.component_count * size)
+        throw std::invalid_argument("interleave_gmm_factors: gmm_factors does not hold J factors");
+    std::vector<float> interleaved(model.gmm_factors.size());
+    for (std::size_t j = 0; j < view.component_count; ++j)
+        for (std::size_t k = 0; k < size; ++k) interleaved[view.gmm_factor_index(j, k)] = model.gmm_factors[j * size + k];
+    model.gmm_factors = std::move(interleaved);
+}
+
 void set_gmm(ModelData& model, const std::vector<Eigen::VectorXd>& means,
              const std::vector<Eigen::MatrixXd>& covariances, const std::vector<double>& weights, Covariance kind) {
     const std::size_t J = means.size();
@@ -136,6 +147,7 @@ void set_gmm(ModelData& model, const std::vector<Eigen::VectorXd>& means,
         model.gmm_log_weights.push_back(static_cast<float>(std::log(weights[j])));
     }
     model.feature_dim = static_cast<std::uint16_t>(d);
+    interleave_gmm_factors(model);  // built component by component above
 }
 
 void set_character_distances_from_leaves(ModelData& model) {

@@ -101,6 +101,12 @@ void check_model(const ModelData& model, const std::string& name);
 /// Bytes of the model's tables as a generated header stores them (label names excluded).
 std::size_t table_bytes(const ModelView& model);
 
+/// Reorders gmm_factors, given component by component (J × factor_size(),
+/// each component's elements in order), into the runtime's blocks of four
+/// interleaved components (ModelView::gmm_factor_index). For set_gmm() and
+/// for reading artifacts written before the interleaved layout.
+void interleave_gmm_factors(ModelData& model);
+
 /// Fills the GMM tables from means, covariances and weights given in double.
 /// Factors come from the Cholesky factor of each precision; log-normalisers
 /// and log-weights are precomputed, so the runtime never inverts anything.

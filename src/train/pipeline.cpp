@@ -288,7 +288,7 @@ TreeFeatures posterior_features(const ModelData& m, const std::vector<float>& po
     const ModelView view = m.view();
     const std::size_t D = view.input_dim(), J = view.component_count, n = poses.size() / D;
     TreeFeatures features{std::vector<float>(n * J), J};
-    std::vector<float> feature(view.feature_dim), scratch(view.feature_dim);
+    std::vector<float> feature(view.feature_dim), scratch(gmm_scratch_floats(view));
     for (std::size_t i = 0; i < n; ++i) {
         project_pose(view, poses.data() + i * D, feature.data());
         if (gmm_posterior(view, feature.data(), features.values.data() + i * J, scratch.data()) != Status::ok)

@@ -1,8 +1,8 @@
 // actionstring — y += Σ columns · scalars, four columns per pass over y.
 //
-// The projection and the GMM's triangular product both accumulate a vector
-// column by column: y[r] += a_c[r] · x_c for c = 0, 1, …. One pass per column
-// loads and stores every y[r] once per column; four columns per pass keep y[r]
+// The projection accumulates a vector column by column: y[r] += a_c[r] · x_c
+// for c = 0, 1, …. One pass per column loads and stores every y[r] once per
+// column; four columns per pass keep y[r]
 // in a register across them, which on a Cortex-M4 (no SIMD, one load per
 // float) cuts the instructions per multiply-add from about six to three.
 //

@@ -1,4 +1,4 @@
-// actionstring — four float lanes for the segmenter's cells, where the target has them.
+// actionstring — four float lanes for the segmenter's cells and the GMM's components, where the target has them.
 //
 // The segmenter's new cells depend only on the previous step's cells, so four
 // neighbouring cells of a representative are computed at once. Only the
@@ -9,6 +9,9 @@
 //   less(a, b)            a < b per lane (false when either is NaN)
 //   select(mask, a, b)    mask ? a : b, bit for bit (costs and 32-bit starts alike)
 //   minimum(a, b)         a < b ? a : b (SSE's MINPS is defined exactly so)
+//
+// The GMM (gmm.hpp) puts four components in the lanes: a product, then a sum,
+// each rounded once per lane as the scalar loop rounds it.
 //
 // ACTIONSTRING_DETAIL_LANES is 4 with SSE2 (every x86-64 compiler) and 0
 // elsewhere: a Cortex-M4 has no float SIMD, and there the scalar loop, tuned
@@ -54,6 +57,7 @@ inline Lanes broadcast_bits(std::uint32_t x) noexcept {
 inline Lanes lanes_of(float x0, float x1, float x2, float x3) noexcept { return Lanes{_mm_setr_ps(x0, x1, x2, x3)}; }
 inline Lanes operator+(Lanes a, Lanes b) noexcept { return Lanes{_mm_add_ps(a.v, b.v)}; }
 inline Lanes operator-(Lanes a, Lanes b) noexcept { return Lanes{_mm_sub_ps(a.v, b.v)}; }
+inline Lanes operator*(Lanes a, Lanes b) noexcept { return Lanes{_mm_mul_ps(a.v, b.v)}; }
 inline LaneMask less(Lanes a, Lanes b) noexcept { return LaneMask{_mm_cmplt_ps(a.v, b.v)}; }
 inline Lanes select(LaneMask m, Lanes a, Lanes b) noexcept {
     return Lanes{_mm_or_ps(_mm_and_ps(m.v, a.v), _mm_andnot_ps(m.v, b.v))};

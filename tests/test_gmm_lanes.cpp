@@ -1,0 +1,131 @@
+// The GMM's blocks of four components give every component the bits of the
+// textbook loop, one component at a time, whatever the block (full, or the
+// short last one) and whatever the path: this file is built into the unit
+// tests (SIMD lanes on x86-64) and into the scalar-path tests (what a
+// Cortex-M4 runs). Header-only: the models are built here, not by the trainer.
+#include <doctest/doctest.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "actionstring/gmm.hpp"
+
+using namespace actionstring;
+
+namespace {
+
+struct LaneModel {
+    std::vector<float> means, factors, log_normalizers, log_weights;
+    ModelView view{};
+};
+
+// Random factors written through gmm_factor_index(), so the layout under test
+// is the one the view declares.
+LaneModel make_model(std::mt19937& rng, std::size_t d, std::size_t J, Covariance kind) {
+    LaneModel m;
+    m.view.feature_dim = static_cast<std::uint16_t>(d);
+    m.view.component_count = static_cast<std::uint16_t>(J);
+    m.view.covariance = kind;
+    std::normal_distribution<float> normal(0.0f, 1.0f);
+    m.means.resize(J * d);
+    for (float& v : m.means) v = normal(rng);
+    const std::size_t size = m.view.factor_size();
+    m.factors.assign(J * size, 0.0f);
+    for (std::size_t j = 0; j < J; ++j)
+        for (std::size_t k = 0; k < size; ++k) m.factors[m.view.gmm_factor_index(j, k)] = 0.5f + 0.3f * normal(rng);
+    for (std::size_t j = 0; j < J; ++j) {
+        m.log_normalizers.push_back(0.1f * normal(rng));
+        m.log_weights.push_back(-1.0f - 0.1f * static_cast<float>(j));
+    }
+    m.view.gmm_means = m.means.data();
+    m.view.gmm_factors = m.factors.data();
+    m.view.gmm_log_normalizers = m.log_normalizers.data();
+    m.view.gmm_log_weights = m.log_weights.data();
+    return m;
+}
+
+// One component at a time, in the order documented in gmm.hpp: y[r] adds
+// U[r][c] (z_c − μ_c) for increasing c, then q adds y[r]² for increasing r.
+float reference_log_joint(const ModelView& m, std::size_t j, const float* z) {
+    const std::size_t d = m.feature_dim;
+    const float* mean = m.gmm_means + j * d;
+    float q = 0.0f;
+    if (m.covariance == Covariance::diagonal) {
+        for (std::size_t c = 0; c < d; ++c) {
+            const float v = m.gmm_factors[m.gmm_factor_index(j, c)] * (z[c] - mean[c]);
+            q += v * v;
+        }
+    } else {
+        std::vector<float> y(d, 0.0f);
+        std::size_t k = 0;
+        for (std::size_t c = 0; c < d; ++c) {
+            const float e = z[c] - mean[c];
+            for (std::size_t r = 0; r <= c; ++r) y[r] += m.gmm_factors[m.gmm_factor_index(j, k++)] * e;
+        }
+        for (std::size_t r = 0; r < d; ++r) q += y[r] * y[r];
+    }
+    return m.gmm_log_weights[j] + m.gmm_log_normalizers[j] - 0.5f * q;
+}
+
+std::uint32_t bits(float x) {
+    std::uint32_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+}
+
+}  // namespace
+
+TEST_CASE("the interleaved layout places every element of every component once") {
+    for (std::size_t J = 1; J <= 13; ++J) {
+        ModelView v{};
+        v.feature_dim = 5;
+        v.component_count = static_cast<std::uint16_t>(J);
+        v.covariance = Covariance::full;
+        const std::size_t size = v.factor_size();
+        std::vector<int> seen(J * size, 0);
+        for (std::size_t j = 0; j < J; ++j)
+            for (std::size_t k = 0; k < size; ++k) {
+                const std::size_t at = v.gmm_factor_index(j, k);
+                REQUIRE(at < seen.size());
+                ++seen[at];
+                // A block's components sit side by side, element by element.
+                const std::size_t first = j - j % 4, lanes = J - first < 4 ? J - first : 4;
+                CHECK(at == first * size + k * lanes + (j - first));
+            }
+        for (int s : seen) CHECK(s == 1);
+    }
+}
+
+TEST_CASE("blocks of components give the bits of one component at a time") {
+    std::mt19937 rng(2024);
+    std::normal_distribution<float> normal(0.0f, 1.0f);
+    std::size_t compared = 0;
+    for (const Covariance kind : {Covariance::full, Covariance::diagonal})
+        for (std::size_t J = 1; J <= 11; ++J)  // every tail (1 … 3) beside full blocks
+            for (const std::size_t d : {1u, 2u, 3u, 5u, 8u, 13u, 24u}) {
+                const LaneModel m = make_model(rng, d, J, kind);
+                std::vector<float> z(d), log_joint(J), scratch(gmm_scratch_floats(m.view));
+                for (int sample = 0; sample < 4; ++sample) {
+                    for (float& v : z) v = 2.0f * normal(rng);
+                    REQUIRE(gmm_log_joint(m.view, z.data(), log_joint.data(), scratch.data()) == Status::ok);
+                    for (std::size_t j = 0; j < J; ++j) {
+                        CHECK(bits(log_joint[j]) == bits(reference_log_joint(m.view, j, z.data())));
+                        ++compared;
+                    }
+                }
+            }
+    CHECK(compared > 1000);
+}
+
+TEST_CASE("the GMM needs one y per component of a block, and none without a GMM") {
+    ModelView v{};
+    v.feature_dim = 24;
+    CHECK(gmm_scratch_floats(v) == 0);
+    v.component_count = 2;
+    CHECK(gmm_scratch_floats(v) == 48);
+    v.component_count = 40;
+    CHECK(gmm_scratch_floats(v) == 96);
+}
