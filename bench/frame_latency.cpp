@@ -189,6 +189,24 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     report.latency.push_back({name, "annotator: frames that emit a character", summarize(character_frames)});
     report.latency.push_back({name, "annotator: frames that complete a window", summarize(window_frames)});
 
+    // The model's own settings, as a device runs it: the segmenter alone.
+    host::Stateful<Annotator> own;
+    if (own.init(model, annotator_config(model)) != Status::ok) {
+        std::fprintf(stderr, "%s: the annotator refused the model's own settings\n", name.c_str());
+        std::exit(1);
+    }
+    std::vector<std::int64_t> own_character_frames;
+    for (int pass = 0; pass <= passes; ++pass) {
+        own->reset();
+        for (std::size_t f = 0; f < frames; ++f) {
+            FrameResult result;
+            const std::int64_t ns = timed([&] { result = own->push_frame(stream.times_us[f], stream.frame(f)); });
+            if (pass > 0 && result.characters > 0) own_character_frames.push_back(ns);
+        }
+    }
+    report.latency.push_back(
+        {name, "annotator, own settings (segmenter alone): frames that emit a character", summarize(own_character_frames)});
+
     // Stages, each called alone on every frame of the stream.
     std::vector<std::int64_t> normalise_ns, project_ns, posterior_ns, descent_ns;
     std::vector<float> pose_buffer(model.input_dim()), feature_buffer(model.feature_dim),
