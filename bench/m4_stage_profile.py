@@ -31,10 +31,10 @@ import sys
 STAGES = [
     ("model validation (once, at init)", r"validate|all_within|overflow_safe|names_ok|symmetric"),
     ("GMM posterior", r"gmm_"),
-    ("PCA projection and GMM columns (detail::axpy)", r"6detail5axpy|axpy"),
+    ("PCA projection (detail::axpy)", r"6detail5axpy|axpy"),
     ("pose normalisation", r"normalize_pose"),
     ("velocity ring", r"MotionRing"),
-    ("tree descent", r"node_distance|descend|tree_"),
+    ("tree descent", r"node_distances|descend|tree_"),
     ("string encoder (sampling, projection call)", r"StringEncoder|project_pose"),
     ("segmenter", r"ActionSegmenter"),
     ("window matcher and classification", r"WindowMatcher|classify|string_distance"),
