@@ -203,7 +203,8 @@ inline Status model_from_blob(const void* bytes, std::size_t size, ModelView& mo
     const std::size_t directory_end = detail::blob_header_bytes + detail::blob_entry_bytes * fields;
     if (size < detail::blob_header_bytes || std::memcmp(b, detail::blob_magic, 8) != 0)
         return refuse(problem, "blob: not an actionstring model blob");
-    if (detail::blob_u32(b + 8) != blob_version) return refuse(problem, "blob: another format version (export it again with this build)");
+    if (detail::blob_u32(b + 8) != blob_version)
+        return refuse(problem, "blob: another format version (export it again with this build)");
     std::uint32_t order;
     std::memcpy(&order, b + 12, sizeof order);
     if (detail::blob_u32(b + 12) != detail::blob_byte_order) return refuse(problem, "blob: byte-order mark damaged");

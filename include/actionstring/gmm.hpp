@@ -17,9 +17,7 @@ namespace actionstring {
 
 /// Floats of scratch the GMM needs: one y = U (z − μ) per component of a block.
 constexpr std::size_t gmm_scratch_floats(const ModelView& model) noexcept {
-    const std::size_t lanes = model.component_count < ModelView::gmm_block ? model.component_count
-                                                                            : ModelView::gmm_block;
-    return model.has_gmm() ? lanes * model.feature_dim : 0u;
+    return model.has_gmm() ? model.gmm_block_lanes(0) * model.feature_dim : 0u;
 }
 
 namespace detail {
@@ -44,10 +42,9 @@ struct GmmPack {
     ACTIONSTRING_DETAIL_ALWAYS_INLINE void store(float* p) const noexcept {
         ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) p[l] = v[l];
     }
-    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack zero() noexcept { return broadcast(0.0f); }
-    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack broadcast(float x) noexcept {
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack zero() noexcept {
         GmmPack a;
-        ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) a.v[l] = x;
+        ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) a.v[l] = 0.0f;
         return a;
     }
     /// z_c − μ_j[c] for the block's components (means J × d, row by row).
@@ -213,7 +210,7 @@ inline Status gmm_log_joint(const ModelView& model, const float* feature, float*
     const std::size_t J = model.component_count;
     for (std::size_t first = 0; first < J; first += ModelView::gmm_block) {
         float q[ModelView::gmm_block];
-        const std::size_t lanes = J - first < ModelView::gmm_block ? J - first : ModelView::gmm_block;
+        const std::size_t lanes = model.gmm_block_lanes(first);
         switch (lanes) {
             case 4: detail::gmm_block_distances<4>(model, first, feature, scratch, q); break;
             case 3: detail::gmm_block_distances<3>(model, first, feature, scratch, q); break;

@@ -124,8 +124,11 @@ struct ModelView {
     /// an element of each.
     constexpr std::size_t gmm_factor_index(std::size_t component, std::size_t element) const noexcept {
         const std::size_t first = component - component % gmm_block;
-        const std::size_t lanes = component_count - first < gmm_block ? component_count - first : gmm_block;
-        return first * factor_size() + element * lanes + (component - first);
+        return first * factor_size() + element * gmm_block_lanes(first) + (component - first);
+    }
+    /// Components in the block that starts at component `first` (a multiple of gmm_block).
+    constexpr std::size_t gmm_block_lanes(std::size_t first) const noexcept {
+        return component_count - first < gmm_block ? component_count - first : gmm_block;
     }
     /// Components per block of gmm_factors.
     static constexpr std::size_t gmm_block = 4;

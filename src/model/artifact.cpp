@@ -240,12 +240,8 @@ ModelData parse_model(const std::string& name, std::string_view text) {
 
     FieldReader f(scanner);
     ModelData m = read_fields(f);
-    if (component_major_factors && !m.gmm_factors.empty()) {
-        if (const char* table = mismatched_table(m))
-            throw ReadError(name, 0, std::string("the size of table '") + table +
-                                         "' does not agree with the fields it depends on");
-        interleave_gmm_factors(m);
-    }
+    // A table of the wrong size is left for check_model() to report.
+    if (component_major_factors && mismatched_table(m) == nullptr) interleave_gmm_factors(m);
 
     check_model(m, name);
     return m;

@@ -96,7 +96,8 @@ void interleave_gmm_factors(ModelData& model) {
         throw std::invalid_argument("interleave_gmm_factors: gmm_factors does not hold J factors");
     std::vector<float> interleaved(model.gmm_factors.size());
     for (std::size_t j = 0; j < view.component_count; ++j)
-        for (std::size_t k = 0; k < size; ++k) interleaved[view.gmm_factor_index(j, k)] = model.gmm_factors[j * size + k];
+        for (std::size_t k = 0; k < size; ++k)
+            interleaved[view.gmm_factor_index(j, k)] = model.gmm_factors[j * size + k];
     model.gmm_factors = std::move(interleaved);
 }
 

@@ -2,9 +2,9 @@
 //
 // The projection accumulates a vector column by column: y[r] += a_c[r] · x_c
 // for c = 0, 1, …. One pass per column loads and stores every y[r] once per
-// column; four columns per pass keep y[r]
-// in a register across them, which on a Cortex-M4 (no SIMD, one load per
-// float) cuts the instructions per multiply-add from about six to three.
+// column; four columns per pass keep y[r] in a register across them, which on
+// a Cortex-M4 (no SIMD, one load per float) cuts the instructions per
+// multiply-add from about six to three.
 //
 // Every y[r] still adds its terms in increasing c, each rounded as before
 // (a product, then a sum: the runtime is built without contraction into fused
