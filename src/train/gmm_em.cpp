@@ -16,6 +16,9 @@ namespace host {
 namespace {
 
 constexpr double kLog2Pi = 1.8378770664093454836;
+// Samples per block in the E- and M-steps: a d × block slice of doubles stays in
+// the cache (24 × 1024 × 8 = 192 KiB at d = 24).
+constexpr Eigen::Index kSampleBlock = 1024;
 
 // k-means++ seeding followed by a few Lloyd steps: initial means and hard assignments.
 std::vector<int> kmeans_plus_plus(const Eigen::MatrixXd& x, int k, std::mt19937_64& rng, Eigen::MatrixXd& centres) {
@@ -103,17 +106,31 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
                 return;
             }
             const Eigen::VectorXd mean = x * resp.row(j).transpose() / nj;
-            const Eigen::MatrixXd centred = x.colwise() - mean;
+            // The weighted scatter Σ_i r_ij (x_i − μ)(x_i − μ)ᵀ, a block of samples at a
+            // time: the centred block stays in the cache, where a d × N centred copy
+            // (and its weighted copy) per component and iteration would not, and cost
+            // the kernel a page fault per 4 KiB. The full covariance takes a symmetric
+            // rank update of the block scaled by √r (half the products of a GEMM).
+            Eigen::MatrixXd scatter = Eigen::MatrixXd::Zero(d, diagonal ? 1 : d);
+            Eigen::MatrixXd centred;
+            for (Eigen::Index first = 0; first < n; first += kSampleBlock) {
+                const Eigen::Index count = std::min(kSampleBlock, n - first);
+                const auto r = resp.row(j).segment(first, count).array();
+                centred = x.middleCols(first, count).colwise() - mean;
+                if (diagonal) {
+                    scatter.col(0).noalias() += centred.array().square().matrix() * r.matrix().transpose();
+                } else {
+                    centred.array().rowwise() *= r.sqrt();
+                    scatter.selfadjointView<Eigen::Lower>().rankUpdate(centred);
+                }
+            }
             Eigen::MatrixXd cov;
             if (diagonal) {
-                const Eigen::VectorXd var =
-                    (centred.array().square().matrix() * resp.row(j).transpose()).array() + lambda;
-                cov = Eigen::MatrixXd((var / nj).asDiagonal());
+                cov = Eigen::MatrixXd(((scatter.col(0).array() + lambda) / nj).matrix().asDiagonal());
             } else {
-                cov = (centred * resp.row(j).asDiagonal() * centred.transpose() +
-                       lambda * Eigen::MatrixXd::Identity(d, d)) /
-                      nj;
-                cov = 0.5 * (cov + cov.transpose());
+                cov = scatter.selfadjointView<Eigen::Lower>();
+                cov.diagonal().array() += lambda;
+                cov /= nj;
             }
             fit.means[component] = mean;
             fit.covariances[component] = cov;
@@ -180,10 +197,9 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
                 // Samples a block at a time, so the d × block temporaries stay in
                 // the cache (each sample's distance is its own column: the same
                 // numbers as one solve over all of them).
-                constexpr Eigen::Index block = 1024;
                 Eigen::MatrixXd solved;
-                for (Eigen::Index first = 0; first < n; first += block) {
-                    const Eigen::Index count = std::min(block, n - first);
+                for (Eigen::Index first = 0; first < n; first += kSampleBlock) {
+                    const Eigen::Index count = std::min(kSampleBlock, n - first);
                     solved = x.middleCols(first, count).colwise() - mean;
                     llt.matrixL().solveInPlace(solved);
                     q.segment(first, count) = solved.colwise().squaredNorm();
