@@ -86,8 +86,11 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
     fit.covariances.assign(static_cast<std::size_t>(J), Eigen::MatrixXd::Identity(d, d));
     fit.weights.assign(static_cast<std::size_t>(J), 1.0 / J);
     // Start from the hard k-means clusters: one M-step with 0/1 responsibilities.
-    Eigen::MatrixXd resp = Eigen::MatrixXd::Zero(J, n);
-    for (Eigen::Index i = 0; i < n; ++i) resp(assignment[static_cast<std::size_t>(i)], i) = 1.0;
+    // Responsibilities are n × J: a component's column is contiguous, so the
+    // M-step of one component streams n doubles instead of striding over all
+    // n × J (and the E-step's workers write separate columns).
+    Eigen::MatrixXd resp = Eigen::MatrixXd::Zero(n, J);
+    for (Eigen::Index i = 0; i < n; ++i) resp(i, assignment[static_cast<std::size_t>(i)]) = 1.0;
 
     Eigen::VectorXd worst_fit(n);  // per-sample log-likelihood, to re-seed empty components
     worst_fit.setZero();
@@ -100,12 +103,12 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
         std::vector<char> empty(static_cast<std::size_t>(current), 0);  // (not vector<bool>: written by threads)
         parallel_for(static_cast<std::size_t>(current), workers, [&](std::size_t component) {
             const auto j = static_cast<Eigen::Index>(component);
-            const double nj = resp.row(j).sum();
+            const double nj = resp.col(j).sum();
             if (nj < 1e-6 * static_cast<double>(n) || nj < 1e-3) {
                 empty[component] = 1;
                 return;
             }
-            const Eigen::VectorXd mean = x * resp.row(j).transpose() / nj;
+            const Eigen::VectorXd mean = x * resp.col(j) / nj;
             // The weighted scatter Σ_i r_ij (x_i − μ)(x_i − μ)ᵀ, a block of samples at a
             // time: the centred block stays in the cache, where a d × N centred copy
             // (and its weighted copy) per component and iteration would not, and cost
@@ -115,7 +118,7 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
             Eigen::MatrixXd centred;
             for (Eigen::Index first = 0; first < n; first += kSampleBlock) {
                 const Eigen::Index count = std::min(kSampleBlock, n - first);
-                const auto r = resp.row(j).segment(first, count).array();
+                const auto r = resp.col(j).segment(first, count).transpose().array();
                 centred = x.middleCols(first, count).colwise() - mean;
                 if (diagonal) {
                     scatter.col(0).noalias() += centred.array().square().matrix() * r.matrix().transpose();
@@ -175,7 +178,7 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
         const int J_now = current;
         // E-step in the log domain, component by component on the workers; the
         // penalty's terms are summed afterwards in component order.
-        Eigen::MatrixXd log_joint(J_now, n);
+        Eigen::MatrixXd log_joint(n, J_now);
         std::vector<double> penalties(static_cast<std::size_t>(J_now), 0.0);
         parallel_for(static_cast<std::size_t>(J_now), workers, [&](std::size_t component) {
             const auto j = static_cast<Eigen::Index>(component);
@@ -207,15 +210,16 @@ GmmFit fit_gmm(const Eigen::MatrixXd& x, int components, Covariance covariance, 
                 log_det = 2.0 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
                 penalty += llt.solve(Eigen::MatrixXd::Identity(d, d)).trace();
             }
-            log_joint.row(j) = (std::log(fit.weights[component]) - 0.5 * (static_cast<double>(d) * kLog2Pi + log_det)) -
-                               0.5 * q.array();
+            log_joint.col(j) = ((std::log(fit.weights[component]) - 0.5 * (static_cast<double>(d) * kLog2Pi + log_det)) -
+                                0.5 * q.array())
+                                   .transpose();
         });
         double penalty = 0;
         for (const double term : penalties) penalty += term;
-        const Eigen::RowVectorXd peak = log_joint.colwise().maxCoeff();
-        const Eigen::RowVectorXd lse = peak.array() + (log_joint.rowwise() - peak).array().exp().colwise().sum().log();
-        resp = (log_joint.rowwise() - lse).array().exp().matrix();
-        worst_fit = lse.transpose();
+        const Eigen::VectorXd peak = log_joint.rowwise().maxCoeff();
+        const Eigen::VectorXd lse = peak.array() + (log_joint.colwise() - peak).array().exp().rowwise().sum().log();
+        resp = (log_joint.colwise() - lse).array().exp().matrix();
+        worst_fit = lse;
         const double log_likelihood = lse.sum();
         const double objective = log_likelihood - 0.5 * lambda * penalty;
         if (!std::isfinite(objective)) throw std::runtime_error("EM: the log-likelihood is not finite");
