@@ -3,27 +3,57 @@
 
 #include <cstddef>
 
+#include "actionstring/detail/lanes.hpp"
 #include "actionstring/model.hpp"
 
 namespace actionstring {
 
 /// Squared Euclidean distances between a pose feature and two node centroids
 /// (a node's children), the metric of the 2-means split that built them.
-/// Each sum adds its terms in increasing j; the two run in one loop, so their
-/// chains of additions overlap in the pipeline instead of one waiting for the other.
+///
+/// Each sum is taken in four parts, part k adding the terms of j ≡ k (mod 4) in
+/// increasing j, and ends as (part 0 + part 1) + (part 2 + part 3). That order is
+/// the definition, the same on every target: with SSE the parts are the four
+/// lanes of one register, on a Cortex-M4 four registers. One chain of additions
+/// per sum would wait an add's latency per term (40 terms at J = 40, at every
+/// level of the tree); four chains, and the two children's sums side by side,
+/// keep the pipeline full.
 inline void node_distances_sq(const ModelView& model, std::size_t first, std::size_t second, const float* feature,
                               float& to_first, float& to_second) noexcept {
     const std::size_t dim = model.tree_dim();
     const float* a = model.node_centroids + first * dim;
     const float* b = model.node_centroids + second * dim;
-    float sum_a = 0.0f, sum_b = 0.0f;
-    for (std::size_t j = 0; j < dim; ++j) {
-        const float da = feature[j] - a[j], db = feature[j] - b[j];
-        sum_a += da * da;
-        sum_b += db * db;
+    float pa[4], pb[4];
+    std::size_t j = 0;
+#if ACTIONSTRING_DETAIL_LANES == 4
+    detail::Lanes sa = detail::broadcast(0.0f), sb = detail::broadcast(0.0f);
+    for (; j + 4 <= dim; j += 4) {
+        const detail::Lanes f = detail::load_lanes(feature + j);
+        const detail::Lanes da = f - detail::load_lanes(a + j), db = f - detail::load_lanes(b + j);
+        sa = sa + da * da;
+        sb = sb + db * db;
     }
-    to_first = sum_a;
-    to_second = sum_b;
+    detail::store_lanes(pa, sa);
+    detail::store_lanes(pb, sb);
+#else
+    float a0 = 0.0f, a1 = 0.0f, a2 = 0.0f, a3 = 0.0f, b0 = 0.0f, b1 = 0.0f, b2 = 0.0f, b3 = 0.0f;
+    for (; j + 4 <= dim; j += 4) {
+        const float f0 = feature[j], f1 = feature[j + 1], f2 = feature[j + 2], f3 = feature[j + 3];
+        const float da0 = f0 - a[j], da1 = f1 - a[j + 1], da2 = f2 - a[j + 2], da3 = f3 - a[j + 3];
+        const float db0 = f0 - b[j], db1 = f1 - b[j + 1], db2 = f2 - b[j + 2], db3 = f3 - b[j + 3];
+        a0 += da0 * da0, a1 += da1 * da1, a2 += da2 * da2, a3 += da3 * da3;
+        b0 += db0 * db0, b1 += db1 * db1, b2 += db2 * db2, b3 += db3 * db3;
+    }
+    pa[0] = a0, pa[1] = a1, pa[2] = a2, pa[3] = a3;
+    pb[0] = b0, pb[1] = b1, pb[2] = b2, pb[3] = b3;
+#endif
+    for (std::size_t k = 0; j < dim; ++j, ++k) {  // the last dim mod 4 terms, into parts 0, 1, 2
+        const float da = feature[j] - a[j], db = feature[j] - b[j];
+        pa[k] += da * da;
+        pb[k] += db * db;
+    }
+    to_first = (pa[0] + pa[1]) + (pa[2] + pa[3]);
+    to_second = (pb[0] + pb[1]) + (pb[2] + pb[3]);
 }
 
 /// Descends from the root to a leaf, at each internal node moving to the child
