@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "actionstring/detail/lanes.hpp"
+#include "actionstring/detail/math.hpp"
 #include "actionstring/model.hpp"
 
 namespace actionstring {
@@ -23,7 +24,6 @@ inline void node_distances_sq(const ModelView& model, std::size_t first, std::si
     const std::size_t dim = model.tree_dim();
     const float* a = model.node_centroids + first * dim;
     const float* b = model.node_centroids + second * dim;
-    float pa[4], pb[4];
     std::size_t j = 0;
 #if ACTIONSTRING_DETAIL_LANES == 4
     detail::Lanes sa = detail::broadcast(0.0f), sb = detail::broadcast(0.0f);
@@ -33,20 +33,9 @@ inline void node_distances_sq(const ModelView& model, std::size_t first, std::si
         sa = sa + da * da;
         sb = sb + db * db;
     }
+    float pa[4], pb[4];
     detail::store_lanes(pa, sa);
     detail::store_lanes(pb, sb);
-#else
-    float a0 = 0.0f, a1 = 0.0f, a2 = 0.0f, a3 = 0.0f, b0 = 0.0f, b1 = 0.0f, b2 = 0.0f, b3 = 0.0f;
-    for (; j + 4 <= dim; j += 4) {
-        const float f0 = feature[j], f1 = feature[j + 1], f2 = feature[j + 2], f3 = feature[j + 3];
-        const float da0 = f0 - a[j], da1 = f1 - a[j + 1], da2 = f2 - a[j + 2], da3 = f3 - a[j + 3];
-        const float db0 = f0 - b[j], db1 = f1 - b[j + 1], db2 = f2 - b[j + 2], db3 = f3 - b[j + 3];
-        a0 += da0 * da0, a1 += da1 * da1, a2 += da2 * da2, a3 += da3 * da3;
-        b0 += db0 * db0, b1 += db1 * db1, b2 += db2 * db2, b3 += db3 * db3;
-    }
-    pa[0] = a0, pa[1] = a1, pa[2] = a2, pa[3] = a3;
-    pb[0] = b0, pb[1] = b1, pb[2] = b2, pb[3] = b3;
-#endif
     for (std::size_t k = 0; j < dim; ++j, ++k) {  // the last dim mod 4 terms, into parts 0, 1, 2
         const float da = feature[j] - a[j], db = feature[j] - b[j];
         pa[k] += da * da;
@@ -54,6 +43,26 @@ inline void node_distances_sq(const ModelView& model, std::size_t first, std::si
     }
     to_first = (pa[0] + pa[1]) + (pa[2] + pa[3]);
     to_second = (pb[0] + pb[1]) + (pb[2] + pb[3]);
+#else
+    // Eight accumulators in registers (a Cortex-M4 has 32 single-precision ones).
+    float a0 = 0.0f, a1 = 0.0f, a2 = 0.0f, a3 = 0.0f, b0 = 0.0f, b1 = 0.0f, b2 = 0.0f, b3 = 0.0f;
+    auto term = [feature, a, b](std::size_t i, float& part_a, float& part_b) ACTIONSTRING_DETAIL_ALWAYS_INLINE {
+        const float da = feature[i] - a[i], db = feature[i] - b[i];
+        part_a += da * da;
+        part_b += db * db;
+    };
+    for (; j + 4 <= dim; j += 4) {
+        term(j, a0, b0);
+        term(j + 1, a1, b1);
+        term(j + 2, a2, b2);
+        term(j + 3, a3, b3);
+    }
+    if (j < dim) term(j, a0, b0);  // the last dim mod 4 terms, into parts 0, 1, 2
+    if (j + 1 < dim) term(j + 1, a1, b1);
+    if (j + 2 < dim) term(j + 2, a2, b2);
+    to_first = (a0 + a1) + (a2 + a3);
+    to_second = (b0 + b1) + (b2 + b3);
+#endif
 }
 
 /// Descends from the root to a leaf, at each internal node moving to the child
