@@ -229,13 +229,15 @@ public:
                     const std::size_t low = top - 3;  // the block is cells low … top
                     detail::Lanes value = detail::load_lanes(costs + low - 1) - shift4;
                     detail::Lanes from = detail::load_lanes(starts + low - 1);
-                    const detail::Lanes here = detail::load_lanes(costs + low) - shift4;
-                    const detail::LaneMask take_stay = detail::less(here + stay4, value);
-                    value = detail::select(take_stay, here + stay4, value);
+                    // minimum(a, b) is exactly less(a, b) ? a : b (MINPS), so each
+                    // choice's cost takes one instruction; the mask picks the start.
+                    const detail::Lanes stay = detail::load_lanes(costs + low) - shift4 + stay4;
+                    const detail::LaneMask take_stay = detail::less(stay, value);
+                    value = detail::minimum(stay, value);
                     from = detail::select(take_stay, detail::load_lanes(starts + low), from);
-                    const detail::Lanes further = detail::load_lanes(costs + low - 2) - shift4;
-                    const detail::LaneMask take_skip = detail::less(further + skip4, value);
-                    value = detail::select(take_skip, further + skip4, value);
+                    const detail::Lanes skip = detail::load_lanes(costs + low - 2) - shift4 + skip4;
+                    const detail::LaneMask take_skip = detail::less(skip, value);
+                    value = detail::minimum(skip, value);
                     from = detail::select(take_skip, detail::load_lanes(starts + low - 2), from);
                     const detail::Lanes w = detail::lanes_of(column[rep[low]], column[rep[low + 1]],
                                                              column[rep[low + 2]], column[rep[low + 3]]);
