@@ -10,14 +10,17 @@
 // Forces a small helper (a function or a lambda) inline where it sits in a hot
 // loop: -Os keeps a helper called from several places out of line, and the
 // call then costs more than its body (the segmenter's cells on a Cortex-M4).
-// Measured, not assumed: forcing the projection's column blocks
-// (detail/axpy.hpp) inline cost the M4 15% more instructions, so they stay
-// calls; the GMM's four-component packs (gmm.hpp) must be inline, or every
-// lane operation becomes a call through the stack.
+// Measured, not assumed: the GMM's four-component packs (gmm.hpp) must be
+// inline, or every lane operation becomes a call through the stack. The
+// opposite also happens: the projection's column blocks (detail/axpy.hpp),
+// inlined into their one caller, run out of the M4's registers, so they are
+// kept calls (ACTIONSTRING_DETAIL_NEVER_INLINE).
 #if defined(__GNUC__) || defined(__clang__)
 #define ACTIONSTRING_DETAIL_ALWAYS_INLINE __attribute__((always_inline))
+#define ACTIONSTRING_DETAIL_NEVER_INLINE __attribute__((noinline))
 #else
 #define ACTIONSTRING_DETAIL_ALWAYS_INLINE
+#define ACTIONSTRING_DETAIL_NEVER_INLINE
 #endif
 
 namespace actionstring {
