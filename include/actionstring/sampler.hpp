@@ -91,20 +91,32 @@ public:
         // Offsets from the origin in unsigned arithmetic: no overflow for any int64 times.
         const std::uint64_t last = offset(last_us_, origin_us_);
         const std::uint64_t now = offset(time_us, origin_us_);
-        const std::uint64_t last_due = now / period_us_;
-        if (last_due >= next_tick_) {
-            // Ticks next_tick_ … last_due fell due (at most max_gap / period + 1 of
-            // them). Tick k takes the previous frame when k·P − last < now − k·P,
-            // that is when k < (last + now) / 2P: the first `from_previous` ticks.
+        // Most frames owe no tick and most of the rest owe one: both are told
+        // apart by a product, and the 64-bit divisions (a library call of
+        // hundreds of instructions on a 32-bit core) run only after a gap.
+        const std::uint64_t next_due = next_tick_ * period_us_;
+        if (now >= next_due) {
             const std::uint64_t sum = last + now;  // < 2^64: both are offsets within one stream
-            const std::uint64_t two_periods = 2u * std::uint64_t{period_us_};
-            const std::uint64_t first_current = (sum + two_periods - 1u) / two_periods;
-            const std::uint64_t previous_end = first_current < next_tick_ ? next_tick_
-                                               : first_current > last_due + 1u ? last_due + 1u
-                                                                                : first_current;
-            plan.from_previous = static_cast<std::uint32_t>(previous_end - next_tick_);
-            plan.from_current = static_cast<std::uint32_t>(last_due + 1u - previous_end);
-            next_tick_ = last_due + 1u;
+            if (now - next_due < period_us_) {
+                // One tick, k = next_tick_: it takes the previous frame when k·P − last < now − k·P.
+                const bool previous = 2u * next_due < sum;
+                plan.from_previous = previous ? 1u : 0u;
+                plan.from_current = previous ? 0u : 1u;
+                ++next_tick_;
+            } else {
+                // Ticks next_tick_ … last_due fell due (at most max_gap / period + 1 of
+                // them). Tick k takes the previous frame when k·P − last < now − k·P,
+                // that is when k < (last + now) / 2P: the first `from_previous` ticks.
+                const std::uint64_t last_due = now / period_us_;
+                const std::uint64_t two_periods = 2u * std::uint64_t{period_us_};
+                const std::uint64_t first_current = (sum + two_periods - 1u) / two_periods;
+                const std::uint64_t previous_end = first_current < next_tick_ ? next_tick_
+                                                   : first_current > last_due + 1u ? last_due + 1u
+                                                                                    : first_current;
+                plan.from_previous = static_cast<std::uint32_t>(previous_end - next_tick_);
+                plan.from_current = static_cast<std::uint32_t>(last_due + 1u - previous_end);
+                next_tick_ = last_due + 1u;
+            }
         }
         last_us_ = time_us;
         return plan;
