@@ -13,17 +13,26 @@
 
 #include <cstddef>
 
+#include "actionstring/detail/lanes.hpp"
 #include "actionstring/detail/math.hpp"
 
 namespace actionstring {
 namespace detail {
 
+// Without SIMD (a Cortex-M4), never inlined: inside its caller (the encoder's
+// character step, with the projection inlined) the four column pointers no
+// longer fit the registers and two are spilled to the stack on every row (15
+// instructions per row against 10 here); the call costs a few instructions per
+// block. With SSE the inlined loop is the faster one (40 ns a projection,
+// measured), so the host keeps it inline.
+#if ACTIONSTRING_DETAIL_LANES == 0
+#define ACTIONSTRING_DETAIL_AXPY4_INLINE ACTIONSTRING_DETAIL_NEVER_INLINE
+#else
+#define ACTIONSTRING_DETAIL_AXPY4_INLINE
+#endif
+
 /// y[r] += a0[r]·x0, then a1[r]·x1, a2[r]·x2, a3[r]·x3, for r < n.
-/// Never inlined: inside its caller (the encoder's character step, with the
-/// projection inlined) the four column pointers no longer fit a Cortex-M4's
-/// registers and two are spilled to the stack on every row (15 instructions
-/// per row against 10 here); the call costs a few instructions per block.
-ACTIONSTRING_DETAIL_NEVER_INLINE inline void axpy4(float* y, std::size_t n, const float* a0, float x0,
+ACTIONSTRING_DETAIL_AXPY4_INLINE inline void axpy4(float* y, std::size_t n, const float* a0, float x0,
                                                    const float* a1, float x1, const float* a2, float x2,
                                                    const float* a3, float x3) noexcept {
     if (n == 0) return;

@@ -13,8 +13,8 @@
 // Measured, not assumed: the GMM's four-component packs (gmm.hpp) must be
 // inline, or every lane operation becomes a call through the stack. The
 // opposite also happens: the projection's column blocks (detail/axpy.hpp),
-// inlined into their one caller, run out of the M4's registers, so they are
-// kept calls (ACTIONSTRING_DETAIL_NEVER_INLINE).
+// inlined into their one caller, run out of the M4's registers, so there they
+// are kept calls (ACTIONSTRING_DETAIL_NEVER_INLINE).
 #if defined(__GNUC__) || defined(__clang__)
 #define ACTIONSTRING_DETAIL_ALWAYS_INLINE __attribute__((always_inline))
 #define ACTIONSTRING_DETAIL_NEVER_INLINE __attribute__((noinline))
