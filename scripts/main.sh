@@ -87,7 +87,8 @@ header_eval() {
 }
 
 run hdm05 "HDM05 val (actor mm), CV-chosen model" "$data/hdm05/train.tsv" "$data/hdm05/val.tsv" "$root/models/hdm05-accurate.config"
-run hdm05_firmware "HDM05 val, compact firmware model" "$data/hdm05/train.tsv" "$data/hdm05/val.tsv" "$root/models/hdm05.config"
+run hdm05_firmware "HDM05 val, firmware model (the committed header)" "$data/hdm05/train.tsv" "$data/hdm05/val.tsv" "$root/models/hdm05.config"
+run hdm05_gmm "HDM05 val, the paper's GMM feature (J = 20)" "$data/hdm05/train.tsv" "$data/hdm05/val.tsv" "$root/models/hdm05-gmm.config"
 if [ -f "$data/msr-action3d/train.tsv" ]; then
     run msr "MSR Action3D test (even subjects), CV-chosen settings" "$data/msr-action3d/train.tsv" "$data/msr-action3d/test.tsv" \
         "$root/models/msr.config"

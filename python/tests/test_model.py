@@ -115,7 +115,9 @@ def test_annotate_equals_the_cli(hdm05, cli, hdm05_model):
     model = actionstring.Model.load(folder / "cli.model")
     got = model.annotate(actionstring.read_clip(amc, skeleton=str(asf)))
     assert got == expected["segments"]
-    assert got[-1]["label"] == "squat1Reps"
+    # The clip is one squat: the label holding most of its time says so.
+    longest = max(got, key=lambda segment: segment["end"] - segment["start"])
+    assert longest["label"] == "squat1Reps"
 
 
 def test_streamed_events_equal_annotate_events(hdm05, cli, hdm05_model):
