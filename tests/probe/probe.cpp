@@ -405,14 +405,19 @@ int main(int argc, char** argv) {
                     data.c_str());
         return 77;
     }
-    // A real model to mutate and stream through: the committed example's settings on HDM05.
-    const std::string model_path = "probe_hdm05.model";
-    const std::string train = cli + " train --clips " + data + "/hdm05/train.tsv --config " +
-                              std::string(ACTIONSTRING_SOURCE_DIR) + "/models/hdm05.config --out " + model_path +
-                              " >/dev/null 2>&1";
-    if (std::system(train.c_str()) != 0) {
-        std::fprintf(stderr, "actionstring_probe: training the probe model failed\n");
-        return 1;
+    // Real models to mutate and stream through, on HDM05: the committed example's
+    // settings (no GMM; bone lengths, velocity) and the paper's GMM model, so
+    // every table of a model is mutated.
+    const std::string model_path = "probe_hdm05.model", gmm_model_path = "probe_hdm05_gmm.model";
+    for (const auto& [config, path] : {std::pair<std::string, std::string>{"hdm05.config", model_path},
+                                       std::pair<std::string, std::string>{"hdm05-gmm.config", gmm_model_path}}) {
+        const std::string train = cli + " train --clips " + data + "/hdm05/train.tsv --config " +
+                                  std::string(ACTIONSTRING_SOURCE_DIR) + "/models/" + config + " --out " + path +
+                                  " >/dev/null 2>&1";
+        if (std::system(train.c_str()) != 0) {
+            std::fprintf(stderr, "actionstring_probe: training the probe model (models/%s) failed\n", config.c_str());
+            return 1;
+        }
     }
     std::mt19937_64 rng(seed);
     std::vector<Tally> tallies{Tally("mutated motion files, lists and label files"),
@@ -420,10 +425,13 @@ int main(int argc, char** argv) {
                                Tally("adversarial timestamps and frames (3,000 frames each)"),
                                Tally("command-line misuse")};
     probe_files(data, cases, rng, tallies[0]);
-    probe_models(model_path, cases / 2, rng, tallies[1]);
-    probe_streams(model_path, cases / 20, rng, tallies[2]);
+    probe_models(model_path, cases / 4, rng, tallies[1]);
+    probe_models(gmm_model_path, cases / 4, rng, tallies[1]);
+    probe_streams(model_path, cases / 40, rng, tallies[2]);
+    probe_streams(gmm_model_path, cases / 40, rng, tallies[2]);
     probe_cli(cli, data, model_path, tallies[3]);
     std::remove(model_path.c_str());
+    std::remove(gmm_model_path.c_str());
 
     std::string table =
         "| cases | tried | accepted | refused clearly | crashes | hangs | silent garbage | unclear errors |\n"
