@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <random>
 #include <vector>
 
 #include "actionstring/motion.hpp"
 #include "actionstring/encoder.hpp"
+#include "run/encode.hpp"
 #include "run/state.hpp"
 #include "toy/toy.hpp"
 #include "train/pipeline.hpp"
@@ -112,4 +114,75 @@ TEST_CASE("a model with motion trains, and its encoder's storage holds the ring"
     CHECK(StringEncoder::required_bytes(view) > MotionRing::required_bytes(view));
     host::Stateful<StringEncoder> encoder;
     CHECK(encoder.init(view, EncoderConfig{1000000, 0}) == Status::ok);
+}
+
+TEST_CASE("a frame's velocity taken after its own keep() is the same, bit for bit") {
+    // The encoder takes a frame's velocity only when its character is due,
+    // which for the earlier of two frames is after that frame was kept.
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::normal_distribution<float> noise(0.0f, 0.3f);
+    for (int trial = 0; trial < 200; ++trial) {
+        const auto span = static_cast<std::uint32_t>(10000 + rng() % 1990001);  // the model's bounds: 10 ms … 2 s
+        const ModelView view = motion_view(static_cast<float>(0.1 + 4.0 * unit(rng)), span);
+        host::Stateful<MotionRing> eager, lazy;
+        REQUIRE(eager.init(view) == Status::ok);
+        REQUIRE(lazy.init(view) == Status::ok);
+        const double rate = 5.0 + 200.0 * unit(rng);
+        std::int64_t t = static_cast<std::int64_t>(rng() % 1000000);
+        for (int f = 0; f < 400; ++f) {
+            // Steady frames, jitter, repeated times, drops and the odd gap of several spans.
+            const double u = unit(rng);
+            const double step = u < 0.05 ? 0.0 : u < 0.1 ? 3.0 * span * 1e-6 * unit(rng) : (0.5 + unit(rng)) / rate;
+            t += static_cast<std::int64_t>(step * 1e6);
+            float a[6] = {noise(rng), noise(rng), noise(rng), 0, 0, 0};
+            float b[6] = {a[0], a[1], a[2], 9, 9, 9};
+            eager->update(view, t, a);
+            lazy->keep(view, t, b);
+            lazy->velocity(view, t, b);
+            CAPTURE(trial);
+            CAPTURE(f);
+            for (int i = 3; i < 6; ++i) REQUIRE(std::memcmp(&a[i], &b[i], sizeof(float)) == 0);
+        }
+    }
+}
+
+TEST_CASE("the encoder's string equals the eagerly sampled features' characters, frames irregular") {
+    // The encoder takes velocities lazily; the trainer's sample_poses() takes
+    // every frame's. Their characters must agree on any timing.
+    host::ToyWorld world = host::make_toy_world();
+    host::TrainingOptions options;
+    options.components = 0;
+    options.pca_dim = 8;
+    options.velocity_weight = 1.0;
+    options.velocity_span_s = 0.3;
+    auto clips = host::toy_clips(world, 2, 6);
+    const host::ModelData model = host::train_model(clips, options);
+    const ModelView view = model.view();
+    REQUIRE(view.has_motion());
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::size_t compared = 0;
+    for (auto& labelled : clips) {
+        host::Clip& clip = labelled.clip;
+        // Re-time the clip: jitter, repeated times and a gap longer than the span.
+        double t = 0.0;
+        for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+            const double u = unit(rng);
+            t += u < 0.05 ? 0.0 : u < 0.08 ? 0.5 : (0.3 + 1.4 * unit(rng)) / 60.0;
+            clip.times[f] = t;
+        }
+        const std::vector<Character> string = host::clip_string(view, clip);
+        std::vector<float> poses;
+        host::sample_poses(view, clip, 1e6 / view.string_period_us, poses);
+        const std::size_t D = view.input_dim();
+        REQUIRE(poses.size() == string.size() * D);
+        std::vector<float> feature(view.feature_dim);
+        for (std::size_t k = 0; k < string.size(); ++k) {
+            REQUIRE(project_pose(view, poses.data() + k * D, feature.data()) == Status::ok);
+            CHECK(descend_tree(view, feature.data()) == string[k]);
+            ++compared;
+        }
+    }
+    CHECK(compared > 100);
 }

@@ -56,9 +56,24 @@ public:
 
     /// Writes the velocity of the pose in `input[0, D)` at `time_us` into
     /// `input[D, 2 D)` (D = model.pose_dim()), then keeps the pose if a
-    /// quarter span has passed since the last one kept. The model must have
-    /// motion and be the one given to init() (the encoder sees to both).
+    /// quarter span has passed since the last one kept: velocity() and keep()
+    /// in one call. The model must have motion and be the one given to init().
     void update(const ModelView& model, std::int64_t time_us, float* input) noexcept {
+        velocity(model, time_us, input);
+        keep(model, time_us, input);
+    }
+
+    /// Writes the velocity of the pose in `input[0, D)` at `time_us` into
+    /// `input[D, 2 D)` from the poses kept so far; changes nothing kept.
+    ///
+    /// A frame's velocity may be asked for after keep() of that frame (and of
+    /// no later one) with the same result, bit for bit: the pose just kept is
+    /// younger than half a span, so it is never chosen, and the pose it
+    /// replaced, the oldest of a full ring, never is either (poses are kept at
+    /// least a quarter span apart, so the next oldest is at least a span old,
+    /// younger, and so nearer to the span). The encoder relies on this to take
+    /// the velocity only of frames whose character is asked for.
+    void velocity(const ModelView& model, std::int64_t time_us, float* input) const noexcept {
         const std::size_t D = pose_dim_;
         const std::int64_t span = model.velocity_span_us;
         // The kept pose whose age is nearest the span, among those at least half a span old.
@@ -70,9 +85,9 @@ public:
             const std::int64_t error = age > span ? age - span : span - age;
             if (best == motion_ring_poses || error < best_error) best = k, best_error = error;
         }
-        float* velocity = input + D;
+        float* out = input + D;
         if (best == motion_ring_poses) {
-            for (std::size_t i = 0; i < D; ++i) velocity[i] = 0.0f;
+            for (std::size_t i = 0; i < D; ++i) out[i] = 0.0f;
         } else {
             const float per_second = model.velocity_weight / (static_cast<float>(time_us - times_[best]) * 1.0e-6f);
             const float* earlier = poses_ + best * D;
@@ -82,9 +97,16 @@ public:
                 // Cortex-M4 then skips two compare-and-selects per value).
                 if (!(std::fabs(v) <= max_pose_coordinate))
                     v = v > max_pose_coordinate ? max_pose_coordinate : v < -max_pose_coordinate ? -max_pose_coordinate : v;
-                velocity[i] = v;
+                out[i] = v;
             }
         }
+    }
+
+    /// Keeps the pose in `input[0, D)` at `time_us` if a quarter span has
+    /// passed since the last one kept (call it for every accepted frame).
+    void keep(const ModelView& model, std::int64_t time_us, const float* input) noexcept {
+        const std::size_t D = pose_dim_;
+        const std::int64_t span = model.velocity_span_us;
         const std::size_t newest = next_ == 0 ? motion_ring_poses - 1 : next_ - 1;
         if (count_ == 0 || time_us - times_[newest] >= span / 4) {
             float* kept = poses_ + next_ * D;
