@@ -55,6 +55,16 @@ std::vector<double> clock(double rate_hz, double seconds, double jitter, double 
     return times;
 }
 
+// Training options of a small GMM-free toy model with motion.
+host::TrainingOptions toy_motion_options() {
+    host::TrainingOptions options;
+    options.components = 0;
+    options.pca_dim = 8;
+    options.velocity_weight = 1.0;
+    options.velocity_span_s = 0.3;
+    return options;
+}
+
 }  // namespace
 
 TEST_CASE("the velocity of a steady motion is its speed, weighted, at any frame rate, jitter or drops") {
@@ -98,11 +108,7 @@ TEST_CASE("a restart forgets the ring, and a velocity beyond the coordinate boun
 
 TEST_CASE("a model with motion trains, and its encoder's storage holds the ring") {
     host::ToyWorld world = host::make_toy_world();
-    host::TrainingOptions options;
-    options.components = 0;
-    options.pca_dim = 8;
-    options.velocity_weight = 1.0;
-    options.velocity_span_s = 0.3;
+    const host::TrainingOptions options = toy_motion_options();
     const host::ModelData model = host::train_model(host::toy_clips(world, 2, 6), options);
     const ModelView view = model.view();
     CHECK(view.has_motion());
@@ -151,11 +157,7 @@ TEST_CASE("the encoder's string equals the eagerly sampled features' characters,
     // The encoder takes velocities lazily; the trainer's sample_poses() takes
     // every frame's. Their characters must agree on any timing.
     host::ToyWorld world = host::make_toy_world();
-    host::TrainingOptions options;
-    options.components = 0;
-    options.pca_dim = 8;
-    options.velocity_weight = 1.0;
-    options.velocity_span_s = 0.3;
+    const host::TrainingOptions options = toy_motion_options();
     auto clips = host::toy_clips(world, 2, 6);
     const host::ModelData model = host::train_model(clips, options);
     const ModelView view = model.view();
