@@ -215,25 +215,24 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     std::vector<float> pose_buffer(model.input_dim()), feature_buffer(model.feature_dim),
         posterior_buffer(model.component_count), scratch_buffer(gmm_scratch_floats(model)),
         skeleton_buffer(3u * model.joint_count);
-    std::vector<unsigned char> motion_storage(MotionRing::required_bytes(model) + 16u);
     float* const pose = pose_buffer.data();
     float* const feature = feature_buffer.data();
     float* const posterior = posterior_buffer.data();
     float* const scratch = scratch_buffer.data();
     float* const skeleton_data = skeleton_buffer.data();
-    MotionRing motion;
-    if (motion.init(model, motion_storage.data(), motion_storage.size()) != Status::ok) {
-        std::fprintf(stderr, "%s: the velocity ring refused its storage\n", name.c_str());
+    host::Stateful<MotionRing> motion;
+    if (motion.init(model) != Status::ok) {
+        std::fprintf(stderr, "%s: the velocity ring refused the model\n", name.c_str());
         std::exit(1);
     }
     for (int pass = 0; pass <= passes; ++pass) {
-        motion.reset();
+        motion->reset();
         for (std::size_t f = 0; f < frames; ++f) {
             Status status = Status::ok;
             const std::int64_t a = timed([&] { status = normalize_pose(model, stream.frame(f), pose, skeleton_data); });
             if (status != Status::ok) continue;
             std::int64_t v = 0;
-            if (model.has_motion()) v = timed([&] { motion.update(model, stream.times_us[f], pose); });
+            if (model.has_motion()) v = timed([&] { motion->update(model, stream.times_us[f], pose); });
             const float* input = pose;
             std::int64_t b = 0;
             if (model.has_projection()) {
