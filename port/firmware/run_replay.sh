@@ -67,6 +67,7 @@ replay() {
         echo "$heap"
         exit 1
     fi
+    echo "$what: heap: no malloc, _sbrk, operator new or __cxa_allocate_exception in the ELF"
 }
 
 # report ELF OUT: memory, flash by part and instructions per frame, as Markdown.
@@ -124,7 +125,6 @@ report() {
 }
 
 replay "" "committed model"
-echo "heap: no malloc, _sbrk, operator new or __cxa_allocate_exception in the ELF"
 
 if [ -n "$c_api_test" ]; then
     stream_table --text --out "$work/stream.txt" 2>/dev/null
