@@ -129,3 +129,110 @@ TEST_CASE("the GMM needs one y per component of a block, and none without a GMM"
     v.component_count = 40;
     CHECK(gmm_scratch_floats(v) == 96);
 }
+
+namespace {
+
+// The posterior the textbook way: every log joint in full, then the peak, the
+// exponentials and the normalisation in gmm_posterior()'s order.
+struct ReferencePosterior {
+    std::vector<float> posterior;
+    float log_likelihood = 0.0f;
+    std::size_t most_probable = 0;
+};
+
+ReferencePosterior reference_posterior(const ModelView& m, const float* z) {
+    const std::size_t J = m.component_count;
+    ReferencePosterior out;
+    out.posterior.resize(J);
+    float peak = -detail::infinity();
+    for (std::size_t j = 0; j < J; ++j) {
+        out.posterior[j] = reference_log_joint(m, j, z);
+        if (out.posterior[j] > peak) peak = out.posterior[j], out.most_probable = j;
+    }
+    float sum = 0.0f;
+    for (float& p : out.posterior) {
+        p = detail::exp_portable(p - peak);
+        sum += p;
+    }
+    const float inverse = 1.0f / sum;
+    for (float& p : out.posterior) p *= inverse;
+    out.log_likelihood = peak + detail::log_portable(sum);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("a posterior whose blocks stop early has the bits of the full computation") {
+    // Means spread from tight to far apart, so that from a few components to
+    // nearly all of them underflow, and some lie near exp's underflow bound,
+    // where a wrong bound would show; every start the caller may give.
+    std::mt19937 rng(77);
+    std::normal_distribution<float> normal(0.0f, 1.0f);
+    std::size_t compared = 0, zeros = 0, near_bound = 0;
+    for (const Covariance kind : {Covariance::full, Covariance::diagonal})
+        for (const std::size_t J : {1u, 4u, 7u, 13u, 40u})
+            for (const std::size_t d : {3u, 8u, 9u, 13u, 16u, 24u, 25u})
+                for (const float spread : {0.5f, 3.0f, 8.0f}) {
+                    LaneModel m = make_model(rng, d, J, kind);
+                    for (float& v : m.means) v *= spread;
+                    std::vector<float> z(d), posterior(J), scratch(gmm_scratch_floats(m.view));
+                    for (int sample = 0; sample < 3; ++sample) {
+                        const std::size_t near = static_cast<std::size_t>(sample) % J;
+                        for (std::size_t c = 0; c < d; ++c) z[c] = m.means[near * d + c] + 0.5f * normal(rng);
+                        const ReferencePosterior want = reference_posterior(m.view, z.data());
+                        for (std::size_t j = 0; j < J; ++j) {
+                            const float gap = reference_log_joint(m.view, j, z.data()) -
+                                              reference_log_joint(m.view, want.most_probable, z.data());
+                            if (gap < -60.0f && gap > -120.0f) ++near_bound;
+                        }
+                        for (const std::size_t start : {std::size_t{0}, J / 2, J - 1, J + 5}) {
+                            std::size_t most_probable = start;
+                            float log_likelihood = 0.0f;
+                            REQUIRE(gmm_posterior(m.view, z.data(), posterior.data(), scratch.data(), &log_likelihood,
+                                                  &most_probable) == Status::ok);
+                            for (std::size_t j = 0; j < J; ++j) {
+                                CHECK(bits(posterior[j]) == bits(want.posterior[j]));
+                                zeros += posterior[j] == 0.0f;
+                            }
+                            CHECK(bits(log_likelihood) == bits(want.log_likelihood));
+                            CHECK(most_probable == want.most_probable);
+                            ++compared;
+                        }
+                        // Without a start, the same bits.
+                        REQUIRE(gmm_posterior(m.view, z.data(), posterior.data(), scratch.data()) == Status::ok);
+                        for (std::size_t j = 0; j < J; ++j) CHECK(bits(posterior[j]) == bits(want.posterior[j]));
+                    }
+                }
+    CHECK(compared > 1000);
+    CHECK(zeros > 10000);      // many components underflowed, so blocks had reasons to stop
+    CHECK(near_bound > 300);  // and many lay near the bound
+}
+
+TEST_CASE("a block stops early exactly when its posteriors cannot be above zero") {
+    std::mt19937 rng(5);
+    for (const Covariance kind : {Covariance::full, Covariance::diagonal})
+        for (const std::size_t d : {9u, 24u}) {
+            const LaneModel m = make_model(rng, d, 4, kind);
+            std::vector<float> z(d), scratch(gmm_scratch_floats(m.view));
+            float want[4], q[4];
+            for (std::size_t c = 0; c < d; ++c) z[c] = m.means[c] + 1000.0f;  // far from every component
+            REQUIRE(gmm_log_joint(m.view, z.data(), want, scratch.data()) == Status::ok);
+            // No peak: every distance in full, the bits of gmm_log_joint().
+            REQUIRE(detail::gmm_block_distances<4>(m.view, 0, z.data(), scratch.data(), q, nullptr));
+            for (std::size_t l = 0; l < 4; ++l) CHECK(bits(detail::gmm_log_joint_of(m.view, l, q[l])) == bits(want[l]));
+            // A peak just above the best of them: none can underflow, so no stop.
+            float best = want[0];
+            for (float w : want) best = w > best ? w : best;
+            const float close = best + 1.0f;
+            CHECK(detail::gmm_block_distances<4>(m.view, 0, z.data(), scratch.data(), q, &close));
+            // A peak more than exp's underflow above every bound (a log joint is at
+            // most log w + log normalizer): the block stops at its first check.
+            float ceiling = -detail::infinity();
+            for (std::size_t l = 0; l < 4; ++l) {
+                const float c = m.log_weights[l] + m.log_normalizers[l];
+                ceiling = c > ceiling ? c : ceiling;
+            }
+            const float far = ceiling + 100.0f;
+            CHECK_FALSE(detail::gmm_block_distances<4>(m.view, 0, z.data(), scratch.data(), q, &far));
+        }
+}

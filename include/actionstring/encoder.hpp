@@ -93,6 +93,7 @@ public:
         motion_.reset();
         has_previous_ = false;
         last_ = 0;
+        most_probable_ = 0;
     }
 
     /// Encodes one frame.
@@ -157,7 +158,7 @@ private:
         // no bounded pose overflows the GMM. Should it ever, repeat the last
         // character rather than invent one.
         if (!model_->has_gmm()) last_ = descend_tree(*model_, feature);
-        else if (gmm_posterior(*model_, feature, posterior_, scratch_) == Status::ok)
+        else if (gmm_posterior(*model_, feature, posterior_, scratch_, nullptr, &most_probable_) == Status::ok)
             last_ = descend_tree(*model_, posterior_);
         characters_[slot] = last_;
         ready_[slot] = true;
@@ -191,6 +192,7 @@ private:
     std::size_t previous_ = 0;
     bool has_previous_ = false;
     Character last_ = 0;
+    std::size_t most_probable_ = 0;  // the last posterior's peak: where the next GMM pass starts
     float* feature_ = nullptr;    // the projected pose
     float* posterior_ = nullptr;  // component_count floats
     float* scratch_ = nullptr;    // the GMM's gmm_scratch_floats()

@@ -15,7 +15,7 @@
 
 namespace actionstring {
 
-/// Floats of scratch the GMM needs: one y = U (z − μ) per component of a block.
+/// Floats of scratch the GMM needs: one z − μ per component of a block.
 constexpr std::size_t gmm_scratch_floats(const ModelView& model) noexcept {
     return model.has_gmm() ? model.gmm_block_lanes(0) * model.feature_dim : 0u;
 }
@@ -24,13 +24,15 @@ namespace detail {
 
 #if defined(__GNUC__)
 #define ACTIONSTRING_DETAIL_UNROLL _Pragma("GCC unroll 4")
+#define ACTIONSTRING_DETAIL_UNROLL_ROWS _Pragma("GCC unroll 8")
 #else
 #define ACTIONSTRING_DETAIL_UNROLL
+#define ACTIONSTRING_DETAIL_UNROLL_ROWS
 #endif
 
-// L floats, one per component of a block, with the two operations the
-// distances need. The loops over lanes are unrolled even at -Os, so on a
-// Cortex-M4 (no SIMD) the pack lives in registers.
+// L floats, one per component of a block, with the operations the distances
+// need. The loops over lanes are unrolled even at -Os, so on a Cortex-M4 (no
+// SIMD) the pack lives in registers.
 template <std::size_t L>
 struct GmmPack {
     float v[L];
@@ -42,9 +44,10 @@ struct GmmPack {
     ACTIONSTRING_DETAIL_ALWAYS_INLINE void store(float* p) const noexcept {
         ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) p[l] = v[l];
     }
-    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack zero() noexcept {
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack zero() noexcept { return broadcast(0.0f); }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack broadcast(float x) noexcept {
         GmmPack a;
-        ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) a.v[l] = 0.0f;
+        ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) a.v[l] = x;
         return a;
     }
     /// z_c − μ_j[c] for the block's components (means J × d, row by row).
@@ -53,13 +56,28 @@ struct GmmPack {
         ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) a.v[l] = z - mean[l * d];
         return a;
     }
+    /// centred() for c = 0 … d − 1, stored at e + c · L.
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static void centre_all(const float* z, const float* mean, std::size_t d,
+                                                             float* e) noexcept {
+        for (std::size_t c = 0; c < d; ++c) centred(z[c], mean + c, d).store(e + c * L);
+    }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator+(GmmPack a, GmmPack b) noexcept {
         ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) a.v[l] = a.v[l] + b.v[l];
+        return a;
+    }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator-(GmmPack a, GmmPack b) noexcept {
+        ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) a.v[l] = a.v[l] - b.v[l];
         return a;
     }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator*(GmmPack a, GmmPack b) noexcept {
         ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) a.v[l] = a.v[l] * b.v[l];
         return a;
+    }
+    /// a < b in every lane (false when any lane is NaN).
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE friend bool all_less(GmmPack a, GmmPack b) noexcept {
+        bool all = true;
+        ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) all = all && a.v[l] < b.v[l];
+        return all;
     }
 };
 
@@ -72,92 +90,160 @@ struct GmmPack<4> {
     ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack load(const float* p) noexcept { return {load_lanes(p)}; }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE void store(float* p) const noexcept { store_lanes(p, x); }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack zero() noexcept { return {detail::broadcast(0.0f)}; }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack broadcast(float v) noexcept { return {detail::broadcast(v)}; }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack centred(float z, const float* mean, std::size_t d) noexcept {
         return {detail::broadcast(z) - lanes_of(mean[0], mean[d], mean[2 * d], mean[3 * d])};
     }
+    // Four coordinates of each component at once (the means are rows), then a
+    // 4 × 4 transpose into the lanes: the same subtractions, fewer shuffles
+    // than gathering each coordinate's four means.
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static void centre_all(const float* z, const float* mean, std::size_t d,
+                                                             float* e) noexcept {
+        std::size_t c = 0;
+        for (; c + 4 <= d; c += 4) {
+            const __m128 zc = _mm_loadu_ps(z + c);
+            __m128 r0 = _mm_sub_ps(zc, _mm_loadu_ps(mean + c)), r1 = _mm_sub_ps(zc, _mm_loadu_ps(mean + d + c));
+            __m128 r2 = _mm_sub_ps(zc, _mm_loadu_ps(mean + 2 * d + c));
+            __m128 r3 = _mm_sub_ps(zc, _mm_loadu_ps(mean + 3 * d + c));
+            _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+            _mm_storeu_ps(e + 4 * c, r0);
+            _mm_storeu_ps(e + 4 * c + 4, r1);
+            _mm_storeu_ps(e + 4 * c + 8, r2);
+            _mm_storeu_ps(e + 4 * c + 12, r3);
+        }
+        for (; c < d; ++c) centred(z[c], mean + c, d).store(e + c * 4);
+    }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator+(GmmPack a, GmmPack b) noexcept { return {a.x + b.x}; }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator-(GmmPack a, GmmPack b) noexcept { return {a.x - b.x}; }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator*(GmmPack a, GmmPack b) noexcept { return {a.x * b.x}; }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE friend bool all_less(GmmPack a, GmmPack b) noexcept {
+        return detail::all_less(a.x, b.x);
+    }
 };
+#endif
+
+// Rows r … r + G − 1 of y = U (z − μ) for the L components of a block, each
+// in the textbook order (c = r, r + 1, … d − 1), their squares added to `sum`
+// in row order. U is packed column by column: U[r][c] is element
+// c(c + 1)/2 + r, so the group's rows of one column are adjacent and one pass
+// over the columns serves all G rows (G independent chains of additions).
+template <std::size_t L, std::size_t G>
+ACTIONSTRING_DETAIL_ALWAYS_INLINE inline GmmPack<L> gmm_rows(const float* u, const float* e, std::size_t r,
+                                                            std::size_t d, GmmPack<L> sum) noexcept {
+    using Pack = GmmPack<L>;
+    Pack y[G];
+    ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t i = 0; i < G; ++i) y[i] = Pack::zero();
+    const float* column = u + (r * (r + 1) / 2 + r) * L;  // column r, row r
+    // The triangle: column r + t reaches rows r … r + t only.
+    ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t t = 0; t + 1 < G; ++t) {
+        const Pack ec = Pack::load(e + (r + t) * L);
+        ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t i = 0; i <= t; ++i) y[i] = y[i] + Pack::load(column + i * L) * ec;
+        column += (r + t + 1) * L;
+    }
+    for (std::size_t c = r + G - 1; c < d; ++c) {
+        const Pack ec = Pack::load(e + c * L);
+        ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t i = 0; i < G; ++i) y[i] = y[i] + Pack::load(column + i * L) * ec;
+        column += (c + 1) * L;
+    }
+    ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t i = 0; i < G; ++i) sum = sum + y[i] * y[i];
+    return sum;
+}
+
+// Rows per group, where a block may stop: with SIMD a first group of four,
+// then eight (eight chains keep the adder busy, and on HDM05 at J = 40 most
+// blocks that stop do so within twelve rows); four on a Cortex-M4, whose 32
+// float registers hold four rows of four lanes.
+#if ACTIONSTRING_DETAIL_LANES == 4
+constexpr std::size_t gmm_group_rows = 8;
+#else
+constexpr std::size_t gmm_group_rows = 4;
 #endif
 
 // Squared Mahalanobis distances ‖U_j (z − μ_j)‖² of a feature to the L
 // components first … first + L − 1 of one block (L = its lanes, 1 … 4).
 //
-// The block's factors are interleaved (ModelView::gmm_factor_index), so the
-// loops walk them once, in memory order, with the L components side by side.
 // Each component's arithmetic is the textbook order whatever L is: y[r] adds
 // U[r][c] (z_c − μ_c) for c = r, r + 1, … (a product, then a sum, each rounded
 // once: the runtime is built without fused multiply-adds), and q adds y[r]²
 // for r = 0, 1, …. So a component's distance has the same bits in a block of
 // four, in the last short block, in SIMD lanes or on a Cortex-M4.
-// y: scratch of L · feature_dim floats, y[r · L + l]; q receives L floats.
+//
+// The rows are computed a group at a time, in order, and q grows only by
+// squares, so after each group q is a lower bound of the distance and
+// log w_j + log normalizer_j − ½ q an upper bound of the log joint (rounding is
+// monotone, so the bound holds in float too). When `peak` is given (the
+// largest log joint found so far) and every component's bound lies more than
+// exp's underflow below it, their posteriors are 0 whatever the remaining
+// rows add: the block stops there and returns false (q is then not written).
+// Most components of a large mixture are that far from a pose.
+// e: scratch of L · feature_dim floats; q receives L floats.
 template <std::size_t L>
-inline void gmm_block_distances(const ModelView& model, std::size_t first, const float* feature, float* y,
-                                float* q) noexcept {
+inline bool gmm_block_distances(const ModelView& model, std::size_t first, const float* feature, float* e, float* q,
+                                const float* peak) noexcept {
     using Pack = GmmPack<L>;
     const std::size_t d = model.feature_dim;
     const float* u = model.gmm_factors + first * model.factor_size();
     const float* mean = model.gmm_means + first * d;
+    // The upper bounds of the log joints, in gmm_log_joint_of()'s own expression.
+    Pack constants = Pack::zero(), peaks = Pack::zero();
+    const Pack half = Pack::broadcast(0.5f), limit = Pack::broadcast(exp_underflow_bound);
+    if (peak != nullptr) {
+        float c[L];
+        for (std::size_t l = 0; l < L; ++l) c[l] = model.gmm_log_weights[first + l] + model.gmm_log_normalizers[first + l];
+        constants = Pack::load(c);
+        peaks = Pack::broadcast(*peak);
+    }
+    auto negligible = [&](Pack sum) ACTIONSTRING_DETAIL_ALWAYS_INLINE {
+        return peak != nullptr && all_less((constants - half * sum) - peaks, limit);
+    };
     Pack sum = Pack::zero();
     if (model.covariance == Covariance::diagonal) {
         for (std::size_t c = 0; c < d; ++c, u += L) {
             const Pack v = Pack::load(u) * Pack::centred(feature[c], mean + c, d);
             sum = sum + v * v;
+            if (c % gmm_group_rows == gmm_group_rows - 1 && negligible(sum)) return false;
         }
         sum.store(q);
-        return;
+        return true;
     }
-    for (std::size_t i = 0; i < L * d; ++i) y[i] = 0.0f;
-    // U packed column by column (LAPACK 'U' packed): column c holds U[0..c][c].
-    // Four columns go per pass over rows 0..c, so each y[r] is loaded and
-    // stored once for four products (on a Cortex-M4 that halves the
-    // instructions per product); rows c + 1..c + 3, which only the later
-    // columns reach, are finished after it, each adding its terms in column order.
-    std::size_t c = 0;
-    for (; c + 4 <= d; c += 4) {
-        const float* u0 = u;                 // column c:     rows 0..c
-        const float* u1 = u0 + (c + 1) * L;  // column c + 1: rows 0..c + 1
-        const float* u2 = u1 + (c + 2) * L;
-        const float* u3 = u2 + (c + 3) * L;
-        const Pack e0 = Pack::centred(feature[c], mean + c, d), e1 = Pack::centred(feature[c + 1], mean + c + 1, d);
-        const Pack e2 = Pack::centred(feature[c + 2], mean + c + 2, d);
-        const Pack e3 = Pack::centred(feature[c + 3], mean + c + 3, d);
-        float* row = y;
-        for (std::size_t r = 0; r <= c; ++r, row += L, u0 += L, u1 += L, u2 += L, u3 += L) {
-            Pack s = Pack::load(row);
-            s = s + Pack::load(u0) * e0;
-            s = s + Pack::load(u1) * e1;
-            s = s + Pack::load(u2) * e2;
-            s = s + Pack::load(u3) * e3;
-            s.store(row);
-        }
-        Pack s = Pack::load(row);  // row c + 1
-        s = s + Pack::load(u1) * e1;
-        s = s + Pack::load(u2) * e2;
-        s = s + Pack::load(u3) * e3;
-        s.store(row);
-        row += L, u2 += L, u3 += L;
-        s = Pack::load(row);  // row c + 2
-        s = s + Pack::load(u2) * e2;
-        s = s + Pack::load(u3) * e3;
-        s.store(row);
-        row += L, u3 += L;
-        (Pack::load(row) + Pack::load(u3) * e3).store(row);  // row c + 3
-        u = u3 + L;
+    Pack::centre_all(feature, mean, d, e);
+    std::size_t r = 0;
+    if (gmm_group_rows > 4 && d > 8) {  // a first check after four rows
+        sum = gmm_rows<L, 4>(u, e, r, d, sum);
+        r = 4;
+        if (negligible(sum)) return false;
     }
-    for (; c < d; ++c) {
-        const Pack e = Pack::centred(feature[c], mean + c, d);
-        float* row = y;
-        for (std::size_t r = 0; r <= c; ++r, row += L, u += L) (Pack::load(row) + Pack::load(u) * e).store(row);
+    for (; r + gmm_group_rows <= d; r += gmm_group_rows) {
+        sum = gmm_rows<L, gmm_group_rows>(u, e, r, d, sum);
+        if (r + gmm_group_rows < d && negligible(sum)) return false;
     }
-    for (std::size_t r = 0; r < d; ++r) {
-        const Pack v = Pack::load(y + r * L);
-        sum = sum + v * v;
+    if (gmm_group_rows > 4 && r + 4 <= d) {
+        sum = gmm_rows<L, 4>(u, e, r, d, sum);
+        r += 4;
     }
+    for (; r < d; ++r) sum = gmm_rows<L, 1>(u, e, r, d, sum);
     sum.store(q);
+    return true;
+}
+
+// The distances of the block starting at `first` (a multiple of gmm_block).
+inline bool gmm_distances(const ModelView& model, std::size_t first, const float* feature, float* scratch, float* q,
+                          const float* peak) noexcept {
+    switch (model.gmm_block_lanes(first)) {
+        case 4: return gmm_block_distances<4>(model, first, feature, scratch, q, peak);
+        case 3: return gmm_block_distances<3>(model, first, feature, scratch, q, peak);
+        case 2: return gmm_block_distances<2>(model, first, feature, scratch, q, peak);
+        default: return gmm_block_distances<1>(model, first, feature, scratch, q, peak);
+    }
+}
+
+// log(w_j N(z; μ_j, Σ_j)) from the squared distance, in one expression for every caller.
+inline float gmm_log_joint_of(const ModelView& model, std::size_t j, float q) noexcept {
+    return model.gmm_log_weights[j] + model.gmm_log_normalizers[j] - 0.5f * q;
 }
 
 #undef ACTIONSTRING_DETAIL_UNROLL
+#undef ACTIONSTRING_DETAIL_UNROLL_ROWS
 
 }  // namespace detail
 
@@ -210,17 +296,9 @@ inline Status gmm_log_joint(const ModelView& model, const float* feature, float*
     const std::size_t J = model.component_count;
     for (std::size_t first = 0; first < J; first += ModelView::gmm_block) {
         float q[ModelView::gmm_block];
-        const std::size_t lanes = model.gmm_block_lanes(first);
-        switch (lanes) {
-            case 4: detail::gmm_block_distances<4>(model, first, feature, scratch, q); break;
-            case 3: detail::gmm_block_distances<3>(model, first, feature, scratch, q); break;
-            case 2: detail::gmm_block_distances<2>(model, first, feature, scratch, q); break;
-            default: detail::gmm_block_distances<1>(model, first, feature, scratch, q); break;
-        }
-        for (std::size_t l = 0; l < lanes; ++l) {
-            const std::size_t j = first + l;
-            log_joint[j] = model.gmm_log_weights[j] + model.gmm_log_normalizers[j] - 0.5f * q[l];
-        }
+        detail::gmm_distances(model, first, feature, scratch, q, nullptr);
+        for (std::size_t l = 0; l < model.gmm_block_lanes(first); ++l)
+            log_joint[first + l] = detail::gmm_log_joint_of(model, first + l, q[l]);
     }
     return Status::ok;
 }
@@ -229,22 +307,51 @@ inline Status gmm_log_joint(const ModelView& model, const float* feature, float*
 ///
 /// Always sums to 1 and is never all zero: far from every key-pose the nearest
 /// component (in likelihood) takes the mass instead of every term underflowing.
+/// Components whose posterior underflows to 0 may be left before their distance
+/// is finished (gmm.hpp's blocks): the result has the bits of the full
+/// computation, only sooner (for features within the range that
+/// gmm_is_overflow_safe() vouches for, which normalize_pose() keeps poses in;
+/// beyond it, where a distance's later terms would overflow into NaN, a block
+/// that stopped early gives 0 where the full sum would have failed).
 ///
 /// @param feature         feature_dim floats; read only during the call
 /// @param posterior       receives component_count floats (caller-owned)
 /// @param scratch         gmm_scratch_floats(model) floats (caller-owned)
 /// @param log_likelihood  if not null, receives log p(z) under the mixture
+/// @param most_probable   if not null: on entry, the component whose block is
+///                        computed first (the last frame's most probable one
+///                        finds the peak early, so more blocks stop early; any
+///                        value gives the same result); on return, this
+///                        feature's most probable component (the first of equals)
 /// @return ok, invalid_argument (a null pointer), or pose_out_of_range when
 ///         no likelihood is finite in float
 inline Status gmm_posterior(const ModelView& model, const float* feature, float* posterior, float* scratch,
-                            float* log_likelihood = nullptr) noexcept {
-    const Status status = gmm_log_joint(model, feature, posterior, scratch);
-    if (status != Status::ok) return status;
+                            float* log_likelihood = nullptr, std::size_t* most_probable = nullptr) noexcept {
+    if (feature == nullptr || posterior == nullptr || scratch == nullptr) return Status::invalid_argument;
     const std::size_t J = model.component_count;
+    const std::size_t block = ModelView::gmm_block;
+    const std::size_t start = most_probable != nullptr && *most_probable < J ? *most_probable - *most_probable % block : 0;
+    // The log joints, the start's block first; a block that stops early
+    // writes −infinity, whose exp is the 0 its own would have given.
     float peak = -detail::infinity();
+    for (std::size_t n = 0, first = start; n < J; n += block, first = first + block < J ? first + block : 0) {
+        const std::size_t lanes = model.gmm_block_lanes(first);
+        float q[ModelView::gmm_block];
+        if (!detail::gmm_distances(model, first, feature, scratch, q, &peak)) {
+            for (std::size_t l = 0; l < lanes; ++l) posterior[first + l] = -detail::infinity();
+            continue;
+        }
+        for (std::size_t l = 0; l < lanes; ++l) {
+            const float value = detail::gmm_log_joint_of(model, first + l, q[l]);
+            posterior[first + l] = value;
+            if (value > peak) peak = value;
+        }
+    }
+    std::size_t best = 0;
+    peak = -detail::infinity();
     for (std::size_t j = 0; j < J; ++j) {
         if (detail::is_nan(posterior[j])) return Status::pose_out_of_range;
-        if (posterior[j] > peak) peak = posterior[j];
+        if (posterior[j] > peak) peak = posterior[j], best = j;
     }
     if (!detail::is_finite(peak)) return Status::pose_out_of_range;
     float sum = 0.0f;
@@ -256,6 +363,7 @@ inline Status gmm_posterior(const ModelView& model, const float* feature, float*
     const float inverse = 1.0f / sum;
     for (std::size_t j = 0; j < J; ++j) posterior[j] *= inverse;
     if (log_likelihood != nullptr) *log_likelihood = peak + detail::log_portable(sum);
+    if (most_probable != nullptr) *most_probable = best;
     return Status::ok;
 }
 

@@ -9,6 +9,7 @@
 //   less(a, b)            a < b per lane (false when either is NaN)
 //   select(mask, a, b)    mask ? a : b, bit for bit (costs and 32-bit starts alike)
 //   minimum(a, b)         a < b ? a : b (SSE's MINPS is defined exactly so)
+//   all_less(a, b)        a < b in every lane
 //
 // The GMM (gmm.hpp) puts four components in the lanes: a product, then a sum,
 // each rounded once per lane as the scalar loop rounds it.
@@ -63,6 +64,8 @@ inline Lanes select(LaneMask m, Lanes a, Lanes b) noexcept {
     return Lanes{_mm_or_ps(_mm_and_ps(m.v, a.v), _mm_andnot_ps(m.v, b.v))};
 }
 inline Lanes minimum(Lanes a, Lanes b) noexcept { return Lanes{_mm_min_ps(a.v, b.v)}; }
+/// Whether a < b in every lane (false when any lane is NaN).
+inline bool all_less(Lanes a, Lanes b) noexcept { return _mm_movemask_ps(_mm_cmplt_ps(a.v, b.v)) == 0xF; }
 /// The smallest lane (exact: the minimum of finite values or infinities does not round).
 inline float smallest_lane(Lanes a) noexcept {
     const __m128 pairs = _mm_min_ps(a.v, _mm_movehl_ps(a.v, a.v));

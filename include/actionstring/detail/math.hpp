@@ -61,6 +61,10 @@ inline std::uint32_t to_bits(float value) noexcept {
     return bits;
 }
 
+// exp_portable(x) is exactly 0 for every x below this (the GMM relies on it to
+// leave out components whose posterior is 0 before finishing their distances).
+constexpr float exp_underflow_bound = -87.33f;
+
 // exp and log written out in plain float arithmetic. The C libraries' expf and
 // logf differ in their last bits (glibc, newlib, MSVC), and a last-bit
 // difference in a posterior can move a tree descent across a tie; with these
@@ -69,7 +73,7 @@ inline std::uint32_t to_bits(float value) noexcept {
 inline float exp_portable(float x) noexcept {
     if (is_nan(x)) return x;
     if (x > 88.72f) return infinity();
-    if (x < -87.33f) return 0.0f;  // below FLT_MIN: flushed, as on FTZ targets
+    if (x < exp_underflow_bound) return 0.0f;  // below FLT_MIN: flushed, as on FTZ targets
     // x = n·ln2 + r with |r| ≤ ln2/2; ln2 split so n·ln2_hi is exact.
     const float scaled = x * 1.44269504f;
     const int n = static_cast<int>(scaled < 0.0f ? scaled - 0.5f : scaled + 0.5f);
