@@ -289,9 +289,13 @@ TreeFeatures posterior_features(const ModelData& m, const std::vector<float>& po
     const std::size_t D = view.input_dim(), J = view.component_count, n = poses.size() / D;
     TreeFeatures features{std::vector<float>(n * J), J};
     std::vector<float> feature(view.feature_dim), scratch(gmm_scratch_floats(view));
+    // Poses come clip by clip, frame by frame, so the last pose's most probable
+    // component is where the next posterior's search starts (same bits, sooner).
+    std::size_t most_probable = 0;
     for (std::size_t i = 0; i < n; ++i) {
         project_pose(view, poses.data() + i * D, feature.data());
-        if (gmm_posterior(view, feature.data(), features.values.data() + i * J, scratch.data()) != Status::ok)
+        if (gmm_posterior(view, feature.data(), features.values.data() + i * J, scratch.data(), nullptr,
+                          &most_probable) != Status::ok)
             throw std::runtime_error("a training pose fell outside the GMM's float range");
     }
     return features;
