@@ -332,8 +332,10 @@ inline Status gmm_posterior(const ModelView& model, const float* feature, float*
     const std::size_t block = ModelView::gmm_block;
     const std::size_t start = most_probable != nullptr && *most_probable < J ? *most_probable - *most_probable % block : 0;
     // The log joints, the start's block first; a block that stops early
-    // writes −infinity, whose exp is the 0 its own would have given.
+    // writes −infinity, whose exp is the 0 its own would have given. The
+    // blocks come in rotated order, so equal peaks go to the lower index.
     float peak = -detail::infinity();
+    std::size_t best = 0;
     for (std::size_t n = 0, first = start; n < J; n += block, first = first + block < J ? first + block : 0) {
         const std::size_t lanes = model.gmm_block_lanes(first);
         float q[ModelView::gmm_block];
@@ -342,16 +344,12 @@ inline Status gmm_posterior(const ModelView& model, const float* feature, float*
             continue;
         }
         for (std::size_t l = 0; l < lanes; ++l) {
-            const float value = detail::gmm_log_joint_of(model, first + l, q[l]);
-            posterior[first + l] = value;
-            if (value > peak) peak = value;
+            const std::size_t j = first + l;
+            const float value = detail::gmm_log_joint_of(model, j, q[l]);
+            if (detail::is_nan(value)) return Status::pose_out_of_range;
+            posterior[j] = value;
+            if (value > peak || (value == peak && j < best)) peak = value, best = j;
         }
-    }
-    std::size_t best = 0;
-    peak = -detail::infinity();
-    for (std::size_t j = 0; j < J; ++j) {
-        if (detail::is_nan(posterior[j])) return Status::pose_out_of_range;
-        if (posterior[j] > peak) peak = posterior[j], best = j;
     }
     if (!detail::is_finite(peak)) return Status::pose_out_of_range;
     float sum = 0.0f;
