@@ -214,39 +214,18 @@ public:
             // `top` is the highest cell (0-based) the scalar loop below still has to do.
             std::size_t top = n - 1;
 #if ACTIONSTRING_DETAIL_LANES == 4
-            // Four cells at a time from the top while a block's cells are all
-            // ordinary (0-based index ≥ 2, so cells i−1 and i−2 exist). Only the
-            // block's best cost is kept; the cell it came from (rep_from) is
-            // found afterwards, and only for a representative that becomes the best.
+            // A block of cells at a time from the top (eight with AVX2, then
+            // four) while a block's cells are all ordinary (0-based index ≥ 2,
+            // so cells i−1 and i−2 exist). Only the blocks' best cost is kept;
+            // the cell it came from (rep_from) is found afterwards, and only
+            // for a representative that becomes the best.
             bool blocks = false;
             if (n >= 6) {
-                float* const costs = cells.costs;
-                std::uint32_t* const starts = cells.starts;
-                const detail::Lanes shift4 = detail::broadcast(shift), stay4 = detail::broadcast(stay_penalty),
-                                    skip4 = detail::broadcast(skip_penalty), vote4 = detail::broadcast(vote);
-                detail::Lanes best4 = detail::broadcast(detail::infinity());
-                for (; top >= 5; top -= 4) {
-                    const std::size_t low = top - 3;  // the block is cells low … top
-                    detail::Lanes value = detail::load_lanes(costs + low - 1) - shift4;
-                    detail::Lanes from = detail::load_lanes(starts + low - 1);
-                    // minimum(a, b) is exactly less(a, b) ? a : b (MINPS), so each
-                    // choice's cost takes one instruction; the mask picks the start.
-                    const detail::Lanes stay = detail::load_lanes(costs + low) - shift4 + stay4;
-                    const detail::LaneMask take_stay = detail::less(stay, value);
-                    value = detail::minimum(stay, value);
-                    from = detail::select(take_stay, detail::load_lanes(starts + low), from);
-                    const detail::Lanes skip = detail::load_lanes(costs + low - 2) - shift4 + skip4;
-                    const detail::LaneMask take_skip = detail::less(skip, value);
-                    value = detail::minimum(skip, value);
-                    from = detail::select(take_skip, detail::load_lanes(starts + low - 2), from);
-                    const detail::Lanes w = detail::lanes_of(column[rep[low]], column[rep[low + 1]],
-                                                             column[rep[low + 2]], column[rep[low + 3]]);
-                    value = value + (w + vote4);
-                    detail::store_lanes(costs + low, value);
-                    detail::store_lanes(starts + low, from);
-                    best4 = detail::minimum(value, best4);
-                }
-                rep_best = detail::smallest_lane(best4);
+                rep_best = detail::infinity();
+#if ACTIONSTRING_DETAIL_WIDE_LANES == 8
+                rep_best = cell_blocks<8>(cells, rep, column, top, shift, stay_penalty, skip_penalty, vote, rep_best);
+#endif
+                rep_best = cell_blocks<4>(cells, rep, column, top, shift, stay_penalty, skip_penalty, vote, rep_best);
                 blocks = true;
             }
 #endif
@@ -419,6 +398,44 @@ private:
     };
     static Cells cells_in(void* storage, const Plan& p) noexcept {
         return Cells{detail::storage_at<Cells::Cell>(storage, p.costs)};
+    }
+#endif
+
+#if ACTIONSTRING_DETAIL_LANES == 4
+    // Cells top, top − 1, … in blocks of L while a block's lowest cell has
+    // index ≥ 2, the same recurrence as the scalar loop in push(), lane by lane:
+    // minimum(a, b) is exactly less(a, b) ? a : b (MINPS), so each choice's cost
+    // takes one instruction and the mask picks the start. Lowers `top` past the
+    // blocks done and returns the smaller of `best` and their cells' costs.
+    template <std::size_t L>
+    static float cell_blocks(Cells cells, const Character* rep, const float* column, std::size_t& top, float shift,
+                             float stay_penalty, float skip_penalty, float vote, float best) noexcept {
+        using Ops = detail::LaneOps<L>;
+        using V = typename Ops::V;
+        if (top < L + 1) return best;
+        float* const costs = cells.costs;
+        std::uint32_t* const starts = cells.starts;
+        const V shift_l = Ops::broadcast(shift), stay_l = Ops::broadcast(stay_penalty),
+                skip_l = Ops::broadcast(skip_penalty), vote_l = Ops::broadcast(vote);
+        V best_l = Ops::broadcast(best);
+        for (; top >= L + 1; top -= L) {
+            const std::size_t low = top - (L - 1);  // the block is cells low … top
+            V value = Ops::load(costs + low - 1) - shift_l;
+            V from = Ops::load(starts + low - 1);
+            const V stay = Ops::load(costs + low) - shift_l + stay_l;
+            const auto take_stay = detail::less(stay, value);
+            value = detail::minimum(stay, value);
+            from = detail::select(take_stay, Ops::load(starts + low), from);
+            const V skip = Ops::load(costs + low - 2) - shift_l + skip_l;
+            const auto take_skip = detail::less(skip, value);
+            value = detail::minimum(skip, value);
+            from = detail::select(take_skip, Ops::load(starts + low - 2), from);
+            value = value + (Ops::gather(column, rep + low) + vote_l);
+            detail::store_lanes(costs + low, value);
+            detail::store_lanes(starts + low, from);
+            best_l = detail::minimum(value, best_l);
+        }
+        return detail::smallest_lane(best_l);
     }
 #endif
 
