@@ -120,14 +120,20 @@ TEST_CASE("blocks of components give the bits of one component at a time") {
     CHECK(compared > 1000);
 }
 
-TEST_CASE("the GMM needs one y per component of a block, and none without a GMM") {
+TEST_CASE("the GMM needs one y per component of a block (two blocks with AVX2), and none without a GMM") {
     ModelView v{};
     v.feature_dim = 24;
     CHECK(gmm_scratch_floats(v) == 0);
     v.component_count = 2;
     CHECK(gmm_scratch_floats(v) == 48);
-    v.component_count = 40;
+    v.component_count = 4;
     CHECK(gmm_scratch_floats(v) == 96);
+    v.component_count = 40;
+#if ACTIONSTRING_DETAIL_WIDE_LANES == 8
+    CHECK(gmm_scratch_floats(v) == 192);
+#else
+    CHECK(gmm_scratch_floats(v) == 96);
+#endif
 }
 
 namespace {
@@ -170,7 +176,7 @@ TEST_CASE("a posterior whose blocks stop early has the bits of the full computat
     std::normal_distribution<float> normal(0.0f, 1.0f);
     std::size_t compared = 0, zeros = 0, near_bound = 0;
     for (const Covariance kind : {Covariance::full, Covariance::diagonal})
-        for (const std::size_t J : {1u, 4u, 7u, 13u, 40u})
+        for (const std::size_t J : {1u, 4u, 7u, 13u, 20u, 40u})  // with AVX2, pairs of blocks and single ones
             for (const std::size_t d : {3u, 8u, 9u, 13u, 16u, 24u, 25u})
                 for (const float spread : {0.5f, 3.0f, 8.0f}) {
                     LaneModel m = make_model(rng, d, J, kind);
@@ -208,31 +214,58 @@ TEST_CASE("a posterior whose blocks stop early has the bits of the full computat
     CHECK(near_bound > 300);  // and many lay near the bound
 }
 
+namespace {
+
+// What gmm_block_distances<L> must do for the L components from 0: without a
+// peak the bits of gmm_log_joint(); with a peak just above their best no stop;
+// with one beyond every bound a stop.
+template <std::size_t L>
+void check_block_stops(std::mt19937& rng, Covariance kind, std::size_t d) {
+    const LaneModel m = make_model(rng, d, L, kind);
+    std::vector<float> z(d), scratch(gmm_scratch_floats(m.view));
+    float want[L], q[L];
+    for (std::size_t c = 0; c < d; ++c) z[c] = m.means[c] + 1000.0f;  // far from every component
+    REQUIRE(gmm_log_joint(m.view, z.data(), want, scratch.data()) == Status::ok);
+    // No peak: every distance in full, the bits of gmm_log_joint().
+    REQUIRE(detail::gmm_block_distances<L>(m.view, 0, z.data(), scratch.data(), q, nullptr));
+    for (std::size_t l = 0; l < L; ++l) CHECK(bits(detail::gmm_log_joint_of(m.view, l, q[l])) == bits(want[l]));
+    // A peak just above the best of them: none can underflow, so no stop.
+    float best = want[0];
+    for (float w : want) best = w > best ? w : best;
+    const float close = best + 1.0f;
+    CHECK(detail::gmm_block_distances<L>(m.view, 0, z.data(), scratch.data(), q, &close));
+    // A peak more than exp's underflow above every bound (a log joint is at
+    // most log w + log normalizer): the block stops at its first check.
+    float ceiling = -detail::infinity();
+    for (std::size_t l = 0; l < L; ++l) {
+        const float c = m.log_weights[l] + m.log_normalizers[l];
+        ceiling = c > ceiling ? c : ceiling;
+    }
+    const float far = ceiling + 100.0f;
+    CHECK_FALSE(detail::gmm_block_distances<L>(m.view, 0, z.data(), scratch.data(), q, &far));
+}
+
+}  // namespace
+
 TEST_CASE("a block stops early exactly when its posteriors cannot be above zero") {
     std::mt19937 rng(5);
     for (const Covariance kind : {Covariance::full, Covariance::diagonal})
-        for (const std::size_t d : {9u, 24u}) {
-            const LaneModel m = make_model(rng, d, 4, kind);
-            std::vector<float> z(d), scratch(gmm_scratch_floats(m.view));
-            float want[4], q[4];
-            for (std::size_t c = 0; c < d; ++c) z[c] = m.means[c] + 1000.0f;  // far from every component
-            REQUIRE(gmm_log_joint(m.view, z.data(), want, scratch.data()) == Status::ok);
-            // No peak: every distance in full, the bits of gmm_log_joint().
-            REQUIRE(detail::gmm_block_distances<4>(m.view, 0, z.data(), scratch.data(), q, nullptr));
-            for (std::size_t l = 0; l < 4; ++l) CHECK(bits(detail::gmm_log_joint_of(m.view, l, q[l])) == bits(want[l]));
-            // A peak just above the best of them: none can underflow, so no stop.
-            float best = want[0];
-            for (float w : want) best = w > best ? w : best;
-            const float close = best + 1.0f;
-            CHECK(detail::gmm_block_distances<4>(m.view, 0, z.data(), scratch.data(), q, &close));
-            // A peak more than exp's underflow above every bound (a log joint is at
-            // most log w + log normalizer): the block stops at its first check.
-            float ceiling = -detail::infinity();
-            for (std::size_t l = 0; l < 4; ++l) {
-                const float c = m.log_weights[l] + m.log_normalizers[l];
-                ceiling = c > ceiling ? c : ceiling;
-            }
-            const float far = ceiling + 100.0f;
-            CHECK_FALSE(detail::gmm_block_distances<4>(m.view, 0, z.data(), scratch.data(), q, &far));
-        }
+        for (const std::size_t d : {9u, 24u}) check_block_stops<4>(rng, kind, d);
+#if ACTIONSTRING_DETAIL_WIDE_LANES == 8
+    // Two blocks side by side (full covariance only): the same rule over eight lanes.
+    for (const std::size_t d : {9u, 13u, 24u}) check_block_stops<8>(rng, Covariance::full, d);
+#endif
+}
+
+TEST_CASE("the lane paths are the ones the compiler's target selects") {
+#if defined(ACTIONSTRING_NO_SIMD)
+    CHECK(ACTIONSTRING_DETAIL_LANES == 0);
+    CHECK(ACTIONSTRING_DETAIL_WIDE_LANES == 0);
+#elif defined(__AVX2__)
+    CHECK(ACTIONSTRING_DETAIL_LANES == 4);
+    CHECK(ACTIONSTRING_DETAIL_WIDE_LANES == 8);  // the AVX2 build of these tests runs the eight-lane paths
+#elif defined(__SSE2__)
+    CHECK(ACTIONSTRING_DETAIL_LANES == 4);
+    CHECK(ACTIONSTRING_DETAIL_WIDE_LANES == 0);
+#endif
 }

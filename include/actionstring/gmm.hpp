@@ -15,8 +15,14 @@
 
 namespace actionstring {
 
-/// Floats of scratch the GMM needs: one z − μ per component of a block.
+/// Floats of scratch the GMM needs: one z − μ per component of a block (of
+/// two blocks with AVX2, which computes two at once: the size depends on how
+/// the runtime was compiled, so size state with this function, never a number).
 constexpr std::size_t gmm_scratch_floats(const ModelView& model) noexcept {
+#if ACTIONSTRING_DETAIL_WIDE_LANES == 8
+    if (model.has_gmm() && model.component_count > ModelView::gmm_block)
+        return 2 * ModelView::gmm_block * model.feature_dim;
+#endif
     return model.has_gmm() ? model.gmm_block_lanes(0) * model.feature_dim : 0u;
 }
 
@@ -40,6 +46,10 @@ struct GmmPack {
         GmmPack a;
         ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) a.v[l] = p[l];
         return a;
+    }
+    /// A factor element of the block's components (`half` serves packs of two blocks).
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack load_factor(const float* p, std::size_t /*half*/) noexcept {
+        return load(p);
     }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE void store(float* p) const noexcept {
         ACTIONSTRING_DETAIL_UNROLL for (std::size_t l = 0; l < L; ++l) p[l] = v[l];
@@ -88,6 +98,9 @@ template <>
 struct GmmPack<4> {
     Lanes x;
     ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack load(const float* p) noexcept { return {load_lanes(p)}; }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack load_factor(const float* p, std::size_t /*half*/) noexcept {
+        return {load_lanes(p)};
+    }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE void store(float* p) const noexcept { store_lanes(p, x); }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack zero() noexcept { return {detail::broadcast(0.0f)}; }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack broadcast(float v) noexcept { return {detail::broadcast(v)}; }
@@ -122,28 +135,77 @@ struct GmmPack<4> {
 };
 #endif
 
+#if ACTIONSTRING_DETAIL_WIDE_LANES == 8
+// Two whole blocks side by side (AVX2): lanes 0–3 are the first block's
+// components, lanes 4–7 the next block's. The model keeps its blocks of four;
+// a factor element loads as two halves, the second `half` floats further on.
+template <>
+struct GmmPack<8> {
+    Lanes8 x;
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack load(const float* p) noexcept { return {load_lanes8(p)}; }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack load_factor(const float* p, std::size_t half) noexcept {
+        return {Lanes8{_mm256_loadu2_m128(p + half, p)}};
+    }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE void store(float* p) const noexcept { store_lanes(p, x); }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack zero() noexcept { return {broadcast8(0.0f)}; }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack broadcast(float v) noexcept { return {broadcast8(v)}; }
+    // Each block's z − μ as GmmPack<4> computes it, stored eight floats per coordinate.
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static void centre_all(const float* z, const float* mean, std::size_t d,
+                                                             float* e) noexcept {
+        for (std::size_t half = 0; half < 2; ++half) {
+            const float* m = mean + half * 4 * d;
+            float* out = e + half * 4;
+            std::size_t c = 0;
+            for (; c + 4 <= d; c += 4) {
+                const __m128 zc = _mm_loadu_ps(z + c);
+                __m128 r0 = _mm_sub_ps(zc, _mm_loadu_ps(m + c)), r1 = _mm_sub_ps(zc, _mm_loadu_ps(m + d + c));
+                __m128 r2 = _mm_sub_ps(zc, _mm_loadu_ps(m + 2 * d + c));
+                __m128 r3 = _mm_sub_ps(zc, _mm_loadu_ps(m + 3 * d + c));
+                _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+                _mm_storeu_ps(out + 8 * c, r0);
+                _mm_storeu_ps(out + 8 * c + 8, r1);
+                _mm_storeu_ps(out + 8 * c + 16, r2);
+                _mm_storeu_ps(out + 8 * c + 24, r3);
+            }
+            for (; c < d; ++c) GmmPack<4>::centred(z[c], m + c, d).store(out + 8 * c);
+        }
+    }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator+(GmmPack a, GmmPack b) noexcept { return {a.x + b.x}; }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator-(GmmPack a, GmmPack b) noexcept { return {a.x - b.x}; }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator*(GmmPack a, GmmPack b) noexcept { return {a.x * b.x}; }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE friend bool all_less(GmmPack a, GmmPack b) noexcept {
+        return detail::all_less(a.x, b.x);
+    }
+};
+#endif
+
 // Rows r … r + G − 1 of y = U (z − μ) for the L components of a block, each
 // in the textbook order (c = r, r + 1, … d − 1), their squares added to `sum`
 // in row order. U is packed column by column: U[r][c] is element
 // c(c + 1)/2 + r, so the group's rows of one column are adjacent and one pass
 // over the columns serves all G rows (G independent chains of additions).
+// With eight lanes (two blocks) the factors keep their blocks' layout of four
+// lanes per element, and the second block's lie `half` floats after the first's.
 template <std::size_t L, std::size_t G>
-ACTIONSTRING_DETAIL_ALWAYS_INLINE inline GmmPack<L> gmm_rows(const float* u, const float* e, std::size_t r,
-                                                            std::size_t d, GmmPack<L> sum) noexcept {
+ACTIONSTRING_DETAIL_ALWAYS_INLINE inline GmmPack<L> gmm_rows(const float* u, std::size_t half, const float* e,
+                                                            std::size_t r, std::size_t d, GmmPack<L> sum) noexcept {
     using Pack = GmmPack<L>;
+    constexpr std::size_t S = L > ModelView::gmm_block ? ModelView::gmm_block : L;  // floats per factor element
     Pack y[G];
     ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t i = 0; i < G; ++i) y[i] = Pack::zero();
-    const float* column = u + (r * (r + 1) / 2 + r) * L;  // column r, row r
+    const float* column = u + (r * (r + 1) / 2 + r) * S;  // column r, row r
     // The triangle: column r + t reaches rows r … r + t only.
     ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t t = 0; t + 1 < G; ++t) {
         const Pack ec = Pack::load(e + (r + t) * L);
-        ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t i = 0; i <= t; ++i) y[i] = y[i] + Pack::load(column + i * L) * ec;
-        column += (r + t + 1) * L;
+        ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t i = 0; i <= t; ++i) y[i] =
+            y[i] + Pack::load_factor(column + i * S, half) * ec;
+        column += (r + t + 1) * S;
     }
     for (std::size_t c = r + G - 1; c < d; ++c) {
         const Pack ec = Pack::load(e + c * L);
-        ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t i = 0; i < G; ++i) y[i] = y[i] + Pack::load(column + i * L) * ec;
-        column += (c + 1) * L;
+        ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t i = 0; i < G; ++i) y[i] =
+            y[i] + Pack::load_factor(column + i * S, half) * ec;
+        column += (c + 1) * S;
     }
     ACTIONSTRING_DETAIL_UNROLL_ROWS for (std::size_t i = 0; i < G; ++i) sum = sum + y[i] * y[i];
     return sum;
@@ -160,7 +222,8 @@ constexpr std::size_t gmm_group_rows = 4;
 #endif
 
 // Squared Mahalanobis distances ‖U_j (z − μ_j)‖² of a feature to the L
-// components first … first + L − 1 of one block (L = its lanes, 1 … 4).
+// components first … first + L − 1 of one block (L = its lanes, 1 … 4), or of
+// two whole blocks side by side (L = 8, with AVX2 and full covariance).
 //
 // Each component's arithmetic is the textbook order whatever L is: y[r] adds
 // U[r][c] (z_c − μ_c) for c = r, r + 1, … (a product, then a sum, each rounded
@@ -197,31 +260,34 @@ inline bool gmm_block_distances(const ModelView& model, std::size_t first, const
         return peak != nullptr && all_less((constants - half * sum) - peaks, limit);
     };
     Pack sum = Pack::zero();
-    if (model.covariance == Covariance::diagonal) {
-        for (std::size_t c = 0; c < d; ++c, u += L) {
-            const Pack v = Pack::load(u) * Pack::centred(feature[c], mean + c, d);
-            sum = sum + v * v;
-            if (c % gmm_group_rows == gmm_group_rows - 1 && negligible(sum)) return false;
+    if constexpr (L <= ModelView::gmm_block) {  // pairs of blocks are for full covariance only
+        if (model.covariance == Covariance::diagonal) {
+            for (std::size_t c = 0; c < d; ++c, u += L) {
+                const Pack v = Pack::load(u) * Pack::centred(feature[c], mean + c, d);
+                sum = sum + v * v;
+                if (c % gmm_group_rows == gmm_group_rows - 1 && negligible(sum)) return false;
+            }
+            sum.store(q);
+            return true;
         }
-        sum.store(q);
-        return true;
     }
+    const std::size_t second = ModelView::gmm_block * model.factor_size();  // the next block's factors
     Pack::centre_all(feature, mean, d, e);
     std::size_t r = 0;
     if (gmm_group_rows > 4 && d > 8) {  // a first check after four rows
-        sum = gmm_rows<L, 4>(u, e, r, d, sum);
+        sum = gmm_rows<L, 4>(u, second, e, r, d, sum);
         r = 4;
         if (negligible(sum)) return false;
     }
     for (; r + gmm_group_rows <= d; r += gmm_group_rows) {
-        sum = gmm_rows<L, gmm_group_rows>(u, e, r, d, sum);
+        sum = gmm_rows<L, gmm_group_rows>(u, second, e, r, d, sum);
         if (r + gmm_group_rows < d && negligible(sum)) return false;
     }
     if (gmm_group_rows > 4 && r + 4 <= d) {
-        sum = gmm_rows<L, 4>(u, e, r, d, sum);
+        sum = gmm_rows<L, 4>(u, second, e, r, d, sum);
         r += 4;
     }
-    for (; r < d; ++r) sum = gmm_rows<L, 1>(u, e, r, d, sum);
+    for (; r < d; ++r) sum = gmm_rows<L, 1>(u, second, e, r, d, sum);
     sum.store(q);
     return true;
 }
@@ -337,10 +403,24 @@ inline Status gmm_posterior(const ModelView& model, const float* feature, float*
     float peak = -detail::infinity();
     std::size_t best = 0;
     for (std::size_t n = 0, first = start; n < J; n += block, first = first + block < J ? first + block : 0) {
-        const std::size_t lanes = model.gmm_block_lanes(first);
-        float q[ModelView::gmm_block];
-        if (!detail::gmm_distances(model, first, feature, scratch, q, &peak)) {
+        std::size_t lanes = model.gmm_block_lanes(first);
+        float q[2 * ModelView::gmm_block];
+        bool computed = false;
+#if ACTIONSTRING_DETAIL_WIDE_LANES == 8
+        // With AVX2, this block and the next together when both are whole and
+        // the next comes next in the rotated order: the same distances, the same order.
+        if (model.covariance == Covariance::full && first + 2 * block <= J && first + block != start) {
+            lanes = 2 * block;
+            n += block;
+            computed = detail::gmm_block_distances<2 * ModelView::gmm_block>(model, first, feature, scratch, q, &peak);
+        } else
+#endif
+        {
+            computed = detail::gmm_distances(model, first, feature, scratch, q, &peak);
+        }
+        if (!computed) {
             for (std::size_t l = 0; l < lanes; ++l) posterior[first + l] = -detail::infinity();
+            if (lanes > block) first += block;  // a pair: the loop steps past its second block
             continue;
         }
         for (std::size_t l = 0; l < lanes; ++l) {
@@ -350,6 +430,7 @@ inline Status gmm_posterior(const ModelView& model, const float* feature, float*
             posterior[j] = value;
             if (value > peak || (value == peak && j < best)) peak = value, best = j;
         }
+        if (lanes > block) first += block;  // a pair: the loop steps past its second block
     }
     if (!detail::is_finite(peak)) return Status::pose_out_of_range;
     float sum = 0.0f;
