@@ -33,6 +33,16 @@ inline void node_distances_sq(const ModelView& model, std::size_t first, std::si
         sa = sa + da * da;
         sb = sb + db * db;
     }
+    if (j == dim) {
+        // Both sums' last additions in the registers: lanes (a0 + a1, a2 + a3,
+        // b0 + b1, b2 + b3), then each pair added, the same additions as below.
+        const __m128 pairs = _mm_add_ps(_mm_shuffle_ps(sa.v, sb.v, _MM_SHUFFLE(2, 0, 2, 0)),
+                                        _mm_shuffle_ps(sa.v, sb.v, _MM_SHUFFLE(3, 1, 3, 1)));
+        const __m128 sums = _mm_add_ps(pairs, _mm_shuffle_ps(pairs, pairs, _MM_SHUFFLE(2, 3, 0, 1)));
+        to_first = _mm_cvtss_f32(sums);
+        to_second = _mm_cvtss_f32(_mm_movehl_ps(sums, sums));
+        return;
+    }
     float pa[4], pb[4];
     detail::store_lanes(pa, sa);
     detail::store_lanes(pb, sb);
