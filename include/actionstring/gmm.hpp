@@ -404,7 +404,7 @@ inline Status gmm_posterior(const ModelView& model, const float* feature, float*
     std::size_t best = 0;
     for (std::size_t n = 0, first = start; n < J; n += block, first = first + block < J ? first + block : 0) {
         std::size_t lanes = model.gmm_block_lanes(first);
-        float q[2 * ModelView::gmm_block];
+        float q[ModelView::gmm_block * (ACTIONSTRING_DETAIL_WIDE_LANES == 8 ? 2 : 1)];  // a pair with AVX2
         bool computed = false;
 #if ACTIONSTRING_DETAIL_WIDE_LANES == 8
         // With AVX2, this block and the next together when both are whole and
