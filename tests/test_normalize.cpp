@@ -131,6 +131,16 @@ TEST_CASE("frames that are not poses are rejected with a reason") {
     normalized(view, with(0, inf), Status::non_finite_input);
     normalized(view, with(13, -inf), Status::non_finite_input);
     normalized(view, std::vector<float>(15, 0.0f), Status::tracking_lost);
+    // The edges of the one-number check (normalize.hpp): a NaN with its sign bit
+    // set, the largest finite float (a pose, out of range), negative zeros (no
+    // tracking), and a NaN among zeros (not a pose rather than lost tracking).
+    normalized(view, with(10, -nan), Status::non_finite_input);
+    normalized(view, with(9, std::numeric_limits<float>::max()), Status::pose_out_of_range);
+    normalized(view, with(9, -std::numeric_limits<float>::max()), Status::pose_out_of_range);
+    normalized(view, std::vector<float>(15, -0.0f), Status::tracking_lost);
+    std::vector<float> zeros_and_nan(15, 0.0f);
+    zeros_and_nan[14] = nan;
+    normalized(view, zeros_and_nan, Status::non_finite_input);
     normalized(view, with(9, 3.0e4f), Status::pose_out_of_range);
     normalized(view, with(9, 3.0e38f), Status::pose_out_of_range);
     // Hips on the vertical line through each other: no facing.

@@ -43,6 +43,13 @@ inline bool is_finite(float value) noexcept {
     return (bits & 0x7F800000u) != 0x7F800000u;
 }
 
+/// The bits of a float, for tests that must not depend on the floating-point mode.
+inline std::uint32_t bits_of(float value) noexcept {
+    std::uint32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
+
 inline bool is_nan(float value) noexcept {
     std::uint32_t bits;
     std::memcpy(&bits, &value, sizeof bits);
