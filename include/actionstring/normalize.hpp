@@ -121,7 +121,7 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
 
     // Every coordinate is written, and the range is judged once at the end
     // (pose_out means nothing unless the call returns ok).
-    bool in_range = true;
+    std::uint32_t out_of_range = 0;
     for (std::size_t k = 0; k < model.pose_joint_count; ++k) {
         const float* at = joint(model.pose_joints[k]);
         const float rel[3] = {(at[0] - root[0]) * scale, (at[1] - root[1]) * scale, (at[2] - root[2]) * scale};
@@ -129,11 +129,11 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
         out[up] = rel[up];
         out[h1] = cos_a * rel[h1] + sin_a * rel[h2];
         out[h2] = -sin_a * rel[h1] + cos_a * rel[h2];
-        // A false comparison also rejects a NaN from inf − inf.
-        in_range = in_range & (std::fabs(out[0]) <= max_pose_coordinate) & (std::fabs(out[1]) <= max_pose_coordinate) &
-                   (std::fabs(out[2]) <= max_pose_coordinate);
+        // The negated comparison also rejects a NaN from inf − inf.
+        auto outside = [](float v) { return static_cast<std::uint32_t>(!(std::fabs(v) <= max_pose_coordinate)); };
+        out_of_range |= outside(out[0]) | outside(out[1]) | outside(out[2]);
     }
-    return in_range ? Status::ok : Status::pose_out_of_range;
+    return out_of_range == 0 ? Status::ok : Status::pose_out_of_range;
 }
 
 }  // namespace actionstring
