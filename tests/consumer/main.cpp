@@ -6,6 +6,10 @@
 #include <cstdio>
 #include <cstring>
 
+#if defined(ACTIONSTRING_CONSUMER_EXPECT_WIDE)
+static_assert(ACTIONSTRING_DETAIL_WIDE_LANES == 8, "ACTIONSTRING_AVX2 reaches the files that link actionstring::runtime");
+#endif
+
 namespace {
 
 using namespace actionstring;
