@@ -61,7 +61,7 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     auto check = [&](std::size_t index) ACTIONSTRING_DETAIL_ALWAYS_INLINE {
         const float* p = raw(index);
         for (int a = 0; a < 3; ++a) {
-            const std::uint32_t twice = detail::bits_of(p[a]) << 1;
+            const std::uint32_t twice = detail::to_bits(p[a]) << 1;
             top = twice > top ? twice : top;
         }
     };

@@ -35,24 +35,18 @@ constexpr std::size_t next_power_of_two(std::size_t value) noexcept {
     return power;
 }
 
-// Bit tests rather than std::isfinite so the checks survive -ffinite-math-only,
-// which a firmware build may turn on for speed elsewhere in the image.
-inline bool is_finite(float value) noexcept {
-    std::uint32_t bits;
-    std::memcpy(&bits, &value, sizeof bits);
-    return (bits & 0x7F800000u) != 0x7F800000u;
-}
-
-/// The bits of a float, for tests that must not depend on the floating-point mode.
-inline std::uint32_t bits_of(float value) noexcept {
+inline std::uint32_t to_bits(float value) noexcept {
     std::uint32_t bits;
     std::memcpy(&bits, &value, sizeof bits);
     return bits;
 }
 
+// Bit tests rather than std::isfinite so the checks survive -ffinite-math-only,
+// which a firmware build may turn on for speed elsewhere in the image.
+inline bool is_finite(float value) noexcept { return (to_bits(value) & 0x7F800000u) != 0x7F800000u; }
+
 inline bool is_nan(float value) noexcept {
-    std::uint32_t bits;
-    std::memcpy(&bits, &value, sizeof bits);
+    const std::uint32_t bits = to_bits(value);
     return (bits & 0x7F800000u) == 0x7F800000u && (bits & 0x007FFFFFu) != 0u;
 }
 
@@ -60,12 +54,6 @@ inline float from_bits(std::uint32_t bits) noexcept {
     float value;
     std::memcpy(&value, &bits, sizeof value);
     return value;
-}
-
-inline std::uint32_t to_bits(float value) noexcept {
-    std::uint32_t bits;
-    std::memcpy(&bits, &value, sizeof bits);
-    return bits;
 }
 
 // exp_portable(x) is exactly 0 for every x below this (the GMM relies on it to
