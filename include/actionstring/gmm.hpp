@@ -109,9 +109,11 @@ struct GmmPack<4> {
     }
     // Four coordinates of each component at once (the means are rows), then a
     // 4 × 4 transpose into the lanes: the same subtractions, fewer shuffles
-    // than gathering each coordinate's four means.
-    ACTIONSTRING_DETAIL_ALWAYS_INLINE static void centre_all(const float* z, const float* mean, std::size_t d,
-                                                             float* e) noexcept {
+    // than gathering each coordinate's four means. Coordinate c's four values
+    // go to e + c · stride (stride 4 here; 8 for the first or second half of
+    // GmmPack<8>).
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static void centre_strided(const float* z, const float* mean, std::size_t d,
+                                                                 float* e, std::size_t stride) noexcept {
         std::size_t c = 0;
         for (; c + 4 <= d; c += 4) {
             const __m128 zc = _mm_loadu_ps(z + c);
@@ -119,12 +121,16 @@ struct GmmPack<4> {
             __m128 r2 = _mm_sub_ps(zc, _mm_loadu_ps(mean + 2 * d + c));
             __m128 r3 = _mm_sub_ps(zc, _mm_loadu_ps(mean + 3 * d + c));
             _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
-            _mm_storeu_ps(e + 4 * c, r0);
-            _mm_storeu_ps(e + 4 * c + 4, r1);
-            _mm_storeu_ps(e + 4 * c + 8, r2);
-            _mm_storeu_ps(e + 4 * c + 12, r3);
+            _mm_storeu_ps(e + stride * c, r0);
+            _mm_storeu_ps(e + stride * (c + 1), r1);
+            _mm_storeu_ps(e + stride * (c + 2), r2);
+            _mm_storeu_ps(e + stride * (c + 3), r3);
         }
-        for (; c < d; ++c) centred(z[c], mean + c, d).store(e + c * 4);
+        for (; c < d; ++c) centred(z[c], mean + c, d).store(e + stride * c);
+    }
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static void centre_all(const float* z, const float* mean, std::size_t d,
+                                                             float* e) noexcept {
+        centre_strided(z, mean, d, e, 4);
     }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator+(GmmPack a, GmmPack b) noexcept { return {a.x + b.x}; }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator-(GmmPack a, GmmPack b) noexcept { return {a.x - b.x}; }
@@ -149,26 +155,11 @@ struct GmmPack<8> {
     ACTIONSTRING_DETAIL_ALWAYS_INLINE void store(float* p) const noexcept { store_lanes(p, x); }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack zero() noexcept { return {broadcast8(0.0f)}; }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE static GmmPack broadcast(float v) noexcept { return {broadcast8(v)}; }
-    // Each block's z − μ as GmmPack<4> computes it, stored eight floats per coordinate.
+    // Each block's z − μ as GmmPack<4> computes it, eight floats per coordinate.
     ACTIONSTRING_DETAIL_ALWAYS_INLINE static void centre_all(const float* z, const float* mean, std::size_t d,
                                                              float* e) noexcept {
-        for (std::size_t half = 0; half < 2; ++half) {
-            const float* m = mean + half * 4 * d;
-            float* out = e + half * 4;
-            std::size_t c = 0;
-            for (; c + 4 <= d; c += 4) {
-                const __m128 zc = _mm_loadu_ps(z + c);
-                __m128 r0 = _mm_sub_ps(zc, _mm_loadu_ps(m + c)), r1 = _mm_sub_ps(zc, _mm_loadu_ps(m + d + c));
-                __m128 r2 = _mm_sub_ps(zc, _mm_loadu_ps(m + 2 * d + c));
-                __m128 r3 = _mm_sub_ps(zc, _mm_loadu_ps(m + 3 * d + c));
-                _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
-                _mm_storeu_ps(out + 8 * c, r0);
-                _mm_storeu_ps(out + 8 * c + 8, r1);
-                _mm_storeu_ps(out + 8 * c + 16, r2);
-                _mm_storeu_ps(out + 8 * c + 24, r3);
-            }
-            for (; c < d; ++c) GmmPack<4>::centred(z[c], m + c, d).store(out + 8 * c);
-        }
+        GmmPack<4>::centre_strided(z, mean, d, e, 8);
+        GmmPack<4>::centre_strided(z, mean + ModelView::gmm_block * d, d, e + 4, 8);
     }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator+(GmmPack a, GmmPack b) noexcept { return {a.x + b.x}; }
     ACTIONSTRING_DETAIL_ALWAYS_INLINE friend GmmPack operator-(GmmPack a, GmmPack b) noexcept { return {a.x - b.x}; }
@@ -420,15 +411,14 @@ inline Status gmm_posterior(const ModelView& model, const float* feature, float*
         }
         if (!computed) {
             for (std::size_t l = 0; l < lanes; ++l) posterior[first + l] = -detail::infinity();
-            if (lanes > block) first += block;  // a pair: the loop steps past its second block
-            continue;
-        }
-        for (std::size_t l = 0; l < lanes; ++l) {
-            const std::size_t j = first + l;
-            const float value = detail::gmm_log_joint_of(model, j, q[l]);
-            if (detail::is_nan(value)) return Status::pose_out_of_range;
-            posterior[j] = value;
-            if (value > peak || (value == peak && j < best)) peak = value, best = j;
+        } else {
+            for (std::size_t l = 0; l < lanes; ++l) {
+                const std::size_t j = first + l;
+                const float value = detail::gmm_log_joint_of(model, j, q[l]);
+                if (detail::is_nan(value)) return Status::pose_out_of_range;
+                posterior[j] = value;
+                if (value > peak || (value == peak && j < best)) peak = value, best = j;
+            }
         }
         if (lanes > block) first += block;  // a pair: the loop steps past its second block
     }
