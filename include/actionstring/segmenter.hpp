@@ -221,7 +221,6 @@ public:
             // for a representative that becomes the best.
             bool blocks = false;
             if (n >= 6) {
-                rep_best = detail::infinity();
 #if ACTIONSTRING_DETAIL_WIDE_LANES == 8
                 rep_best = cell_blocks<8>(cells, rep, column, top, shift, stay_penalty, skip_penalty, vote, rep_best);
 #endif

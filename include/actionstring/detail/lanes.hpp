@@ -120,8 +120,8 @@ inline void store_lanes(std::uint32_t* p, Lanes8 a) noexcept {
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm256_castps_si256(a.v));
 }
 inline Lanes8 broadcast8(float x) noexcept { return Lanes8{_mm256_set1_ps(x)}; }
-/// {table[index[0]], …, table[index[7]]}: eight table entries picked by 16-bit indices.
-// Eight scalar loads: VGATHERDPS is slower than them on the AMD cores measured.
+/// {table[index[0]], …, table[index[7]]}, by eight scalar loads: VGATHERDPS was
+/// slower than them on the AMD processor measured.
 inline Lanes8 gather8(const float* table, const std::uint16_t* index) noexcept {
     return Lanes8{_mm256_setr_ps(table[index[0]], table[index[1]], table[index[2]], table[index[3]], table[index[4]],
                                  table[index[5]], table[index[6]], table[index[7]])};
