@@ -78,6 +78,9 @@ public:
         feature_ = detail::storage_at<float>(storage, p.feature);
         posterior_ = detail::storage_at<float>(storage, p.posterior);
         scratch_ = detail::storage_at<float>(storage, p.scratch);
+        norms_ = detail::storage_at<float>(storage, p.norms);
+        nonzero_ = detail::storage_at<std::uint16_t>(storage, p.nonzero);
+        if (model.has_gmm()) tree_node_norms(model, norms_);  // the sparse descent's (tree.hpp)
         const Status motion = motion_.init(model, detail::storage_at<unsigned char>(storage, p.motion),
                                            MotionRing::required_bytes(model));
         if (motion != Status::ok) return motion;
@@ -159,14 +162,15 @@ private:
         // character rather than invent one.
         if (!model_->has_gmm()) last_ = descend_tree(*model_, feature);
         else if (gmm_posterior(*model_, feature, posterior_, scratch_, nullptr, &most_probable_) == Status::ok)
-            last_ = descend_tree(*model_, posterior_);
+            last_ = descend_tree_sparse(*model_, posterior_, norms_, nonzero_);
         characters_[slot] = last_;
         ready_[slot] = true;
         return last_;
     }
 
     struct Plan {
-        std::size_t poses = 0, skeleton = 0, feature = 0, posterior = 0, scratch = 0, motion = 0, bytes = 0;
+        std::size_t poses = 0, skeleton = 0, feature = 0, posterior = 0, scratch = 0, norms = 0, nonzero = 0, motion = 0,
+                    bytes = 0;
     };
     static constexpr Plan plan(const ModelView& m) noexcept {
         detail::StorageLayout layout;
@@ -176,6 +180,8 @@ private:
         p.feature = layout.add<float>(m.has_projection() ? m.feature_dim : 0u);
         p.posterior = layout.add<float>(m.component_count);
         p.scratch = layout.add<float>(gmm_scratch_floats(m));
+        p.norms = layout.add<float>(tree_norm_floats(m));
+        p.nonzero = layout.add<std::uint16_t>(m.has_gmm() ? m.component_count : 0u);
         p.motion = layout.add<unsigned char>(MotionRing::required_bytes(m));
         p.bytes = layout.bytes();
         return p;
@@ -196,6 +202,8 @@ private:
     float* feature_ = nullptr;    // the projected pose
     float* posterior_ = nullptr;  // component_count floats
     float* scratch_ = nullptr;    // the GMM's gmm_scratch_floats()
+    float* norms_ = nullptr;      // with a GMM: the tree's node norms (tree_node_norms())
+    std::uint16_t* nonzero_ = nullptr;  // with a GMM: the posterior's non-zero coordinates
 };
 
 }  // namespace actionstring
