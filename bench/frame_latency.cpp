@@ -220,6 +220,10 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     float* const posterior = posterior_buffer.data();
     float* const scratch = scratch_buffer.data();
     float* const skeleton_data = skeleton_buffer.data();
+    // The encoder's descent: on GMM posteriors the sparse one, with its node norms.
+    std::vector<float> norms(tree_norm_floats(model));
+    std::vector<std::uint16_t> nonzero(model.tree_dim());
+    if (model.has_gmm()) tree_node_norms(model, norms.data());
     host::Stateful<MotionRing> motion;
     if (motion.init(model) != Status::ok) {
         std::fprintf(stderr, "%s: the velocity ring refused the model\n", name.c_str());
@@ -246,7 +250,10 @@ void measure_model(const std::string& name, const ModelView& model, const host::
                 input = posterior;
             }
             Character character = 0;
-            const std::int64_t d = timed([&] { character = descend_tree(model, input); });
+            const std::int64_t d = timed([&] {
+                character = model.has_gmm() ? descend_tree_sparse(model, input, norms.data(), nonzero.data())
+                                            : descend_tree(model, input);
+            });
             g_sink = character;
             if (pass == 0) continue;
             normalise_ns.push_back(a);
