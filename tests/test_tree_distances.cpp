@@ -170,8 +170,11 @@ TEST_CASE("sparse tree descent: the dense descent's character on every feature")
         for (int t = 0; t < 6; ++t) {
             const RandomTree tree(dim, 2 + t * 9, rng);
             for (int trial = 0; trial < 300; ++trial) {
-                // Mostly sparse, sometimes dense (more than a quarter non-zero: the dense path at once).
-                const std::size_t count = trial % 10 == 9 ? dim : 1 + static_cast<std::size_t>(trial) % 6;
+                // Mostly sparse, sometimes a third non-zero (still the sparse path), sometimes
+                // dense (more than half non-zero: the dense descent at once).
+                const std::size_t count = trial % 10 == 9   ? dim
+                                          : trial % 10 == 8 ? 1 + dim / 3
+                                                            : 1 + static_cast<std::size_t>(trial) % 6;
                 const std::vector<float> feature = sparse_feature(dim, count, rng);
                 CHECK(tree.sparse(feature) == descend_tree(tree.view, feature.data()));
             }

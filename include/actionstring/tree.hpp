@@ -128,9 +128,9 @@ inline void tree_node_norms(const ModelView& model, float* norms) noexcept {
 /// γ = 16 (dim + 8) u, four times what the two computations' errors need, plus
 /// 10⁻³⁰ for flushed subnormals — both computations see the same sign and no tie,
 /// and the sparse one decides. Otherwise (near a tie, or a NaN) the node falls
-/// back to node_distances_sq(). On HDM05 at J = 40 no node of val.tsv's
-/// characters falls back, and a descent costs about a third of descend_tree()'s.
-/// A feature with more than a quarter of its coordinates non-zero goes to
+/// back to node_distances_sq(). On HDM05's val.tsv at J = 20, 40 and 80 no node
+/// falls back, and a descent costs 0.67, 0.50 and 0.28 of descend_tree()'s time.
+/// A feature with more than half of its coordinates non-zero goes to
 /// descend_tree() at once.
 /// @param feature  tree_dim() floats; read only during the call
 /// @param norms    tree_node_norms() of this model (node_count floats)
@@ -146,7 +146,7 @@ inline Character descend_tree_sparse(const ModelView& model, const float* featur
             feature_norm += feature[j] * feature[j];
         }
     }
-    if (4 * count > dim) return descend_tree(model, feature);
+    if (2 * count > dim) return descend_tree(model, feature);
     const float gamma = 16.0f * static_cast<float>(dim + 8) * 5.9604645e-8f;  // 16 (dim + 8) · 2⁻²⁴
     std::size_t node = 0;
     for (;;) {
