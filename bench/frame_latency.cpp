@@ -223,7 +223,7 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     // The encoder's descent: on GMM posteriors the sparse one, with its node norms.
     std::vector<float> norms(tree_norm_floats(model));
     std::vector<std::uint16_t> nonzero(model.tree_dim());
-    if (model.has_gmm()) tree_node_norms(model, norms.data());
+    tree_node_norms(model, norms.data());
     host::Stateful<MotionRing> motion;
     if (motion.init(model) != Status::ok) {
         std::fprintf(stderr, "%s: the velocity ring refused the model\n", name.c_str());

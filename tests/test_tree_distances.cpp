@@ -135,7 +135,7 @@ struct RandomTree {
         view.node_centroids = centroids.data();
         view.node_children = children.data();
         view.node_characters = characters.data();
-        norms.resize(nodes);
+        norms.resize(tree_norm_floats(view));
         tree_node_norms(view, norms.data());
     }
     Character sparse(const std::vector<float>& feature) const {

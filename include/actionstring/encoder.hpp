@@ -180,7 +180,7 @@ private:
         p.feature = layout.add<float>(m.has_projection() ? m.feature_dim : 0u);
         p.posterior = layout.add<float>(m.component_count);
         p.scratch = layout.add<float>(gmm_scratch_floats(m));
-        p.norms = layout.add<float>(tree_norm_floats(m));
+        p.norms = layout.add<float>(m.has_gmm() ? tree_norm_floats(m) : 0u);  // the sparse descent is for posteriors
         p.nonzero = layout.add<std::uint16_t>(m.has_gmm() ? m.component_count : 0u);
         p.motion = layout.add<unsigned char>(MotionRing::required_bytes(m));
         p.bytes = layout.bytes();

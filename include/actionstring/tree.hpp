@@ -96,16 +96,13 @@ inline Character descend_tree(const ModelView& model, const float* feature) noex
     }
 }
 
-/// Floats of tree_node_norms() for a model: one per node when the tree descends
-/// on GMM posteriors (sparse features), none otherwise.
-constexpr std::size_t tree_norm_floats(const ModelView& model) noexcept {
-    return model.has_gmm() ? model.node_count : 0u;
-}
+/// Floats tree_node_norms() writes: one per node.
+constexpr std::size_t tree_norm_floats(const ModelView& model) noexcept { return model.node_count; }
 
 /// Each node centroid's squared norm, for descend_tree_sparse(): the squares of
 /// its coordinates added in increasing order. Exactness does not depend on
 /// this order (the descent's error bound covers any).
-/// @param norms receives node_count floats (caller-owned)
+/// @param norms receives tree_norm_floats(model) floats (caller-owned)
 inline void tree_node_norms(const ModelView& model, float* norms) noexcept {
     const std::size_t dim = model.tree_dim();
     for (std::size_t n = 0; n < model.node_count; ++n) {
