@@ -122,7 +122,7 @@ inline void tree_node_norms(const ModelView& model, float* norms) noexcept {
 /// relatively, u = 2⁻²⁴, all terms being ≥ 0). So when this difference, computed
 /// here in float with its own rounding bounded the same way, lies further from 0
 /// than γ·B — B bounding both distances (‖a‖² + ‖b‖² + 2‖t‖² + 2 Σ |t_j|(|a_j| + |b_j|)),
-/// γ = 16 (dim + 8) u, four times what the two computations' errors need, plus
+/// γ = 16 (dim + 8) u, several times what the two computations' errors need, plus
 /// 10⁻³⁰ for flushed subnormals — both computations see the same sign and no tie,
 /// and the sparse one decides. Otherwise (near a tie, or a NaN) the node falls
 /// back to node_distances_sq(). On HDM05's val.tsv at J = 20, 40 and 80 no node
