@@ -70,8 +70,10 @@ Tables random_tables(std::mt19937& rng) {
             for (int b = 0; b < a; ++b) t.w[static_cast<std::size_t>(b * K + a)] = t.w[static_cast<std::size_t>(a * K + b)];
     const int R = uniform(1, 6);
     for (int r = 0; r < R; ++r) {
-        // Up to 24 characters: the SIMD path's blocks of eight (AVX2) and four
-        // (detail/lanes.hpp) take cells from the top, leaving 2 to 5 to the scalar loop.
+        // 1 to 24 characters: with SIMD, a representative of four or more has
+        // its lowest four cells in one block, blocks of eight (AVX2) and four
+        // from the top, and at most one cell in the scalar loop; shorter ones
+        // take the scalar code alone (detail/lanes.hpp).
         std::vector<Character> rep(static_cast<std::size_t>(uniform(1, 24)));
         for (auto& c : rep) c = static_cast<Character>(uniform(0, K - 1));
         t.add(rep, static_cast<LabelId>(uniform(0, 3)));

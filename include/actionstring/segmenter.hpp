@@ -213,14 +213,21 @@ public:
             // Descending, so cells i−1 and i−2 still hold the previous step.
             // `top` is the highest cell (0-based) the scalar loop below still has to do.
             std::size_t top = n - 1;
-#if ACTIONSTRING_DETAIL_LANES == 4
-            // A block of cells at a time from the top (eight with AVX2, then
-            // four) while a block's cells are all ordinary (0-based index ≥ 2,
-            // so cells i−1 and i−2 exist). Only the blocks' best cost is kept;
-            // the cell it came from (rep_from) is found afterwards, and only
-            // for a representative that becomes the best.
+            // With lanes, a representative of four or more cells is done in
+            // blocks: its lowest four cells (`bottom`, whose moves into the
+            // segment are lanes of their own) from the previous step first, as
+            // the blocks above may overwrite cells 2 and 3; then blocks from the
+            // top (eight with AVX2, then four) while a block's cells are all
+            // ordinary (0-based index ≥ 2, so cells i−1 and i−2 exist); then at
+            // most one ordinary cell in the scalar loop; then bottom is stored.
+            // Only the blocks' best cost is kept; the cell it came from
+            // (rep_from) is found afterwards, and only for a representative
+            // that becomes the best.
             bool blocks = false;
-            if (n >= 6) {
+#if ACTIONSTRING_DETAIL_LANES == 4
+            BottomCells bottom{};
+            if (n >= 4) {
+                bottom = bottom_cells(cells, rep, column, shift, stay_penalty, skip_penalty, vote, entry, now);
 #if ACTIONSTRING_DETAIL_WIDE_LANES == 8
                 rep_best = cell_blocks<8>(cells, rep, column, top, shift, stay_penalty, skip_penalty, vote, rep_best);
 #endif
@@ -232,14 +239,16 @@ public:
             // pointers: the previous step's cells i, i−1 (shifted) ride down
             // the loop in registers, so each cell loads one old value and the
             // loop's state fits a Cortex-M4's registers; cells 2 and 1, whose
-            // moves start a segment, follow the loop.
+            // moves start a segment, follow the loop. After blocks, the loop
+            // stops above bottom's four cells.
+            const std::size_t lowest_ordinary = blocks ? 4 : 2;
             float here = cells.cost(top) - shift;  // old cell i
             std::uint32_t here_from = cells.start(top);
             float below = top >= 1 ? cells.cost(top - 1) - shift : 0.0f;  // old cell i − 1
             std::uint32_t below_from = top >= 1 ? cells.start(top - 1) : 0u;
-            if (top >= 2) {
+            if (top >= lowest_ordinary) {
                 const Character* c = rep + top;
-                const Character* const last = rep + 1;
+                const Character* const last = rep + (lowest_ordinary - 1);
                 for (Cells cell = cells + top; c != last; cell.down(), --c) {
                     const Cells two_below = cell - 2;
                     const float further = two_below.cost(0) - shift;  // old cell i − 2
@@ -253,30 +262,38 @@ public:
                     below = further, below_from = further_from;
                 }
             }
-            if (n >= 2) {  // cell 2: advance from cell 1, stay, or skip in from the segment's entry
-                float value = below;
-                std::uint32_t from = below_from;
-                choose(value, from, here + stay_penalty, here_from);
-                choose(value, from, entry + skip_penalty, now);
-                finish(cells + 1, rep[1], value, from);
-                here = below, here_from = below_from;
-            }
-            {  // cell 1: enter the segment, or stay
-                float value = entry;
-                std::uint32_t from = now;
-                choose(value, from, here + stay_penalty, here_from);
-                finish(cells, rep[0], value, from);
+            if (!blocks) {
+                if (n >= 2) {  // cell 2: advance from cell 1, stay, or skip in from the segment's entry
+                    float value = below;
+                    std::uint32_t from = below_from;
+                    choose(value, from, here + stay_penalty, here_from);
+                    choose(value, from, entry + skip_penalty, now);
+                    finish(cells + 1, rep[1], value, from);
+                    here = below, here_from = below_from;
+                }
+                {  // cell 1: enter the segment, or stay
+                    float value = entry;
+                    std::uint32_t from = now;
+                    choose(value, from, here + stay_penalty, here_from);
+                    finish(cells, rep[0], value, from);
+                }
             }
 #if ACTIONSTRING_DETAIL_LANES == 4
-            // The blocks' best is in rep_best, but the cell it came from was not
-            // tracked: the first strict minimum in descending order is the highest
-            // cell holding the minimum. Only the best representative needs it.
-            if (blocks && rep_best < best.cost)
-                for (std::size_t i = n; i-- > 0;)
-                    if (cells.cost(i) == rep_best) {
-                        rep_from = cells.start(i);
-                        break;
-                    }
+            if (blocks) {
+                detail::store_lanes(cells.costs, bottom.cost);
+                detail::store_lanes(cells.starts, bottom.start);
+                const float bottom_best = detail::smallest_lane(bottom.cost);
+                rep_best = bottom_best < rep_best ? bottom_best : rep_best;
+                // The blocks' best is in rep_best, but the cell it came from was not
+                // tracked: the first strict minimum in descending order is the highest
+                // cell holding the minimum. Only the best representative needs it.
+                if (rep_best < best.cost)
+                    for (std::size_t i = n; i-- > 0;)
+                        if (cells.cost(i) == rep_best) {
+                            rep_from = cells.start(i);
+                            break;
+                        }
+            }
 #endif
             const bool other_label = m.representative_labels[r] != label_of(best.rep);
             if (rep_best < best.cost) {
@@ -401,6 +418,37 @@ private:
 #endif
 
 #if ACTIONSTRING_DETAIL_LANES == 4
+    struct BottomCells {
+        detail::Lanes cost, start;
+    };
+    // Cells 0 … 3 of a representative of at least four, the same choices as
+    // the scalar code in push() lane by lane: cell 0 enters the segment (the
+    // entry's cost in the lane of "cell i − 1") or stays, and cannot skip (+∞
+    // never wins); cell 1 advances from cell 0, stays, or skips in from the
+    // entry; cells 2 and 3 are ordinary. Reads only the previous step's cells
+    // 0 … 3; push() stores the result.
+    static BottomCells bottom_cells(Cells cells, const Character* rep, const float* column, float shift,
+                                    float stay_penalty, float skip_penalty, float vote, float entry,
+                                    std::uint32_t now) noexcept {
+        using detail::Lanes;
+        const Lanes old = detail::load_lanes(cells.costs) - detail::broadcast(shift);  // old cell i, shifted
+        const Lanes old_from = detail::load_lanes(cells.starts);
+        const Lanes now_l = detail::broadcast_bits(now);
+        Lanes value = detail::lanes_up1(old, detail::broadcast(entry));  // old cell i − 1; the entry for cell 0
+        Lanes from = detail::lanes_up1(old_from, now_l);
+        const Lanes stay = old + detail::broadcast(stay_penalty);
+        const auto take_stay = detail::less(stay, value);
+        value = detail::minimum(stay, value);
+        from = detail::select(take_stay, old_from, from);
+        const Lanes skip = detail::lanes_up2(old, detail::lanes_of(detail::infinity(), entry, 0.0f, 0.0f)) +
+                           detail::broadcast(skip_penalty);  // old cell i − 2; +∞, the entry for cells 0, 1
+        const auto take_skip = detail::less(skip, value);
+        value = detail::minimum(skip, value);
+        from = detail::select(take_skip, detail::lanes_up2(old_from, now_l), from);
+        value = value + (detail::LaneOps<4>::gather(column, rep) + detail::broadcast(vote));
+        return BottomCells{value, from};
+    }
+
     // Cells top, top − 1, … in blocks of L while a block's lowest cell has
     // index ≥ 2, the same recurrence as the scalar loop in push(), lane by lane:
     // minimum(a, b) is exactly less(a, b) ? a : b (MINPS), so each choice's cost

@@ -78,6 +78,16 @@ inline Lanes select(LaneMask m, Lanes a, Lanes b) noexcept {
 inline Lanes minimum(Lanes a, Lanes b) noexcept { return Lanes{_mm_min_ps(a.v, b.v)}; }
 /// Whether a < b in every lane (false when any lane is NaN).
 inline bool all_less(Lanes a, Lanes b) noexcept { return _mm_movemask_ps(_mm_cmplt_ps(a.v, b.v)) == 0xF; }
+/// {fill[0], a[0], a[1], a[2]}: a's lanes one place up, fill's first lane entering
+/// (bits moved, not rounded: costs and 32-bit starts alike).
+inline Lanes lanes_up1(Lanes a, Lanes fill) noexcept {
+    const __m128 fill_and_first = _mm_shuffle_ps(fill.v, a.v, _MM_SHUFFLE(0, 0, 0, 0));  // f0 f0 a0 a0
+    return Lanes{_mm_shuffle_ps(fill_and_first, a.v, _MM_SHUFFLE(2, 1, 2, 0))};
+}
+/// {fill[0], fill[1], a[0], a[1]}: a's lanes two places up, fill's first two entering.
+inline Lanes lanes_up2(Lanes a, Lanes fill) noexcept {
+    return Lanes{_mm_shuffle_ps(fill.v, a.v, _MM_SHUFFLE(1, 0, 1, 0))};
+}
 /// The smallest lane (exact: the minimum of finite values or infinities does not round).
 inline float smallest_lane(Lanes a) noexcept {
     const __m128 pairs = _mm_min_ps(a.v, _mm_movehl_ps(a.v, a.v));
