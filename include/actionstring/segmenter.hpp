@@ -418,6 +418,21 @@ private:
 #endif
 
 #if ACTIONSTRING_DETAIL_LANES == 4
+    // A block's choices, lane by lane as choose() in push(): from the advance
+    // already in (value, from), to stay if strictly cheaper, then to skip if
+    // strictly cheaper. minimum(a, b) is exactly less(a, b) ? a : b (MINPS), so
+    // each choice's cost takes one instruction and the mask picks the start.
+    template <class V>
+    ACTIONSTRING_DETAIL_ALWAYS_INLINE static void choose_lanes(V& value, V& from, V stay, V stay_from, V skip,
+                                                           V skip_from) noexcept {
+        const auto take_stay = detail::less(stay, value);
+        value = detail::minimum(stay, value);
+        from = detail::select(take_stay, stay_from, from);
+        const auto take_skip = detail::less(skip, value);
+        value = detail::minimum(skip, value);
+        from = detail::select(take_skip, skip_from, from);
+    }
+
     struct BottomCells {
         detail::Lanes cost, start;
     };
@@ -436,24 +451,19 @@ private:
         const Lanes now_l = detail::broadcast_bits(now);
         Lanes value = detail::lanes_up1(old, detail::broadcast(entry));  // old cell i − 1; the entry for cell 0
         Lanes from = detail::lanes_up1(old_from, now_l);
-        const Lanes stay = old + detail::broadcast(stay_penalty);
-        const auto take_stay = detail::less(stay, value);
-        value = detail::minimum(stay, value);
-        from = detail::select(take_stay, old_from, from);
+        // Skips from old cell i − 2; for cells 0 and 1 from +∞ and the entry.
         const Lanes skip = detail::lanes_up2(old, detail::lanes_of(detail::infinity(), entry, 0.0f, 0.0f)) +
-                           detail::broadcast(skip_penalty);  // old cell i − 2; +∞, the entry for cells 0, 1
-        const auto take_skip = detail::less(skip, value);
-        value = detail::minimum(skip, value);
-        from = detail::select(take_skip, detail::lanes_up2(old_from, now_l), from);
+                           detail::broadcast(skip_penalty);
+        choose_lanes(value, from, old + detail::broadcast(stay_penalty), old_from, skip,
+                     detail::lanes_up2(old_from, now_l));
         value = value + (detail::LaneOps<4>::gather(column, rep) + detail::broadcast(vote));
         return BottomCells{value, from};
     }
 
     // Cells top, top − 1, … in blocks of L while a block's lowest cell has
-    // index ≥ 2, the same recurrence as the scalar loop in push(), lane by lane:
-    // minimum(a, b) is exactly less(a, b) ? a : b (MINPS), so each choice's cost
-    // takes one instruction and the mask picks the start. Lowers `top` past the
-    // blocks done and returns the smaller of `best` and their cells' costs.
+    // index ≥ 2, the same recurrence as the scalar loop in push(), lane by lane
+    // (choose_lanes). Lowers `top` past the blocks done and returns the smaller
+    // of `best` and their cells' costs.
     template <std::size_t L>
     static float cell_blocks(Cells cells, const Character* rep, const float* column, std::size_t& top, float shift,
                              float stay_penalty, float skip_penalty, float vote, float best) noexcept {
@@ -469,14 +479,8 @@ private:
             const std::size_t low = top - (L - 1);  // the block is cells low … top
             V value = Ops::load(costs + low - 1) - shift_l;
             V from = Ops::load(starts + low - 1);
-            const V stay = Ops::load(costs + low) - shift_l + stay_l;
-            const auto take_stay = detail::less(stay, value);
-            value = detail::minimum(stay, value);
-            from = detail::select(take_stay, Ops::load(starts + low), from);
-            const V skip = Ops::load(costs + low - 2) - shift_l + skip_l;
-            const auto take_skip = detail::less(skip, value);
-            value = detail::minimum(skip, value);
-            from = detail::select(take_skip, Ops::load(starts + low - 2), from);
+            choose_lanes(value, from, Ops::load(costs + low) - shift_l + stay_l, Ops::load(starts + low),
+                         Ops::load(costs + low - 2) - shift_l + skip_l, Ops::load(starts + low - 2));
             value = value + (Ops::gather(column, rep + low) + vote_l);
             detail::store_lanes(costs + low, value);
             detail::store_lanes(starts + low, from);
