@@ -65,6 +65,9 @@ void print_train_usage(std::FILE* out) {
                  "                          an engine rig's body joints (CC_Base, Mixamo, Unreal, Unity\n"
                  "                          humanoid: no fingers, twist or face bones), else every joint\n"
                  "  --neighbours K          k of the kNN vote [%d]\n"
+                 "  --exemplars N           k-means centres of each label's training features, compared\n"
+                 "                          with a clip's features beside its string, 0 = none [0]\n"
+                 "  --exemplar-weight W     their weight beside DTW and the votes, 0 = none [0]\n"
                  "  --window S, --step S    sliding window and step in seconds [%g, %g]\n"
                  "  --unknown-distance X    label unknown above this distance [never]\n"
                  "  --settle S, --segment-penalty X, --stay-penalty X, --skip-penalty X, --unknown-cost X\n"
@@ -153,6 +156,7 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
     // settings: the folds train with them, so the choice fits within the bound.
     start.pose_joints = given.pose_joints;
     start.max_representative_chars = given.max_representative_chars;
+    start.reject = given.reject;  // learned rejection rules out the exemplars (tuning.cpp)
     std::set<std::string> subjects;
     for (const host::LabelledClip& c : clips) subjects.insert(c.subject);
     if (subjects.size() < 2) {

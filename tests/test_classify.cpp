@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "actionstring/classify.hpp"
+#include "actionstring/exemplars.hpp"
 
 using namespace actionstring;
 
@@ -132,4 +133,47 @@ TEST_CASE("a label's own bound makes what lies beyond it unknown") {
     CHECK(classify_distances(reps.view, tight).label == unknown_label);
     reps.view.has_label_bounds = 0;  // the same distances without bounds
     CHECK(classify_distances(reps.view, tight).label == 2);
+}
+
+TEST_CASE("exemplars: each label's nearest centre, penalties relative to the nearest label, and they can decide") {
+    Reps reps({0, 1, 2}, 1);
+    // Two-dimensional features; label 0 has two centres, label 1 one, label 2 none.
+    const LabelId labels[] = {0, 1, 0};
+    const float centres[] = {0.0f, 0.0f, 3.0f, 4.0f, 1.0f, 1.0f};
+    reps.view.feature_dim = 2;
+    reps.view.exemplar_count = 3;
+    reps.view.exemplar_labels = labels;
+    reps.view.exemplars = centres;
+    reps.view.exemplar_weight = 2.0f;
+    reps.view.exemplar_scale = 0.5f;
+    REQUIRE(reps.view.has_exemplars());
+    const float feature[] = {1.0f, 2.0f};
+    float d[3];
+    exemplar_distances(reps.view, feature, d);
+    CHECK(d[0] == 1.0f);                                        // (1,1): 0 + 1, nearer than (0,0): 1 + 4
+    CHECK(d[1] == 8.0f);                                        // (3,4): 4 + 4
+    CHECK(d[2] == std::numeric_limits<float>::infinity());      // no exemplars
+    // Sums over four characters: penalties weight · (mean − best mean) / scale.
+    const float sums[] = {4.0f, 12.0f, std::numeric_limits<float>::infinity()};
+    float p[3];
+    exemplar_penalties(reps.view, sums, 4, p);
+    CHECK(p[0] == 0.0f);
+    CHECK(p[1] == doctest::Approx(2.0 * (3.0 - 1.0) / 0.5));
+    CHECK(p[2] == std::numeric_limits<float>::infinity());
+    // They decide between representatives the strings find equally near.
+    const float distances[] = {1.0f, 1.0f - 1e-3f, 5.0f};
+    CHECK(classify_distances(reps.view, distances).label == 1);
+    CHECK(classify_distances(reps.view, distances, p).label == 0);
+    // No characters, no sums, or no finite sum: no opinion.
+    exemplar_penalties(reps.view, sums, 0, p);
+    CHECK((p[0] == 0.0f && p[1] == 0.0f && p[2] == 0.0f));
+    const float none[] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
+                          std::numeric_limits<float>::infinity()};
+    exemplar_penalties(reps.view, none, 4, p);
+    CHECK((p[0] == 0.0f && p[1] == 0.0f && p[2] == 0.0f));
+    // Without a weight the model has no exemplars to use.
+    reps.view.exemplar_weight = 0.0f;
+    CHECK_FALSE(reps.view.has_exemplars());
+    exemplar_penalties(reps.view, sums, 4, p);
+    CHECK((p[0] == 0.0f && p[1] == 0.0f && p[2] == 0.0f));
 }

@@ -153,9 +153,10 @@ TEST_CASE("a frame's velocity taken after its own keep() is the same, bit for bi
     }
 }
 
-TEST_CASE("the encoder's string equals the eagerly sampled features' characters, frames irregular") {
+TEST_CASE("the encoder's string and features equal the eagerly sampled features', frames irregular") {
     // The encoder takes velocities lazily; the trainer's sample_poses() takes
-    // every frame's. Their characters must agree on any timing.
+    // every frame's. Their characters, and the features the exemplars compare
+    // (EncodedFrame's previous_feature / current_feature), must agree on any timing.
     host::ToyWorld world = host::make_toy_world();
     const host::TrainingOptions options = toy_motion_options();
     auto clips = host::toy_clips(world, 2, 6);
@@ -175,6 +176,10 @@ TEST_CASE("the encoder's string equals the eagerly sampled features' characters,
             clip.times[f] = t;
         }
         const std::vector<Character> string = host::clip_string(view, clip);
+        const host::EncodedClip encoded = host::encode_clip(view, clip, true);
+        REQUIRE(encoded.string == string);
+        REQUIRE(encoded.features.size() == string.size() * view.feature_dim);
+        CHECK(host::encode_clip(view, clip, false).features.empty());
         std::vector<float> poses;
         host::sample_poses(view, clip, 1e6 / view.string_period_us, poses);
         const std::size_t D = view.input_dim();
@@ -183,6 +188,8 @@ TEST_CASE("the encoder's string equals the eagerly sampled features' characters,
         for (std::size_t k = 0; k < string.size(); ++k) {
             REQUIRE(project_pose(view, poses.data() + k * D, feature.data()) == Status::ok);
             CHECK(descend_tree(view, feature.data()) == string[k]);
+            CHECK(std::memcmp(feature.data(), &encoded.features[k * view.feature_dim],
+                              view.feature_dim * sizeof(float)) == 0);
             ++compared;
         }
     }

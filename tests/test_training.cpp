@@ -11,6 +11,7 @@
 #include <string>
 
 #include "actionstring/annotator.hpp"
+#include "actionstring/exemplars.hpp"
 #include "actionstring/string_distance.hpp"
 #include "io/recordings.hpp"
 #include "model/artifact.hpp"
@@ -25,6 +26,7 @@
 #include "train/gmm_em.hpp"
 #include "train/pca.hpp"
 #include "train/pipeline.hpp"
+#include "train/exemplars.hpp"
 #include "train/rejection.hpp"
 
 using namespace actionstring;
@@ -420,6 +422,90 @@ TEST_CASE("training on the toy world recognises held-out performances") {
     CHECK(clip_accuracy(view, held_out) >= 0.9);
 }
 
+TEST_CASE("exemplars: k-means centres per label, their scale measured, deterministic, stored and used") {
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 6, 100);
+    const auto held_out = toy_clips(world, 5, 9000, 30.0);
+    TrainingOptions options = toy_options();
+    options.components = 0;
+    options.pca_dim = 6;
+    options.epsilon = 0.5;
+    options.sigma = 0.5;
+    options.exemplars = 4;
+    options.exemplar_weight = 2.0;
+    const ModelData model = train_model(train, options);
+    const ModelView view = model.view();
+    REQUIRE(validate_model(view) == Status::ok);
+    REQUIRE(view.has_exemplars());
+    // Every label has far more than four features: four centres each, label by label.
+    CHECK(view.exemplar_count == 4u * view.label_count);
+    for (std::size_t e = 0; e < view.exemplar_count; ++e) CHECK(view.exemplar_labels[e] == e / 4);
+    CHECK(view.exemplar_weight == 2.0f);
+    // The scale is the training characters' mean squared distance to their own label's nearest centre.
+    double own = 0.0;
+    std::size_t n = 0;
+    std::vector<float> d(view.label_count);
+    for (const LabelledClip& c : train) {
+        const EncodedClip encoded = encode_clip(view, c.clip, true);
+        const std::size_t label = static_cast<std::size_t>(
+            std::find(model.label_names.begin(), model.label_names.end(), c.label) - model.label_names.begin());
+        for (std::size_t at = 0; at < encoded.features.size(); at += view.feature_dim, ++n) {
+            exemplar_distances(view, &encoded.features[at], d.data());
+            own += d[label];
+        }
+    }
+    REQUIRE(n > 0);
+    CHECK(view.exemplar_scale > 0.0f);
+    CHECK(view.exemplar_scale == doctest::Approx(own / static_cast<double>(n)).epsilon(1e-4));
+    // Deterministic, and through the artifact bit for bit.
+    CHECK(serialize_model(train_model(train, options)) == serialize_model(model));
+    CHECK(serialize_model(parse_model("x.model", serialize_model(model))) == serialize_model(model));
+    // Held-out performances: still recognised; the exemplars' penalties reach the kNN.
+    CHECK(clip_accuracy(view, held_out) >= 0.9);
+    std::size_t changed = 0;
+    for (const LabelledClip& c : held_out) {
+        const EncodedClip encoded = encode_clip(view, c.clip, true);
+        const std::vector<float> sums = exemplar_sums(view, encoded.features);
+        const Classification with = classify_string(view, encoded.string, {}, sums.data());
+        CHECK(with.label == classify_clip(view, c.clip).label);
+        const Classification without = classify_string(view, encoded.string);
+        // The winner's distance grew by exactly its exemplar penalty.
+        std::vector<float> penalties(view.label_count), votes(view.label_count);
+        exemplar_penalties(view, sums.data(), encoded.string.size(), penalties.data());
+        vote_penalties(view, encoded.string.data(), encoded.string.size(), votes.data());
+        if (with.label == without.label && with.representative == without.representative)
+            CHECK(with.distance == doctest::Approx(without.distance + penalties[with.label]));
+        changed += *std::max_element(penalties.begin(), penalties.end()) > 0.0f;
+    }
+    CHECK(changed == held_out.size());  // every clip's other labels lie further from their exemplars
+    // No weight or no centres: none.
+    options.exemplar_weight = 0.0;
+    CHECK_FALSE(train_model(train, options).view().has_exemplars());
+    // Rejection bounds are learned on strings alone: the two are refused together, with a reason.
+    options.exemplar_weight = 2.0;
+    options.reject = true;
+    CHECK_THROWS_WITH_AS(train_model(train, options), doctest::Contains("reject and exemplars"), std::invalid_argument);
+}
+
+TEST_CASE("exemplars: a label with fewer features than centres keeps every feature as a centre") {
+    ModelData m;
+    m.feature_dim = 2;
+    const std::vector<std::string> names{"a", "b"};
+    m.label_names.assign(names.begin(), names.end());
+    // Label a: three features; label b: one feature twice (both characters on it).
+    const std::vector<std::vector<float>> features{{0, 0, 1, 0}, {5, 5, 5, 5}, {0, 1}};
+    const std::vector<LabelId> labels{0, 1, 0};
+    set_exemplars(m, features, labels, 8, 1.0, 1);
+    CHECK(m.exemplar_labels == std::vector<LabelId>{0, 0, 0, 1, 1});
+    CHECK(m.exemplars == std::vector<float>{0, 0, 1, 0, 0, 1, 5, 5, 5, 5});
+    // Every feature is a centre of its own label, so the scale is the nearest other label's mean distance.
+    const double other = (50.0 + 41.0 + 41.0 + 41.0 + 41.0) / 5.0;  // (5,5)'s nearest of a is (1,0)
+    CHECK(m.exemplar_scale == doctest::Approx(other));
+    set_exemplars(m, features, labels, 0, 1.0, 1);
+    CHECK(m.exemplar_labels.empty());
+    CHECK(m.exemplar_weight == 0.0f);
+}
+
 TEST_CASE("a model without a GMM (PCA-only characters) trains, validates, round-trips and generates a header") {
     ToyWorld world = make_toy_world();
     const auto train = toy_clips(world, 6, 100);
@@ -522,6 +608,37 @@ TEST_CASE("artifacts round-trip exactly and refuse corruption") {
     refused(serialize_model(world.model), "invalid model: representative_labels: not a label of the model");
 }
 
+namespace {
+
+// A model's artifact as an earlier version wrote it: the version line, and
+// none of the fields added since (version 6: the exemplars).
+std::string older_artifact(const ModelData& model, int version) {
+    std::string body;
+    const std::string fields = serialize_fields(model);
+    for (std::size_t at = 0; at < fields.size();) {
+        const std::size_t end = fields.find('\n', at) + 1;
+        const std::string line = fields.substr(at, end - at);
+        if (line.rfind("exemplar", 0) != 0) body += line;
+        at = end;
+    }
+    char checksum[24];
+    std::snprintf(checksum, sizeof checksum, "%016llx", static_cast<unsigned long long>(fnv1a64(body)));
+    return "actionstring-model " + std::to_string(version) + "\nchecksum fnv1a64 " + checksum + "\n" + body;
+}
+
+}  // namespace
+
+TEST_CASE("a version-5 artifact (before the exemplars) is read, without exemplars") {
+    const ToyWorld world = make_toy_world();
+    REQUIRE_FALSE(world.model.view().has_exemplars());
+    const ModelData loaded = parse_model("v5.model", older_artifact(world.model, 5));
+    CHECK(serialize_model(loaded) == serialize_model(world.model));
+    // The same lines under the current version lack fields: refused, with the line.
+    std::string current = older_artifact(world.model, 5);
+    current.replace(0, std::string("actionstring-model 5").size(), "actionstring-model " + std::to_string(artifact_version));
+    CHECK_THROWS_WITH_AS(parse_model("v6.model", current), doctest::Contains("expected 'exemplar_weight'"), ReadError);
+}
+
 TEST_CASE("a version-4 artifact (factors component by component) is read and reordered") {
     const ToyWorld world = make_toy_world();
     const ModelView view = world.model.view();
@@ -532,11 +649,7 @@ TEST_CASE("a version-4 artifact (factors component by component) is read and reo
         for (std::size_t k = 0; k < size; ++k)
             old.gmm_factors[j * size + k] = world.model.gmm_factors[view.gmm_factor_index(j, k)];
     REQUIRE(old.gmm_factors != world.model.gmm_factors);
-    std::string text = serialize_model(old);  // the checksum covers the body, not the version line
-    const std::string current = "actionstring-model " + std::to_string(artifact_version) + "\n";
-    REQUIRE(text.rfind(current, 0) == 0);
-    text.replace(0, current.size(), "actionstring-model " + std::to_string(artifact_version - 1) + "\n");
-    const ModelData loaded = parse_model("old.model", text);
+    const ModelData loaded = parse_model("old.model", older_artifact(old, 4));
     CHECK(loaded.gmm_factors == world.model.gmm_factors);
     CHECK(serialize_model(loaded) == serialize_model(world.model));
     // Read as the current version, the same body is another (wrong) model: the version line matters.

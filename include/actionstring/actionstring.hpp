@@ -19,5 +19,6 @@
 #include "actionstring/string_distance.hpp"
 #include "actionstring/matcher.hpp"
 #include "actionstring/classify.hpp"
+#include "actionstring/exemplars.hpp"
 #include "actionstring/annotator.hpp"
 #include "actionstring/blob.hpp"

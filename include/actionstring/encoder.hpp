@@ -34,6 +34,11 @@ struct EncodedFrame {
     std::uint32_t from_previous = 0;
     Character current = 0;
     std::uint32_t from_current = 0;
+    /// The features (feature_dim floats: the projected pose) `previous` and
+    /// `current` were made from, null when not emitted. Owned by the encoder,
+    /// valid until the next push_frame(); for exemplars.hpp.
+    const float* previous_feature = nullptr;
+    const float* current_feature = nullptr;
 
     std::uint32_t count() const noexcept { return from_previous + from_current; }
     bool accepted() const noexcept { return status == Status::ok || status == Status::stream_restarted; }
@@ -75,7 +80,8 @@ public:
         poses_[0] = detail::storage_at<float>(storage, p.poses);
         poses_[1] = poses_[0] + model.input_dim();
         skeleton_ = detail::storage_at<float>(storage, p.skeleton);
-        feature_ = detail::storage_at<float>(storage, p.feature);
+        features_[0] = detail::storage_at<float>(storage, p.feature);
+        features_[1] = features_[0] + (model.has_projection() ? model.feature_dim : 0u);
         posterior_ = detail::storage_at<float>(storage, p.posterior);
         scratch_ = detail::storage_at<float>(storage, p.scratch);
         norms_ = detail::storage_at<float>(storage, p.norms);
@@ -131,10 +137,12 @@ public:
         if (plan.from_previous > 0) {
             out.previous = character(previous_);
             out.from_previous = plan.from_previous;
+            out.previous_feature = feature(previous_);
         }
         if (plan.from_current > 0) {
             out.current = character(current);
             out.from_current = plan.from_current;
+            out.current_feature = feature(current);
         }
         previous_ = current;
         has_previous_ = true;
@@ -150,13 +158,15 @@ public:
     bool initialized() const noexcept { return model_ != nullptr; }
 
 private:
+    // The slot's feature: its projected pose, or without a projection the pose itself.
+    const float* feature(std::size_t slot) const noexcept {
+        return model_->has_projection() ? features_[slot] : poses_[slot];
+    }
+
     Character character(std::size_t slot) noexcept {
         if (ready_[slot]) return characters_[slot];
-        const float* feature = poses_[slot];
-        if (model_->has_projection()) {
-            project_pose(*model_, poses_[slot], feature_);
-            feature = feature_;
-        }
+        if (model_->has_projection()) project_pose(*model_, poses_[slot], features_[slot]);
+        const float* feature = this->feature(slot);
         // Cannot fail: normalize_pose bounded the pose and init() checked that
         // no bounded pose overflows the GMM. Should it ever, repeat the last
         // character rather than invent one.
@@ -177,7 +187,7 @@ private:
         Plan p;
         p.poses = layout.add<float>(2 * m.input_dim());  // this frame's and the last one's
         p.skeleton = layout.add<float>(uses_bones(m.scale_mode) ? 3u * m.joint_count : 0u);
-        p.feature = layout.add<float>(m.has_projection() ? m.feature_dim : 0u);
+        p.feature = layout.add<float>(m.has_projection() ? 2u * m.feature_dim : 0u);  // a slot's each
         p.posterior = layout.add<float>(m.component_count);
         p.scratch = layout.add<float>(gmm_scratch_floats(m));
         p.norms = layout.add<float>(m.has_gmm() ? tree_norm_floats(m) : 0u);  // the sparse descent is for posteriors
@@ -199,7 +209,7 @@ private:
     bool has_previous_ = false;
     Character last_ = 0;
     std::size_t most_probable_ = 0;  // the last posterior's peak: where the next GMM pass starts
-    float* feature_ = nullptr;    // the projected pose
+    float* features_[2] = {};     // with a projection: each slot's projected pose
     float* posterior_ = nullptr;  // component_count floats
     float* scratch_ = nullptr;    // the GMM's gmm_scratch_floats()
     float* norms_ = nullptr;      // with a GMM: the tree's node norms (tree_node_norms())

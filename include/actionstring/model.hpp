@@ -107,6 +107,10 @@ struct ModelView {
     constexpr bool has_gmm() const noexcept { return component_count > 0; }
     /// Whether clip classification adds the characters' label votes to DTW.
     constexpr bool has_votes() const noexcept { return vote_weight > 0.0f && character_votes != nullptr; }
+    /// Whether clip classification adds the exemplars' penalties (exemplars.hpp).
+    constexpr bool has_exemplars() const noexcept {
+        return exemplar_weight > 0.0f && exemplar_count > 0 && exemplars != nullptr;
+    }
     /// Length of the vectors the tree is built on and descends with: the GMM
     /// posterior (J), or without a GMM the projected pose (d).
     constexpr std::size_t tree_dim() const noexcept { return has_gmm() ? component_count : feature_dim; }
@@ -365,6 +369,19 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     if (m.has_no_action_votes > 1) return refuse(problem, "has_no_action_votes: not 0 or 1");
     if (m.vote_weight > 0.0f && m.has_no_action_votes && !detail::all_within(m.no_action_votes, K, min_log_weight, 0.0f))
         return refuse(problem, "no_action_votes: missing, or not log-probabilities in [-1e4, 0]");
+    // Exemplars: labelled points of the feature space, a positive scale.
+    if (!(m.exemplar_weight >= 0.0f && m.exemplar_weight <= 1000.0f))
+        return refuse(problem, "exemplar_weight: negative, non-finite or beyond 1000");
+    if (m.exemplar_count > 0) {
+        if (m.exemplar_labels == nullptr) return refuse(problem, "exemplar_labels: missing");
+        for (std::size_t e = 0; e < m.exemplar_count; ++e)
+            if (m.exemplar_labels[e] >= m.label_count) return refuse(problem, "exemplar_labels: not a label of the model");
+        if (!detail::all_within(m.exemplars, std::size_t{m.exemplar_count} * m.feature_dim, -max_table_value,
+                                max_table_value))
+            return refuse(problem, "exemplars: missing, non-finite or beyond 1e6");
+    }
+    if (m.exemplar_weight > 0.0f && !(m.exemplar_scale >= 1.0e-12f && m.exemplar_scale <= max_table_value))
+        return refuse(problem, "exemplar_scale: not a positive finite mean squared distance");
     // Matching.
     if (m.variant > MatchVariant::subsequence) return refuse(problem, "variant: unknown");
     if (m.normalization > LengthNormalization::query) return refuse(problem, "normalization: unknown");

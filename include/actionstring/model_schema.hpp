@@ -95,6 +95,14 @@
     /* and log P(c | no action), learned from the unlabelled stretches of training recordings (or none) */ \
     SCALAR(std::uint8_t, has_no_action_votes, 0, 0, 1)                                                    \
     TABLE(float, no_action_votes, (m.vote_weight > 0.0f && m.has_no_action_votes ? m.character_count : 0u), 0, 0) \
+    /* exemplars (design §1.8): each label's training features (z) summarised by k-means centres; */         \
+    /* a clip's mean squared distance to each label's nearest centre, over exemplar_scale (the     */         \
+    /* training features' own mean), times exemplar_weight, joins the votes in clip classification */         \
+    SCALAR(float, exemplar_weight, 0.0f, 0, 0)             /* 0 = none */                                 \
+    SCALAR(float, exemplar_scale, 1.0f, 0, 0)                                                             \
+    COUNT(std::uint16_t, exemplar_count, exemplar_labels)                                                 \
+    TABLE(LabelId, exemplar_labels, m.exemplar_count, 0, 65535) /* each centre's label */                 \
+    TABLE(float, exemplars, std::size_t{m.exemplar_count} * m.feature_dim, 0, 0) /* feature_dim each */   \
     /* --- online settings of the segmenter (design §1.8), chosen at training --- */                      \
     SCALAR(std::uint32_t, settle_delay_us, 2000000, 0, 600000000) /* a character's label is final then */ \
     SCALAR(float, segment_penalty, 3.0f, 0, 0)             /* cost of starting another segment */         \

@@ -455,7 +455,7 @@ PYBIND11_MODULE(_actionstring, m) {
         .def("classify",
              [](const ModelData& model, const LabelledClip& clip) {
                  const ModelView view = model.view();
-                 const Classification c = host::classify_string(view, host::clip_string(view, conformed(model, clip)));
+                 const Classification c = host::classify_clip(view, conformed(model, clip));
                  return py::make_tuple(label_object(model, c.label), c.distance, c.confidence);
              })
         .def("_evaluate_json",

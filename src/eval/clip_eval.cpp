@@ -58,7 +58,7 @@ void summarise(ClipResults& r, const std::vector<LabelledClip>& clips) {
 ClipResults evaluate_model(const ModelView& model, const std::vector<LabelledClip>& clips) {
     ClipResults r = start_results("action strings (representatives, kNN)", model, clips);
     for (const LabelledClip& c : clips) {
-        const Classification k = classify_string(model, clip_string(model, c.clip));
+        const Classification k = classify_clip(model, c.clip);
         r.predictions.push_back(frame_label(k.label));
     }
     summarise(r, clips);

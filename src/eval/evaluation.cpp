@@ -54,7 +54,7 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
         for (LabelledRecording& recording : recordings) conform_to_model(view, recording.clip);
         for (const LabelledClip& stretch : unlabelled_stretches(recordings, 1.0)) {
             ++e.no_action_stretches;
-            e.no_action_unknown += classify_string(view, clip_string(view, stretch.clip)).label == unknown_label;
+            e.no_action_unknown += classify_clip(view, stretch.clip).label == unknown_label;
         }
         e.online_report = evaluate_recordings(view, recordings, config);
     } else if (online) {

@@ -158,11 +158,19 @@ std::string write_fields(const ModelData& m) {
     return out.str();
 }
 
-ModelData read_fields(FieldReader& f) {
+// The format version that added a field (0: every version this build reads).
+// A file of an earlier version lacks the field, which keeps its initial value.
+int field_since(std::string_view name) {
+    return name.substr(0, 8) == "exemplar" ? 6 : 0;
+}
+
+ModelData read_fields(FieldReader& f, int version = artifact_version) {
     ModelData m;
-#define ACTIONSTRING_GET_SCALAR(T, FIELD, INITIAL, LOW, HIGH) m.FIELD = read_scalar<T>(f, #FIELD, LOW, HIGH);
+#define ACTIONSTRING_GET_SCALAR(T, FIELD, INITIAL, LOW, HIGH) \
+    if (version >= field_since(#FIELD)) m.FIELD = read_scalar<T>(f, #FIELD, LOW, HIGH);
 #define ACTIONSTRING_GET_COUNT(T, FIELD, TABLE)
-#define ACTIONSTRING_GET_TABLE(T, FIELD, SIZE, LOW, HIGH) m.FIELD = read_table<T>(f, #FIELD, LOW, HIGH);
+#define ACTIONSTRING_GET_TABLE(T, FIELD, SIZE, LOW, HIGH) \
+    if (version >= field_since(#FIELD)) m.FIELD = read_table<T>(f, #FIELD, LOW, HIGH);
 #define ACTIONSTRING_GET_NAMES(FIELD, COUNT) read_names(f, #FIELD, m.FIELD);
     ACTIONSTRING_MODEL_FIELDS(ACTIONSTRING_GET_SCALAR, ACTIONSTRING_GET_COUNT, ACTIONSTRING_GET_TABLE,
                               ACTIONSTRING_GET_NAMES)
@@ -222,12 +230,16 @@ ModelData parse_model(const std::string& name, std::string_view text) {
     if (magic.size() != 2 || magic[0] != kMagic)
         scanner.fail("not an actionstring model (expected 'actionstring-model <version>')");
     // Version 4 differs only in the order of gmm_factors (component by
-    // component); it is read and reordered, so a model trained before keeps working.
-    const bool component_major_factors = magic[1] == std::to_string(artifact_version - 1);
-    if (magic[1] != std::to_string(artifact_version) && !component_major_factors)
-        scanner.fail("model format version " + std::string(magic[1]) + " is not supported; this build reads versions " +
-                     std::to_string(artifact_version - 1) + " and " + std::to_string(artifact_version) +
+    // component); it is read and reordered, and version 5 lacks only the
+    // exemplars (field_since()), so a model trained before keeps working.
+    int version = 0;
+    for (int v = 4; v <= artifact_version; ++v)
+        if (magic[1] == std::to_string(v)) version = v;
+    if (version == 0)
+        scanner.fail("model format version " + std::string(magic[1]) +
+                     " is not supported; this build reads versions 4 to " + std::to_string(artifact_version) +
                      " (retrain or use a matching build)");
+    const bool component_major_factors = version == 4;
     if (!scanner.next(line)) scanner.fail("file ends where the checksum was expected (truncated?)");
     const auto checksum = split_words(line);
     if (checksum.size() != 3 || checksum[0] != "checksum" || checksum[1] != "fnv1a64")
@@ -239,7 +251,7 @@ ModelData parse_model(const std::string& name, std::string_view text) {
                      ", got " + hex64(fnv1a64(body)) + ")");
 
     FieldReader f(scanner);
-    ModelData m = read_fields(f);
+    ModelData m = read_fields(f, version);
     // A table of the wrong size is left for check_model() to report.
     if (component_major_factors && mismatched_table(m) == nullptr) interleave_gmm_factors(m);
 

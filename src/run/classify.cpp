@@ -3,13 +3,14 @@
 
 #include <limits>
 
+#include "actionstring/exemplars.hpp"
 #include "run/encode.hpp"
 
 namespace actionstring {
 namespace host {
 
 Classification classify_string(const ModelView& model, const std::vector<Character>& string,
-                               const std::vector<std::size_t>& excluded) {
+                               const std::vector<std::size_t>& excluded, const float* exemplar_sums) {
     const std::size_t R = model.representative_count;
     std::vector<float> distances(R, detail::infinity());
     if (!string.empty()) {
@@ -27,14 +28,37 @@ Classification classify_string(const ModelView& model, const std::vector<Charact
         if (r < R) distances[r] = std::numeric_limits<float>::quiet_NaN();
     std::vector<float> penalties(model.label_count, 0.0f);
     vote_penalties(model, string.data(), string.size(), penalties.data());
-    return classify_distances(model, distances.data(), model.has_votes() ? penalties.data() : nullptr);
+    const bool exemplars = model.has_exemplars() && exemplar_sums != nullptr;
+    if (exemplars) {
+        std::vector<float> more(model.label_count, 0.0f);
+        exemplar_penalties(model, exemplar_sums, string.size(), more.data());
+        for (std::size_t l = 0; l < penalties.size(); ++l) penalties[l] += more[l];
+    }
+    return classify_distances(model, distances.data(), model.has_votes() || exemplars ? penalties.data() : nullptr);
+}
+
+std::vector<float> exemplar_sums(const ModelView& model, const std::vector<float>& features) {
+    const std::size_t L = model.label_count, d = model.feature_dim;
+    std::vector<float> sums(L, 0.0f), distances(L);
+    if (!model.has_exemplars() || d == 0) return sums;
+    for (std::size_t at = 0; at + d <= features.size(); at += d) {
+        exemplar_distances(model, &features[at], distances.data());
+        for (std::size_t l = 0; l < L; ++l) sums[l] += distances[l];
+    }
+    return sums;
+}
+
+Classification classify_clip(const ModelView& model, const Clip& clip) {
+    const EncodedClip encoded = encode_clip(model, clip, model.has_exemplars());
+    const std::vector<float> sums = exemplar_sums(model, encoded.features);
+    return classify_string(model, encoded.string, {}, sums.data());
 }
 
 double clip_accuracy(const ModelView& model, const std::vector<LabelledClip>& clips) {
     if (clips.empty()) return 0.0;
     std::size_t right = 0;
     for (const LabelledClip& c : clips) {
-        const Classification result = classify_string(model, clip_string(model, c.clip));
+        const Classification result = classify_clip(model, c.clip);
         right += result.label != unknown_label && c.label == model.label_names[result.label];
     }
     return static_cast<double>(right) / static_cast<double>(clips.size());

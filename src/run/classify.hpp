@@ -18,8 +18,17 @@ namespace host {
 /// when the model has them (vote_penalties()), then the runtime's kNN.
 /// `excluded` lists representatives left out of the vote (training measures a
 /// clip against those made from other people's clips).
+/// `exemplar_sums`, when given, holds label_count floats: exemplar_sums()
+/// of the string's features, whose penalties (exemplars.hpp) join the votes.
 Classification classify_string(const ModelView& model, const std::vector<Character>& string,
-                               const std::vector<std::size_t>& excluded = {});
+                               const std::vector<std::size_t>& excluded = {}, const float* exemplar_sums = nullptr);
+
+/// Per label, the sum over `features` (feature_dim floats each) of the
+/// runtime's exemplar_distances(): label_count floats, all 0 without exemplars.
+std::vector<float> exemplar_sums(const ModelView& model, const std::vector<float>& features);
+
+/// A clip classified as a model says: its string, and with exemplars its features too.
+Classification classify_clip(const ModelView& model, const Clip& clip);
 
 /// Fraction of clips whose predicted label name equals their label.
 double clip_accuracy(const ModelView& model, const std::vector<LabelledClip>& clips);

@@ -28,6 +28,10 @@ constexpr AnnotatorConfig kDeviceTiming{};
 }  // namespace
 
 std::vector<Character> clip_string(const ModelView& model, const Clip& clip) {
+    return encode_clip(model, clip, false).string;
+}
+
+EncodedClip encode_clip(const ModelView& model, const Clip& clip, bool with_features) {
     require_joint_count(model, clip.joint_count(), clip.source);
     Stateful<StringEncoder> encoder;
     const Status status = encoder.init(model, EncoderConfig{kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us});
@@ -38,13 +42,19 @@ std::vector<Character> clip_string(const ModelView& model, const Clip& clip) {
                                     " characters in one frame");
     if (status != Status::ok)
         throw std::invalid_argument(std::string("model rejected by the encoder: ") + status_name(status));
-    std::vector<Character> string;
+    EncodedClip out;
+    const std::size_t d = model.feature_dim;
+    auto add_features = [&](const float* feature, std::uint32_t count) {
+        for (std::uint32_t i = 0; i < count && with_features; ++i) out.features.insert(out.features.end(), feature, feature + d);
+    };
     for (std::size_t f = 0; f < clip.frame_count(); ++f) {
         const EncodedFrame e = encoder->push_frame(seconds_to_us(clip.times[f]), clip.frame(f));
-        string.insert(string.end(), e.from_previous, e.previous);
-        string.insert(string.end(), e.from_current, e.current);
+        out.string.insert(out.string.end(), e.from_previous, e.previous);
+        add_features(e.previous_feature, e.from_previous);
+        out.string.insert(out.string.end(), e.from_current, e.current);
+        add_features(e.current_feature, e.from_current);
     }
-    return string;
+    return out;
 }
 
 std::size_t sample_poses(const ModelView& model, const Clip& clip, double rate_hz, std::vector<float>& poses) {

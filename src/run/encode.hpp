@@ -16,6 +16,16 @@ namespace host {
 /// when the encoder refuses the model.
 std::vector<Character> clip_string(const ModelView& model, const Clip& clip);
 
+/// A clip's action string and, when asked for, the feature each character
+/// was made from (EncodedFrame's previous_feature / current_feature).
+struct EncodedClip {
+    std::vector<Character> string;
+    std::vector<float> features;  ///< feature_dim floats per character, or empty
+};
+
+/// clip_string() with, when `with_features`, the characters' features.
+EncodedClip encode_clip(const ModelView& model, const Clip& clip, bool with_features);
+
 /// Appends to `poses` the clip's normalised poses nearest to every tick of a
 /// clock at `rate_hz`, picked by the runtime's own sampler: model.input_dim()
 /// floats each (with motion, the pose then its velocity, from the runtime's

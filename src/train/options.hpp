@@ -71,6 +71,12 @@ struct TrainingOptions {
     /// α: added to every character's count when estimating P(c | label), so an
     /// unseen key-pose costs a finite amount.
     double vote_smoothing = 0.01;
+    /// Exemplars per label (exemplars.hpp): k-means centres of each label's
+    /// training features, whose mean nearest distance over a clip's characters
+    /// joins the votes in clip classification with weight `exemplar_weight`
+    /// (relative to the training features' own mean distance). 0: none.
+    int exemplars = 0;
+    double exemplar_weight = 0.0;
     int neighbours = 1;
     double window_seconds = 2.0;
     double step_seconds = 0.5;

@@ -24,6 +24,7 @@
 #include "train/clustering.hpp"
 #include "train/gmm_order.hpp"
 #include "train/pca.hpp"
+#include "train/exemplars.hpp"
 #include "train/rejection.hpp"
 
 namespace actionstring {
@@ -71,6 +72,11 @@ void check_options(const TrainingOptions& o) {
     require(o.velocity_span_s >= 0.01 && o.velocity_span_s <= 2, "the velocity span must be between 0.01 and 2 s");
     require(o.vote_weight >= 0 && o.vote_weight <= 1000, "the vote weight must be between 0 and 1000");
     require(o.vote_smoothing >= 1e-6 && o.vote_smoothing <= 1e3, "the vote smoothing must be between 1e-6 and 1000");
+    require(o.exemplars >= 0 && o.exemplars <= 4096, "exemplars per label must be between 0 and 4096");
+    require(o.exemplar_weight >= 0 && o.exemplar_weight <= 1000, "the exemplar weight must be between 0 and 1000");
+    // The bounds are learned on strings, and a spliced negative has no features to splice.
+    require(!(o.reject && o.exemplars > 0 && o.exemplar_weight > 0),
+            "reject and exemplars cannot be combined yet: the rejection bounds are learned on strings alone");
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
             "the settle delay must be 0 to 60 s");
 }
@@ -544,8 +550,14 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
 
     stage.start("encoding the training strings");
     m.string_period_us = static_cast<std::uint32_t>(std::lround(1e6 / options.string_rate_hz));
+    const bool exemplars = options.exemplars > 0 && options.exemplar_weight > 0;
     std::vector<std::vector<Character>> strings;
-    for (const LabelledClip& c : clips) strings.push_back(clip_string(m.view(), c.clip));
+    std::vector<std::vector<float>> string_features;  // with exemplars: each character's feature
+    for (const LabelledClip& c : clips) {
+        EncodedClip encoded = encode_clip(m.view(), c.clip, exemplars);
+        strings.push_back(std::move(encoded.string));
+        string_features.push_back(std::move(encoded.features));
+    }
     r.strings = static_cast<int>(strings.size());
     stage.finish("training strings");
 
@@ -554,6 +566,17 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
     set_votes(m, clips, strings, options);
     if (no_action != nullptr && !no_action->empty()) set_no_action_votes(m, *no_action, options, r);
     stage.finish("representatives");
+
+    if (exemplars) {
+        stage.start("clustering each label's exemplars");
+        std::vector<LabelId> labels;
+        for (const LabelledClip& c : clips)
+            labels.push_back(static_cast<LabelId>(
+                std::find(m.label_names.begin(), m.label_names.end(), c.label) - m.label_names.begin()));
+        set_exemplars(m, string_features, labels, static_cast<std::size_t>(options.exemplars), options.exemplar_weight,
+                      options.seed);
+        stage.finish("exemplars");
+    }
 
     set_matching(m, options, r.representatives);
     if (options.reject) {

@@ -58,10 +58,19 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
         {"sigma", {0.3, 0.75, 1.5}, [](TrainingOptions& o, double v) { o.sigma = v; }},
         {"pca", {16.0, 24.0, 32.0}, [](TrainingOptions& o, double v) { o.pca_dim = static_cast<int>(v); }},
         {"vote-weight", {0.0, 0.5, 2.0}, [](TrainingOptions& o, double v) { o.vote_weight = v; }},
+        // 64 centres per label, the weight tuned (models/README.md, "Exemplars").
+        {"exemplar-weight",
+         {1.0, 4.0},
+         [](TrainingOptions& o, double v) {
+             o.exemplars = v > 0 ? 64 : 0;
+             o.exemplar_weight = v;
+         },
+         [](const TrainingOptions& o) { return !o.reject; }},
     };
     auto describe = [](const Axis& axis, double v) {
         if (std::string(axis.name) == "scale") return std::string("scale ") + (v > 0 ? "bones" : "none");
         if (std::string(axis.name) == "mirror") return std::string("mirror ") + (v > 0 ? "true" : "false");
+        if (std::string(axis.name) == "exemplar-weight") return "exemplars 64, exemplar-weight " + number(v);
         return std::string(axis.name) + " " + number(v);
     };
     // The PCA dimension never exceeds the input's (a small skeleton, no velocity).
@@ -137,6 +146,7 @@ std::string options_as_config(const TrainingOptions& o) {
         << number(o.online.unknown_cost) << "\nsegment-votes " << number(o.online.vote_weight) << "\n";
     if (o.max_representative_chars > 0) out << "max-representative-chars " << o.max_representative_chars << "\n";
     if (o.reject) out << "reject true\nreject-keep " << number(o.reject_keep) << "\n";
+    if (o.exemplars > 0) out << "exemplars " << o.exemplars << "\nexemplar-weight " << number(o.exemplar_weight) << "\n";
     if (!o.pose_joints.empty()) {
         out << "pose-joints ";
         for (std::size_t j = 0; j < o.pose_joints.size(); ++j) out << (j ? "," : "") << o.pose_joints[j];

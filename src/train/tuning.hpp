@@ -35,7 +35,8 @@ TrainingOptions tuning_start();
 
 /// Coordinate search from `start`: the velocity weight and span, the size
 /// normalisation (bone lengths when the skeleton has parents), mirroring, the string
-/// rate, ε, σ and the PCA dimension, one at a time, each value judged by
+/// rate, ε, σ, the PCA dimension, the votes' weight and the exemplars' (64 per
+/// label; not with `reject`), one at a time, each value judged by
 /// cross_validate()'s fold mean averaged over the seeds seed, seed + 1 and
 /// seed + 2, and kept only when strictly higher (so ties keep the earlier,
 /// simpler choice). Deterministic. `folds` are those of the choice at its seed. `progress`, when
