@@ -31,6 +31,7 @@ void print_eval_usage(std::FILE* out) {
                  "                         [--online] [--seed N] [--rate HZ] [--roles R,L,R]\n"
                  "                         [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
                  "                         [--skip-penalty X] [--unknown-cost X] [--segment-votes X]\n"
+                 "                         [--segment-exemplars X]\n"
                  "                         [--report DIR]\n"
                  "\n"
                  "Classifies every clip of LIST with the runtime's own code and reports clip\n"
@@ -49,7 +50,8 @@ void print_eval_usage(std::FILE* out) {
                  "streams each recording whole (frames outside every interval: no action).\n"
                  "The segmenter options are AnnotatorConfig's\n"
                  "(defaults in segmenter.hpp; --unknown-cost inf turns 'no action' off;\n"
-                 "--segment-votes X weighs the characters' label votes in the explanation).\n"
+                 "--segment-votes X weighs the characters' label votes in the explanation,\n"
+                 "--segment-exemplars X the exemplars).\n"
                  "--report DIR writes SVG pictures (confusion matrix, true vs predicted timelines)\n"
                  "and a Markdown summary linking them.\n");
 }

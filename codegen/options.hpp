@@ -140,7 +140,7 @@ inline bool parse_segmenter_option(ArgumentReader& args, const std::string& opti
     const std::string name = option.substr(2);
     SegmenterConfig check;
     if (name != "settle" && name != "segment-penalty" && name != "stay-penalty" && name != "skip-penalty" &&
-        name != "unknown-cost" && name != "segment-votes")
+        name != "unknown-cost" && name != "segment-votes" && name != "segment-exemplars")
         return false;
     const std::string value = args.value(option);
     if (args.ok() && apply_segmenter_setting(args, name, value, check)) overrides.settings.emplace_back(name, value);

@@ -198,9 +198,9 @@ SegmenterConfig tune_online_settings(const std::vector<host::LabelledClip>& clip
         std::printf("  %-60s segment F1 %.3f  settled frames %.3f%s\n", step.settings.c_str(), step.segment_f1,
                     step.frame_accuracy, step.kept ? "  <- chosen" : "");
     std::printf("the chosen online settings (with those above, keep them with --config):\n"
-                "segment-votes %g\nsegment-penalty %g\nunknown-cost %g\n",
+                "segment-votes %g\nsegment-penalty %g\nunknown-cost %g\nsegment-exemplars %g\n",
                 static_cast<double>(tuned.chosen.vote_weight), static_cast<double>(tuned.chosen.segment_penalty),
-                static_cast<double>(tuned.chosen.unknown_cost));
+                static_cast<double>(tuned.chosen.unknown_cost), static_cast<double>(tuned.chosen.exemplar_weight));
     return tuned.chosen;
 }
 

@@ -27,6 +27,8 @@ struct Tables {
     std::vector<LabelId> labels;
     std::vector<float> votes;  // log P(c | label), label by label, when the model has votes
     std::vector<float> none;   // log P(c | no action), when it has those too
+    std::vector<float> centres;          // one-dimensional exemplars (whole numbers: exact squares), when it has them
+    std::vector<LabelId> centre_labels;
     static constexpr char names_text[] = "a\0b\0c\0d";
     static constexpr std::uint32_t names_offsets[5] = {0, 2, 4, 6, 8};
     ModelView view;
@@ -51,6 +53,14 @@ struct Tables {
         if (!none.empty()) {
             view.has_no_action_votes = 1;
             view.no_action_votes = none.data();
+        }
+        view.feature_dim = 1;
+        if (!centres.empty()) {
+            view.exemplar_weight = 1.0f;
+            view.exemplar_scale = 1.0f;
+            view.exemplar_count = static_cast<std::uint16_t>(centres.size());
+            view.exemplars = centres.data();
+            view.exemplar_labels = centre_labels.data();
         }
     }
     void add(const std::vector<Character>& rep, LabelId label) {
@@ -82,6 +92,12 @@ Tables random_tables(std::mt19937& rng) {
         for (int v = 0; v < 4 * K; ++v) t.votes.push_back(-static_cast<float>(uniform(0, 16)) * 0.25f);
     if (!t.votes.empty() && uniform(0, 1) == 1)
         for (int v = 0; v < K; ++v) t.none.push_back(-static_cast<float>(uniform(0, 16)) * 0.25f);
+    if (uniform(0, 1) == 1)  // half carry exemplars: one or two whole-number centres per label
+        for (LabelId l = 0; l < 4; ++l)
+            for (int e = uniform(1, 2); e > 0; --e) {
+                t.centres.push_back(static_cast<float>(uniform(0, 3)));
+                t.centre_labels.push_back(l);
+            }
     t.finish(K);
     return t;
 }
@@ -91,8 +107,10 @@ Tables random_tables(std::mt19937& rng) {
 // character t the label that the best explanation at t + settle gives it.
 // `margins` receives, per character, how far the best explanation's label
 // leads the best one with another label (live_margin()).
+// `features`, when given, holds each stream character's one-dimensional feature (exemplars).
 std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig& config, std::uint32_t settle,
-                                       const std::vector<Character>& stream, std::vector<float>* margins = nullptr) {
+                                       const std::vector<Character>& stream, std::vector<float>* margins = nullptr,
+                                       const std::vector<float>* features = nullptr) {
     const float inf = std::numeric_limits<float>::infinity();
     const std::size_t T = stream.size(), R = m.representative_count;
     struct End {
@@ -119,6 +137,18 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
         if (l == unknown_label) return m.has_no_action_votes ? config.vote_weight * (best_vote - m.no_action_votes[c]) : 0.0f;
         return config.vote_weight * (best_vote - m.character_votes[l * K + c]);
     };
+    // The exemplars: what character t's feature costs label l's explanations.
+    auto exemplar = [&](LabelId l, std::size_t t) {
+        if (!(config.exemplar_weight > 0.0f) || !m.has_exemplars() || features == nullptr || l == unknown_label)
+            return 0.0f;
+        std::vector<float> nearest(m.label_count, inf);
+        for (std::size_t e = 0; e < m.exemplar_count; ++e) {
+            const float d = (*features)[t] - m.exemplars[e];
+            nearest[m.exemplar_labels[e]] = std::min(nearest[m.exemplar_labels[e]], d * d);
+        }
+        const float best = *std::min_element(nearest.begin(), nearest.end());
+        return (nearest[l] - best) * (config.exemplar_weight / m.exemplar_scale);
+    };
     for (std::size_t t = 0; t < T; ++t) {
         const float before = t == 0 ? 0.0f : end_cost[t - 1];
         const float entry = before + config.segment_penalty;
@@ -137,7 +167,8 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
                 const float skip =
                     i >= 3 ? cost[r][i - 2] + config.skip_penalty : (i == 2 ? entry + config.skip_penalty : inf);
                 if (skip < v) v = skip, from = i >= 3 ? start[r][i - 2] : t;
-                next[r][i] = v + (weight(rep[i - 1], stream[t]) + vote(m.representative_labels[r], stream[t]));
+                next[r][i] = v + (weight(rep[i - 1], stream[t]) + (vote(m.representative_labels[r], stream[t]) +
+                                                                   exemplar(m.representative_labels[r], t)));
                 next_start[r][i] = from;
             }
         }
@@ -189,18 +220,22 @@ TEST_CASE("settled labels equal a full-table reference of the same recurrence") 
         if (trial % 3 == 0)
             config.unknown_cost = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
         if (trial % 2 == 0) config.vote_weight = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
+        if (trial % 4 < 2)
+            config.exemplar_weight = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
         REQUIRE(segmenter.init(t.view, config) == Status::ok);
         const std::uint32_t settle = segmenter->settle_chars();
         CHECK(settle == static_cast<std::uint32_t>(config.settle_delay_us / 100000));
         std::vector<Character> stream(static_cast<std::size_t>(std::uniform_int_distribution<int>(1, 150)(rng)));
         for (auto& c : stream)
             c = static_cast<Character>(std::uniform_int_distribution<int>(0, t.view.character_count - 1)(rng));
+        std::vector<float> features(stream.size());  // whole numbers: exact squared distances
+        for (auto& f : features) f = static_cast<float>(std::uniform_int_distribution<int>(0, 3)(rng));
         std::vector<float> margins;
-        const std::vector<LabelId> expected = reference_settled(t.view, config, settle, stream, &margins);
+        const std::vector<LabelId> expected = reference_settled(t.view, config, settle, stream, &margins, &features);
         std::vector<LabelId> got(stream.size(), unknown_label);
         CHECK(segmenter->live_margin() == 0.0f);
         for (std::size_t i = 0; i < stream.size(); ++i) {
-            const bool settled = segmenter->push(stream[i]);
+            const bool settled = segmenter->push(stream[i], &features[i]);
             CHECK(segmenter->live_margin() >= 0.0f);
             CHECK(segmenter->live_margin() == margins[i]);  // exact: W holds multiples of 1/4
             CHECK(settled == (i >= settle));

@@ -618,7 +618,7 @@ std::string older_artifact(const ModelData& model, int version) {
     for (std::size_t at = 0; at < fields.size();) {
         const std::size_t end = fields.find('\n', at) + 1;
         const std::string line = fields.substr(at, end - at);
-        if (line.rfind("exemplar", 0) != 0) body += line;
+        if (line.find("exemplar") == std::string::npos) body += line;
         at = end;
     }
     char checksum[24];

@@ -182,8 +182,8 @@ public:
             has_window_ = false;
             pushed_ = 0;
         }
-        emit(encoded.previous, encoded.from_previous, result);
-        emit(encoded.current, encoded.from_current, result);
+        emit(encoded.previous, encoded.from_previous, encoded.previous_feature, result);
+        emit(encoded.current, encoded.from_current, encoded.current_feature, result);
         result.events = static_cast<std::uint32_t>(events_.event_count());
         return result;
     }
@@ -244,12 +244,12 @@ public:
     bool initialized() const noexcept { return model_ != nullptr; }
 
 private:
-    void emit(Character character, std::uint32_t count, FrameResult& result) noexcept {
+    void emit(Character character, std::uint32_t count, const float* feature, FrameResult& result) noexcept {
         for (std::uint32_t t = 0; t < count; ++t) {
             const std::uint64_t index = pushed_++;
             last_character_ = character;
             ++result.characters;
-            const bool settled = segmenter_.push(character);
+            const bool settled = segmenter_.push(character, feature);
             live_[index % live_ring_] = segmenter_.live_label();
             if (settled) {
                 ++result.characters_settled;

@@ -406,6 +406,8 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     if (!(m.unknown_cost >= 0.0f)) return refuse(problem, "unknown_cost: negative or NaN");
     if (!(m.segment_vote_weight >= 0.0f && m.segment_vote_weight <= 1000.0f))
         return refuse(problem, "segment_vote_weight: negative, non-finite or beyond 1000");
+    if (!(m.segment_exemplar_weight >= 0.0f && m.segment_exemplar_weight <= 1000.0f))
+        return refuse(problem, "segment_exemplar_weight: negative, non-finite or beyond 1000");
     return Status::ok;
 }
 

@@ -109,5 +109,6 @@
     SCALAR(float, stay_penalty, 0.3f, 0, 0)                /* two stream characters on one */             \
     SCALAR(float, skip_penalty, 0.3f, 0, 0)                /* skipping a representative character */      \
     SCALAR(float, unknown_cost, detail::infinity(), 0, 0)  /* per character of "no action"; inf: none */ \
-    SCALAR(float, segment_vote_weight, 0.0f, 0, 0)         /* the characters' votes in the explanation */
+    SCALAR(float, segment_vote_weight, 0.0f, 0, 0)         /* the characters' votes in the explanation */ \
+    SCALAR(float, segment_exemplar_weight, 0.0f, 0, 0)     /* the exemplars in the explanation */
 // clang-format on

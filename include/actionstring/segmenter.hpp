@@ -27,6 +27,7 @@
 
 #include "actionstring/detail/lanes.hpp"
 #include "actionstring/detail/math.hpp"
+#include "actionstring/exemplars.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/status.hpp"
 #include "actionstring/storage.hpp"
@@ -55,6 +56,13 @@ struct SegmenterConfig {
     /// an explanation pays for key-poses its action rarely shows. 0 = off;
     /// without votes in the model it has no effect.
     float vote_weight = 0.0f;
+    /// Weight of the exemplars (exemplars.hpp) in the explanation: each stream
+    /// character also costs a label's representatives exemplar_weight × (its
+    /// feature's squared distance to the label's nearest exemplar − the
+    /// nearest label's) / exemplar_scale, so an explanation pays for poses its
+    /// action's training poses lie far from. 0 = off; it needs push() given
+    /// the character's feature, and exemplars in the model.
+    float exemplar_weight = 0.0f;
 };
 
 /// The online settings a model carries (chosen at training); a device uses
@@ -67,6 +75,7 @@ constexpr SegmenterConfig segmenter_config(const ModelView& m) noexcept {
     c.skip_penalty = m.skip_penalty;
     c.unknown_cost = m.unknown_cost;
     c.vote_weight = m.segment_vote_weight;
+    c.exemplar_weight = m.segment_exemplar_weight;
     return c;
 }
 
@@ -102,6 +111,8 @@ public:
         ends_ = detail::storage_at<SegmentEnd>(storage, p.ends);
         settled_ = detail::storage_at<LabelId>(storage, p.settled);
         vote_costs_ = p.votes_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.votes);
+        exemplar_distances_ = p.exemplars_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.exemplars);
+        use_votes_ = uses_votes(model, config);
         config_ = config;
         model_ = &model;
         column_ = detail::storage_at<float>(storage, p.column);
@@ -120,7 +131,8 @@ public:
             !(config.skip_penalty >= 0.0f) || !(config.unknown_cost >= 0.0f) ||
             !detail::is_finite(config.segment_penalty) || !detail::is_finite(config.stay_penalty) ||
             !detail::is_finite(config.skip_penalty) || !(config.vote_weight >= 0.0f) ||
-            !(config.vote_weight <= 1000.0f))
+            !(config.vote_weight <= 1000.0f) || !(config.exemplar_weight >= 0.0f) ||
+            !(config.exemplar_weight <= 1000.0f))
             return Status::invalid_argument;
         if (model.representative_count >= unknown_rep) return Status::model_exceeds_capacity;
         if (model.string_period_us == 0) return Status::invalid_model;
@@ -149,7 +161,11 @@ public:
 
     /// Feeds the next character. Returns true when it settled a character
     /// (the one settle_chars() back): its label is then in settled_label().
-    bool push(Character character) noexcept {
+    /// @param feature null, or the feature the character was made from
+    ///                (feature_dim floats, EncodedFrame's previous_feature /
+    ///                current_feature; read only during the call), for the
+    ///                exemplars' costs when the settings weigh them
+    bool push(Character character, const float* feature = nullptr) noexcept {
         if (model_ == nullptr || character >= model_->character_count) return false;
         const ModelView& m = *model_;
         const std::uint32_t now = static_cast<std::uint32_t>(pushed_);
@@ -164,7 +180,7 @@ public:
         // What this character costs each label's explanations, and "no action"
         // when the model learned its votes (0 without votes).
         float no_action_vote = 0.0f;
-        if (vote_costs_ != nullptr) {
+        if (use_votes_) {
             const bool no_action = m.has_no_action_votes != 0;
             float best_vote = no_action ? m.no_action_votes[character] : -detail::infinity();
             for (std::size_t l = 0; l < m.label_count; ++l)
@@ -172,6 +188,20 @@ public:
             for (std::size_t l = 0; l < m.label_count; ++l)
                 vote_costs_[l] = config_.vote_weight * (best_vote - m.character_votes[l * K + character]);
             if (no_action) no_action_vote = config_.vote_weight * (best_vote - m.no_action_votes[character]);
+        } else if (vote_costs_ != nullptr) {
+            for (std::size_t l = 0; l < m.label_count; ++l) vote_costs_[l] = 0.0f;
+        }
+        // And what its pose costs them: the exemplars' distances, relative to
+        // the nearest label's ("no action" has no exemplars and pays none).
+        if (exemplar_distances_ != nullptr && feature != nullptr) {
+            exemplar_distances(m, feature, exemplar_distances_);
+            float nearest = detail::infinity();
+            for (std::size_t l = 0; l < m.label_count; ++l)
+                if (exemplar_distances_[l] < nearest) nearest = exemplar_distances_[l];
+            const float scale = config_.exemplar_weight / m.exemplar_scale;
+            if (detail::is_finite(nearest))
+                for (std::size_t l = 0; l < m.label_count; ++l)
+                    vote_costs_[l] += (exemplar_distances_[l] - nearest) * scale;
         }
         // Costs are stored relative to the previous step's best so they stay small on endless streams.
         const float shift = best_.cost;
@@ -365,9 +395,15 @@ private:
     static constexpr std::uint16_t unknown_rep = 0xFFFF;
 
     struct Plan {
-        std::size_t costs = 0, starts = 0, ends = 0, settled = 0, votes = 0, votes_bytes = 0, column = 0,
-                    ring_size = 0, bytes = unsatisfiable_bytes;
+        std::size_t costs = 0, starts = 0, ends = 0, settled = 0, votes = 0, votes_bytes = 0, exemplars = 0,
+                    exemplars_bytes = 0, column = 0, ring_size = 0, bytes = unsatisfiable_bytes;
     };
+    static constexpr bool uses_votes(const ModelView& model, const SegmenterConfig& config) noexcept {
+        return config.vote_weight > 0.0f && model.has_votes();
+    }
+    static constexpr bool uses_exemplars(const ModelView& model, const SegmenterConfig& config) noexcept {
+        return config.exemplar_weight > 0.0f && model.has_exemplars();
+    }
     static constexpr Plan plan(const ModelView& model, const SegmenterConfig& config) noexcept;
 
     struct Hypothesis {
@@ -531,7 +567,9 @@ private:
     Cells cells_{};                     // one per representative character
     SegmentEnd* ends_ = nullptr;       // ring_size_: the best explanation ending at each character
     LabelId* settled_ = nullptr;       // ring_size_: the settled labels
-    float* vote_costs_ = nullptr;      // label_count: the newest character's vote cost per label (votes on only)
+    float* vote_costs_ = nullptr;      // label_count: the newest character's cost per label (votes or exemplars on)
+    float* exemplar_distances_ = nullptr;  // label_count: its exemplar distances (exemplars on only)
+    bool use_votes_ = false;
     float* column_ = nullptr;          // K: W(·, newest character), when W is not symmetric
     bool w_symmetric_ = true;
 };
@@ -552,9 +590,14 @@ constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, co
     p.ends = layout.add<SegmentEnd>(p.ring_size);
     p.settled = layout.add<LabelId>(p.ring_size);
     p.column = layout.add<float>(model.character_count);
-    if (config.vote_weight > 0.0f && model.has_votes()) {
+    // Per label, the newest character's cost: its votes', its exemplars', or both.
+    if (ActionSegmenter::uses_votes(model, config) || ActionSegmenter::uses_exemplars(model, config)) {
         p.votes = layout.add<float>(model.label_count);
         p.votes_bytes = std::size_t{model.label_count} * sizeof(float);
+    }
+    if (ActionSegmenter::uses_exemplars(model, config)) {
+        p.exemplars = layout.add<float>(model.label_count);
+        p.exemplars_bytes = std::size_t{model.label_count} * sizeof(float);
     }
     p.bytes = layout.bytes();
     return p;

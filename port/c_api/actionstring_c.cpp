@@ -93,6 +93,7 @@ AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) 
     config.segmenter.skip_penalty = c->online.skip_penalty;
     config.segmenter.unknown_cost = c->online.unknown_cost;
     config.segmenter.vote_weight = c->online.vote_weight;
+    config.segmenter.exemplar_weight = c->online.exemplar_weight;
     return config;
 }
 
@@ -272,10 +273,10 @@ actionstring_status actionstring_reset(actionstring_state* handle) {
 
 actionstring_online_settings actionstring_model_online_settings(const actionstring_model* handle) {
     const Model* model = checked_model(handle);
-    if (model == nullptr) return actionstring_online_settings{0, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+    if (model == nullptr) return actionstring_online_settings{0, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
     const actionstring::SegmenterConfig c = actionstring::segmenter_config(model->view);
     return actionstring_online_settings{c.settle_delay_us, c.segment_penalty, c.stay_penalty, c.skip_penalty,
-                                        c.unknown_cost, c.vote_weight};
+                                        c.unknown_cost, c.vote_weight, c.exemplar_weight};
 }
 
 actionstring_status actionstring_set_online_settings(actionstring_state* handle,
@@ -291,6 +292,7 @@ actionstring_status actionstring_set_online_settings(actionstring_state* handle,
     config.segmenter.skip_penalty = settings->skip_penalty;
     config.segmenter.unknown_cost = settings->unknown_cost;
     config.segmenter.vote_weight = settings->vote_weight;
+    config.segmenter.exemplar_weight = settings->exemplar_weight;
     // Checked first, so a refused setting leaves the state as it was.
     if (!config_ok(model, config)) return ACTIONSTRING_INVALID_ARGUMENT;
     const std::size_t room = state->total - kHeaderBytes - kGuardBytes;

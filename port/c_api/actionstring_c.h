@@ -75,6 +75,7 @@ typedef struct actionstring_online_settings {
     float skip_penalty;      /**< cost of skipping a representative character */
     float unknown_cost;      /**< cost per character of "no action"; INFINITY turns it off */
     float vote_weight;       /**< weight of the characters' label votes in the explanation; 0 = off */
+    float exemplar_weight;   /**< weight of the exemplars in the explanation; 0 = off (needs exemplars in the model) */
 } actionstring_online_settings;
 
 /** Everything a state is set up with. actionstring_default_config() gives the model's own. */

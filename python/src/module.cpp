@@ -212,7 +212,7 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
         else if (key == "min_action") config.min_action_us = std::llround(item.second.cast<double>() * 1e6);
         else if (!host::apply_segmenter_setting(setting_name(key), setting_value(item.second), config.segmenter))
             throw py::value_error("unknown online setting '" + key +
-                                  "' (settle, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, "
+                                  "' (settle, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, segment_exemplars, "
                                   "window_rule, max_gap, max_backward, min_action)");
     }
     return config;
@@ -446,6 +446,7 @@ PYBIND11_MODULE(_actionstring, m) {
                                    d["skip_penalty"] = model.skip_penalty;
                                    d["unknown_cost"] = model.unknown_cost;
                                    d["segment_votes"] = model.segment_vote_weight;
+                                   d["segment_exemplars"] = model.segment_exemplar_weight;
                                    return d;
                                })
         .def("state_bytes",

@@ -161,7 +161,7 @@ std::string write_fields(const ModelData& m) {
 // The format version that added a field (0: every version this build reads).
 // A file of an earlier version lacks the field, which keeps its initial value.
 int field_since(std::string_view name) {
-    return name.substr(0, 8) == "exemplar" ? 6 : 0;
+    return name.find("exemplar") != std::string_view::npos ? 6 : 0;
 }
 
 ModelData read_fields(FieldReader& f, int version = artifact_version) {

@@ -36,18 +36,23 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     // The grid, in order of preference on ties (simpler first).
     const float infinity = std::numeric_limits<float>::infinity();
     std::vector<OnlineTuningStep> steps;
+    // The exemplars in the explanation only when the model has them (models/README.md).
+    const bool exemplars = options.exemplars > 0 && options.exemplar_weight > 0;
     for (const float unknown : recordings != nullptr ? std::vector<float>{0.0f, 0.2f} : std::vector<float>{infinity})
         for (const float votes : {0.0f, 0.1f, 0.25f})
-            for (const float penalty : {1.0f, 3.0f}) {
-                OnlineTuningStep step;
-                step.config = options.online;
-                step.config.vote_weight = votes;
-                step.config.segment_penalty = penalty;
-                step.config.unknown_cost = unknown;
-                step.settings = "segment-votes " + number(votes) + ", segment-penalty " + number(penalty) +
-                                ", unknown-cost " + number(static_cast<double>(unknown));
-                steps.push_back(step);
-            }
+            for (const float penalty : {1.0f, 3.0f})
+                for (const float exemplar : exemplars ? std::vector<float>{0.0f, 0.1f} : std::vector<float>{0.0f}) {
+                    OnlineTuningStep step;
+                    step.config = options.online;
+                    step.config.vote_weight = votes;
+                    step.config.segment_penalty = penalty;
+                    step.config.unknown_cost = unknown;
+                    step.config.exemplar_weight = exemplar;
+                    step.settings = "segment-votes " + number(votes) + ", segment-penalty " + number(penalty) +
+                                    ", unknown-cost " + number(static_cast<double>(unknown));
+                    if (exemplars) step.settings += ", segment-exemplars " + number(static_cast<double>(exemplar));
+                    steps.push_back(step);
+                }
 
     // One model per fold, every setting streamed through it.
     for (const std::vector<std::string>& held : folds) {

@@ -36,8 +36,9 @@ struct OnlineTuningResult {
 /// (evaluate_recordings(); the training subjects' unlabelled stretches then
 /// teach the model its "no action" votes, and "no action" needs no flat cost).
 /// Tries the characters' votes in the explanation (segment-votes 0, 0.1, 0.25),
-/// the segment penalty (1, 3) and, with recordings, the flat unknown cost
-/// (0, 0.2), the rest as in `options.online`; keeps the best mean segment F1
+/// the segment penalty (1, 3), with exemplars in `options` their weight in the
+/// explanation (segment-exemplars 0, 0.1) and, with recordings, the flat
+/// unknown cost (0, 0.2), the rest as in `options.online`; keeps the best mean segment F1
 /// (ties: frame accuracy, then the earlier, simpler settings). Deterministic.
 /// Needs two subjects or more (otherwise returns options.online, no steps).
 OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const TrainingOptions& options,

@@ -498,6 +498,7 @@ void set_matching(ModelData& m, const TrainingOptions& options, int representati
     m.skip_penalty = online.skip_penalty;
     m.unknown_cost = online.unknown_cost;
     m.segment_vote_weight = online.vote_weight;
+    m.segment_exemplar_weight = online.exemplar_weight;
     // The model stores representative indices in 16 bits (0xFFFF means "no action").
     if (representatives >= 0xFFFF)
         throw std::invalid_argument(std::to_string(representatives) +

@@ -57,6 +57,7 @@ bool apply_segmenter_setting(const std::string& name, const std::string& value, 
     else if (name == "skip-penalty") config.skip_penalty = static_cast<float>(number(name, value, 0, 1e6));
     else if (name == "unknown-cost") config.unknown_cost = static_cast<float>(number(name, value, 0, unbounded));
     else if (name == "segment-votes") config.vote_weight = static_cast<float>(number(name, value, 0, 1000));
+    else if (name == "segment-exemplars") config.exemplar_weight = static_cast<float>(number(name, value, 0, 1000));
     else return false;
     return true;
 }
@@ -203,6 +204,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "skip-penalty",
                                                 "unknown-cost",
                                                 "segment-votes",
+                                                "segment-exemplars",
                                                 "rate",
                                                 "roles",
                                                 "time-unit",

@@ -127,6 +127,9 @@ static void contract_checks(const actionstring_model* model) {
     bad.vote_weight = -1.0f; /* a negative vote weight is refused */
     CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
     bad = own;
+    bad.exemplar_weight = -1.0f; /* and a negative exemplar weight */
+    CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
+    bad = own;
     bad.segment_penalty = -1.0f;
     CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
     bad = own;
@@ -141,6 +144,7 @@ static void contract_checks(const actionstring_model* model) {
     eager.settle_delay_us = 1000000;
     eager.unknown_cost = 0.5f;
     eager.vote_weight = 0.25f;
+    eager.exemplar_weight = 0.1f; /* no exemplars in this model: accepted, no effect */
     CHECK(actionstring_set_online_settings(state, &eager) == ACTIONSTRING_OK);
     CHECK(actionstring_set_online_settings(state, &own) == ACTIONSTRING_OK);
 
