@@ -11,8 +11,9 @@
 // frame-level nearest-neighbour vote ("naive-Bayes nearest neighbour"), which
 // is blind to order, beside DTW on the strings, which is not.
 //
-// Per character: exemplar_count × feature_dim multiply-adds, in a fixed order
-// (so a generated header and a loaded model give the same bits).
+// Per character: exemplar_count × feature_dim multiply-adds, each centre's sum
+// in increasing coordinate order (so a generated header, a loaded model and
+// every target give the same bits).
 #pragma once
 
 #include <cstddef>
@@ -34,14 +35,38 @@ inline void exemplar_distances(const ModelView& model, const float* feature, flo
     for (std::size_t l = 0; l < L; ++l) distances[l] = detail::infinity();
     if (feature == nullptr || model.exemplars == nullptr || model.exemplar_labels == nullptr) return;
     const float* centre = model.exemplars;
-    for (std::size_t e = 0; e < model.exemplar_count; ++e, centre += d) {
+    const std::size_t n = model.exemplar_count;
+    auto keep = [&](std::size_t e, float sum) {
+        const LabelId label = model.exemplar_labels[e];
+        if (label < L && sum < distances[label]) distances[label] = sum;
+    };
+    // Four centres at a time: four independent chains of additions (one chain
+    // waits an add's latency per term), each in its own fixed order, so the
+    // sums are the ones a centre-by-centre loop gives.
+    std::size_t e = 0;
+    for (; e + 4 <= n; e += 4, centre += 4 * d) {
+        float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f, s3 = 0.0f;
+        for (std::size_t j = 0; j < d; ++j) {
+            const float x = feature[j];
+            const float d0 = x - centre[j], d1 = x - centre[d + j], d2 = x - centre[2 * d + j],
+                        d3 = x - centre[3 * d + j];
+            s0 += d0 * d0;
+            s1 += d1 * d1;
+            s2 += d2 * d2;
+            s3 += d3 * d3;
+        }
+        keep(e, s0);
+        keep(e + 1, s1);
+        keep(e + 2, s2);
+        keep(e + 3, s3);
+    }
+    for (; e < n; ++e, centre += d) {
         float sum = 0.0f;
         for (std::size_t j = 0; j < d; ++j) {
             const float diff = feature[j] - centre[j];
             sum += diff * diff;
         }
-        const LabelId label = model.exemplar_labels[e];
-        if (label < L && sum < distances[label]) distances[label] = sum;
+        keep(e, sum);
     }
 }
 
