@@ -97,6 +97,7 @@ report() {
             if (name ~ /kProjection/) part = "model: pose normalisation + PCA tables"
             else if (name ~ /kGmm/) part = "model: GMM tables"
             else if (name ~ /kNode|kCharacterDistances|kCharacterVotes/) part = "model: cluster tree, character distances W and votes"
+            else if (name ~ /kExemplar/) part = "model: exemplars (clip classification)"
             else if (name ~ /kJointParents|kBoneLengths|kBoneOrder/) part = "model: skeleton (parents, bone lengths)"
             else if (name ~ /kRepresentative|kLabelNames|kJointNames|kPoseJoints|kModel/) part = "model: strings, labels, joints"
             else if (name ~ /normalize_pose|project_pose/) part = "code: normalise + project"
