@@ -57,6 +57,16 @@ TrainingOptions toy_options() {
     return o;
 }
 
+// The toy options without a GMM: characters on the projected poses.
+TrainingOptions toy_pca_only_options() {
+    TrainingOptions o = toy_options();
+    o.components = 0;
+    o.pca_dim = 6;
+    o.epsilon = 0.5;
+    o.sigma = 0.5;
+    return o;
+}
+
 }  // namespace
 
 TEST_CASE("EM: the penalised log-likelihood never decreases and the blobs are found") {
@@ -426,11 +436,7 @@ TEST_CASE("exemplars: k-means centres per label, their scale measured, determini
     ToyWorld world = make_toy_world();
     const auto train = toy_clips(world, 6, 100);
     const auto held_out = toy_clips(world, 5, 9000, 30.0);
-    TrainingOptions options = toy_options();
-    options.components = 0;
-    options.pca_dim = 6;
-    options.epsilon = 0.5;
-    options.sigma = 0.5;
+    TrainingOptions options = toy_pca_only_options();
     options.exemplars = 4;
     options.exemplar_weight = 2.0;
     const ModelData model = train_model(train, options);
@@ -470,9 +476,8 @@ TEST_CASE("exemplars: k-means centres per label, their scale measured, determini
         CHECK(with.label == classify_clip(view, c.clip).label);
         const Classification without = classify_string(view, encoded.string);
         // The winner's distance grew by exactly its exemplar penalty.
-        std::vector<float> penalties(view.label_count), votes(view.label_count);
+        std::vector<float> penalties(view.label_count);
         exemplar_penalties(view, sums.data(), encoded.string.size(), penalties.data());
-        vote_penalties(view, encoded.string.data(), encoded.string.size(), votes.data());
         if (with.label == without.label && with.representative == without.representative)
             CHECK(with.distance == doctest::Approx(without.distance + penalties[with.label]));
         changed += *std::max_element(penalties.begin(), penalties.end()) > 0.0f;
@@ -510,11 +515,7 @@ TEST_CASE("a model without a GMM (PCA-only characters) trains, validates, round-
     ToyWorld world = make_toy_world();
     const auto train = toy_clips(world, 6, 100);
     const auto held_out = toy_clips(world, 5, 9000, 30.0);
-    TrainingOptions options = toy_options();
-    options.components = 0;
-    options.pca_dim = 6;
-    options.epsilon = 0.5;
-    options.sigma = 0.5;
+    TrainingOptions options = toy_pca_only_options();
     TrainingReport report;
     ModelData model = train_model(train, options, &report);
     const ModelView view = model.view();
@@ -711,11 +712,7 @@ TEST_CASE("'no action' votes: learned from the unlabelled stretches of recording
     // Training with stretches of no action stores log P(c | no action), a distribution.
     ToyWorld world = make_toy_world();
     const auto train = toy_clips(world, 4, 100);
-    TrainingOptions options = toy_options();
-    options.components = 0;
-    options.pca_dim = 6;
-    options.epsilon = 0.5;
-    options.sigma = 0.5;
+    TrainingOptions options = toy_pca_only_options();
     const std::vector<LabelledClip> stretches(train.begin(), train.begin() + 3);
     TrainingReport report;
     const ModelData model = train_model(train, options, &report, &stretches);
