@@ -12,20 +12,66 @@
 // is blind to order, beside DTW on the strings, which is not.
 //
 // Per character: exemplar_count × feature_dim multiply-adds, each centre's sum
-// in increasing coordinate order (so a generated header, a loaded model and
-// every target give the same bits).
+// in one fixed order (detail::exemplar_distance()), so a generated header, a
+// loaded model, the lanes of an x86 host and a Cortex-M4 give the same bits.
 #pragma once
 
 #include <cstddef>
 
+#include "actionstring/detail/lanes.hpp"
 #include "actionstring/detail/math.hpp"
 #include "actionstring/model.hpp"
 
 namespace actionstring {
 
+namespace detail {
+
+/// The squared distance from x to one centre, summed as every target sums it:
+/// four partial sums, sum k over the coordinates j ≡ k (mod 4) in increasing j,
+/// then (sum0 + sum1) + (sum2 + sum3). Four chains because four lanes take a
+/// block of four coordinates per step (exemplar_distances()); the scalar loop
+/// keeps the same order, so a lane target, a Cortex-M4 and the trainer agree.
+inline float exemplar_distance(const float* x, const float* centre, std::size_t d) noexcept {
+    float sum0 = 0.0f, sum1 = 0.0f, sum2 = 0.0f, sum3 = 0.0f;
+    std::size_t j = 0;
+    for (; j + 4 <= d; j += 4) {
+        const float d0 = x[j] - centre[j], d1 = x[j + 1] - centre[j + 1], d2 = x[j + 2] - centre[j + 2],
+                    d3 = x[j + 3] - centre[j + 3];
+        sum0 += d0 * d0;
+        sum1 += d1 * d1;
+        sum2 += d2 * d2;
+        sum3 += d3 * d3;
+    }
+    // The last d mod 4 coordinates, each to its own chain.
+    if (j < d) {
+        const float d0 = x[j] - centre[j];
+        sum0 += d0 * d0;
+    }
+    if (j + 1 < d) {
+        const float d1 = x[j + 1] - centre[j + 1];
+        sum1 += d1 * d1;
+    }
+    if (j + 2 < d) {
+        const float d2 = x[j + 2] - centre[j + 2];
+        sum2 += d2 * d2;
+    }
+    return (sum0 + sum1) + (sum2 + sum3);
+}
+
+/// A smaller distance replaces a label's nearest so far (a select, not a jump:
+/// which centre is nearer depends on the data).
+inline void keep_nearest(const ModelView& model, std::size_t e, float distance, float* distances) noexcept {
+    const LabelId label = model.exemplar_labels[e];
+    if (label >= model.label_count) return;
+    const float nearest = distances[label];
+    distances[label] = distance < nearest ? distance : nearest;
+}
+
+}  // namespace detail
+
 /// Per label, the squared Euclidean distance from one feature to the label's
-/// nearest exemplar (+inf for a label without exemplars). Each sum runs over
-/// the coordinates in increasing order.
+/// nearest exemplar (+inf for a label without exemplars). Each centre's sum
+/// is detail::exemplar_distance()'s, in its order, on every target.
 /// @param feature   feature_dim floats (the projected pose the character was
 ///                  made from, EncodedFrame's previous_feature / current_feature); read only during the call
 /// @param distances receives label_count floats (caller-owned)
@@ -36,38 +82,43 @@ inline void exemplar_distances(const ModelView& model, const float* feature, flo
     if (feature == nullptr || model.exemplars == nullptr || model.exemplar_labels == nullptr) return;
     const float* centre = model.exemplars;
     const std::size_t n = model.exemplar_count;
-    auto keep = [&](std::size_t e, float sum) {
-        const LabelId label = model.exemplar_labels[e];
-        if (label < L && sum < distances[label]) distances[label] = sum;
-    };
-    // Four centres at a time: four independent chains of additions (one chain
-    // waits an add's latency per term), each in its own fixed order, so the
-    // sums are the ones a centre-by-centre loop gives.
     std::size_t e = 0;
+#if ACTIONSTRING_DETAIL_LANES == 4
+    // Four centres at a time, each in its own register of four partial sums
+    // (lane k: the coordinates j ≡ k mod 4), so the four chains of additions are
+    // independent; then a transpose puts each partial sum of the four centres
+    // in one register, and (sum0 + sum1) + (sum2 + sum3) finishes all four at
+    // once. The last d mod 4 coordinates enter padded with zeros, which add
+    // exactly nothing (0 − 0 squared is +0, and a sum of squares is never −0).
+    const std::size_t body = d & ~static_cast<std::size_t>(3), tail = d - body;
+    float padded[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (std::size_t j = 0; j < tail; ++j) padded[j] = feature[body + j];
+    const detail::Lanes x_tail = detail::load_lanes(padded);
     for (; e + 4 <= n; e += 4, centre += 4 * d) {
-        float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f, s3 = 0.0f;
-        for (std::size_t j = 0; j < d; ++j) {
-            const float x = feature[j];
-            const float d0 = x - centre[j], d1 = x - centre[d + j], d2 = x - centre[2 * d + j],
-                        d3 = x - centre[3 * d + j];
-            s0 += d0 * d0;
-            s1 += d1 * d1;
-            s2 += d2 * d2;
-            s3 += d3 * d3;
+        detail::Lanes sums[4] = {detail::broadcast(0.0f), detail::broadcast(0.0f), detail::broadcast(0.0f),
+                                 detail::broadcast(0.0f)};
+        for (std::size_t j = 0; j < body; j += 4) {
+            const detail::Lanes x = detail::load_lanes(feature + j);
+            for (std::size_t k = 0; k < 4; ++k) {
+                const detail::Lanes diff = x - detail::load_lanes(centre + k * d + j);
+                sums[k] = sums[k] + diff * diff;
+            }
         }
-        keep(e, s0);
-        keep(e + 1, s1);
-        keep(e + 2, s2);
-        keep(e + 3, s3);
-    }
-    for (; e < n; ++e, centre += d) {
-        float sum = 0.0f;
-        for (std::size_t j = 0; j < d; ++j) {
-            const float diff = feature[j] - centre[j];
-            sum += diff * diff;
+        if (tail != 0) {
+            for (std::size_t k = 0; k < 4; ++k) {
+                float c[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+                for (std::size_t j = 0; j < tail; ++j) c[j] = centre[k * d + body + j];
+                const detail::Lanes diff = x_tail - detail::load_lanes(c);
+                sums[k] = sums[k] + diff * diff;
+            }
         }
-        keep(e, sum);
+        detail::transpose(sums[0], sums[1], sums[2], sums[3]);
+        float four[4];
+        detail::store_lanes(four, (sums[0] + sums[1]) + (sums[2] + sums[3]));
+        for (std::size_t k = 0; k < 4; ++k) detail::keep_nearest(model, e + k, four[k], distances);
     }
+#endif
+    for (; e < n; ++e, centre += d) detail::keep_nearest(model, e, detail::exemplar_distance(feature, centre, d), distances);
 }
 
 /// What the exemplars add to the distance of each label's representatives,

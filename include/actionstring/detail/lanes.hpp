@@ -10,9 +10,12 @@
 //   select(mask, a, b)    mask ? a : b, bit for bit (costs and 32-bit starts alike)
 //   minimum(a, b)         a < b ? a : b (SSE's MINPS is defined exactly so)
 //   all_less(a, b)        a < b in every lane
+//   transpose(a, b, c, d) four rows of lanes to four columns
 //
 // The GMM (gmm.hpp) puts four components in the lanes: a product, then a sum,
-// each rounded once per lane as the scalar loop rounds it.
+// each rounded once per lane as the scalar loop rounds it. The exemplars
+// (exemplars.hpp) put a centre's four partial sums in them, which the scalar
+// loop keeps as four chains.
 //
 // ACTIONSTRING_DETAIL_LANES is 4 with SSE2 (every x86-64 compiler) and 0
 // elsewhere: a Cortex-M4 has no float SIMD, and there the scalar loop, tuned
@@ -88,6 +91,9 @@ inline Lanes lanes_up1(Lanes a, Lanes fill) noexcept {
 inline Lanes lanes_up2(Lanes a, Lanes fill) noexcept {
     return Lanes{_mm_shuffle_ps(fill.v, a.v, _MM_SHUFFLE(1, 0, 1, 0))};
 }
+/// Rows to columns: a, b, c, d become {a0, b0, c0, d0}, {a1, b1, c1, d1}, … (bits
+/// moved, not rounded).
+inline void transpose(Lanes& a, Lanes& b, Lanes& c, Lanes& d) noexcept { _MM_TRANSPOSE4_PS(a.v, b.v, c.v, d.v); }
 /// The smallest lane (exact: the minimum of finite values or infinities does not round).
 inline float smallest_lane(Lanes a) noexcept {
     const __m128 pairs = _mm_min_ps(a.v, _mm_movehl_ps(a.v, a.v));
