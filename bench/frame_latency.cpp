@@ -273,11 +273,33 @@ void measure_model(const std::string& name, const ModelView& model, const host::
     host::Stateful<StringEncoder> encoder;
     encoder.init(model, EncoderConfig{});
     std::vector<Character> string;
+    std::vector<float> features;  // feature_dim per character, for the exemplars
+    const std::size_t d = model.feature_dim;
     for (std::size_t f = 0; f < frames; ++f) {
         const EncodedFrame e = encoder->push_frame(stream.times_us[f], stream.frame(f));
         if (!e.accepted()) continue;
         string.insert(string.end(), e.from_previous, e.previous);
         string.insert(string.end(), e.from_current, e.current);
+        for (std::size_t i = 0; i < e.from_previous; ++i)
+            features.insert(features.end(), e.previous_feature, e.previous_feature + d);
+        for (std::size_t i = 0; i < e.from_current; ++i)
+            features.insert(features.end(), e.current_feature, e.current_feature + d);
+    }
+    // Exemplars: each character's distances to every label's nearest centre
+    // (what clip classification sums, and the segmenter weighs when set to).
+    if (model.has_exemplars()) {
+        std::vector<float> distances(model.label_count);
+        std::vector<std::int64_t> exemplar_ns;
+        for (int pass = 0; pass <= passes; ++pass)
+            for (std::size_t i = 0; i < string.size(); ++i) {
+                const std::int64_t ns = timed([&] { exemplar_distances(model, &features[i * d], distances.data()); });
+                g_sink = static_cast<std::uint32_t>(distances[0] > 1.0f);
+                if (pass > 0) exemplar_ns.push_back(ns);
+            }
+        char what[96];
+        std::snprintf(what, sizeof what, "stage: exemplar distances (per character, %u centres)",
+                      static_cast<unsigned>(model.exemplar_count));
+        report.latency.push_back({name, what, summarize(exemplar_ns)});
     }
 
     // Matcher: incremental per character, against the batch DP over each completed window.
@@ -521,6 +543,11 @@ int main(int argc, char** argv) {
             s.representatives = R;
             points.push_back(measure_scaling("representatives", s));
         }
+        for (int M : {16, 64}) {  // the segmenter weighing M centres per label (10 labels)
+            auto s = base;
+            s.exemplars_per_label = M;
+            points.push_back(measure_scaling("exemplars per label", s));
+        }
         for (double w : {1.0, 4.0}) {
             auto s = base;
             s.window_seconds = w;
@@ -556,12 +583,12 @@ int main(int argc, char** argv) {
     if (!points.empty()) {
         md << "\nScaling on random models (31 joints, full covariance; base J=40, d=24, K=64, 30 representatives of 30 "
               "characters, 2 s windows every 0.5 s at 12 characters/s), 3 passes over a 30 s 120 Hz stream:\n\n"
-              "| varied | J | d | K | representatives | window s | median ns (all frames) | median ns (character frames) | p99.9 ns | segmenter alone: character frames median / p99 ns |\n"
-              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+              "| varied | J | d | K | representatives | window s | exemplars per label | median ns (all frames) | median ns (character frames) | p99.9 ns | segmenter alone: character frames median / p99 ns |\n"
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
         for (const auto& p : points) {
-            std::snprintf(cell, sizeof cell, "| %s | %d | %d | %d | %d | %.1f | %.0f | %.0f | %.0f | %.0f / %.0f |\n",
+            std::snprintf(cell, sizeof cell, "| %s | %d | %d | %d | %d | %.1f | %d | %.0f | %.0f | %.0f | %.0f / %.0f |\n",
                           p.varied.c_str(), p.size.components, p.size.feature_dim, p.size.characters,
-                          p.size.representatives, p.size.window_seconds, p.every.median, p.character.median,
+                          p.size.representatives, p.size.window_seconds, p.size.exemplars_per_label, p.every.median, p.character.median,
                           p.every.p999, p.own_character.median, p.own_character.p99);
             md << cell;
         }
@@ -587,7 +614,8 @@ int main(int argc, char** argv) {
             json << (i ? ",\n    " : "\n    ") << "{\"varied\": \"" << p.varied
                  << "\", \"components\": " << p.size.components << ", \"feature_dim\": " << p.size.feature_dim
                  << ", \"characters\": " << p.size.characters << ", \"representatives\": " << p.size.representatives
-                 << ", \"window_seconds\": " << p.size.window_seconds << ", \"median_ns\": " << p.every.median
+                 << ", \"window_seconds\": " << p.size.window_seconds
+                 << ", \"exemplars_per_label\": " << p.size.exemplars_per_label << ", \"median_ns\": " << p.every.median
                  << ", \"character_median_ns\": " << p.character.median << ", \"p99_9_ns\": " << p.every.p999
                  << ", \"own_character_median_ns\": " << p.own_character.median
                  << ", \"own_character_p99_ns\": " << p.own_character.p99 << "}";

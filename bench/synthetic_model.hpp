@@ -23,6 +23,7 @@ struct ModelSize {
     double window_seconds = 2.0;
     double step_seconds = 0.5;
     actionstring::Covariance covariance = actionstring::Covariance::full;
+    int exemplars_per_label = 0;  ///< random centres per label (10 labels), weighed by the segmenter too
 };
 
 // Balanced tree with `leaves` leaves and random probability-vector centroids.
@@ -95,6 +96,17 @@ inline void make_random_model(actionstring::host::ModelData& m, const ModelSize&
     m.window_chars = static_cast<std::uint16_t>(std::lround(size.window_seconds * size.string_rate_hz));
     m.step_chars = static_cast<std::uint16_t>(std::lround(size.step_seconds * size.string_rate_hz));
     m.neighbours = 1;
+    if (size.exemplars_per_label > 0) {
+        std::normal_distribution<float> centre(0.0f, 0.3f);
+        for (int l = 0; l < 10; ++l)
+            for (int e = 0; e < size.exemplars_per_label; ++e) {
+                m.exemplar_labels.push_back(static_cast<LabelId>(l));
+                for (int i = 0; i < d; ++i) m.exemplars.push_back(centre(rng));
+            }
+        m.exemplar_weight = 1.0f;
+        m.exemplar_scale = 1.0f;
+        m.segment_exemplar_weight = 0.1f;
+    }
 }
 
 /// A skeleton jittering around a standing pose, joint_count × xyz per frame.
