@@ -68,6 +68,8 @@ void print_train_usage(std::FILE* out) {
                  "  --exemplars N           k-means centres of each label's training features, compared\n"
                  "                          with a clip's features beside its string, 0 = none [0]\n"
                  "  --exemplar-weight W     their weight beside DTW and the votes, 0 = none [0]\n"
+                 "  --no-action-exemplars true|false  with a list of recordings, centres of their\n"
+                 "                          unlabelled stretches too, for the segmenter [true]\n"
                  "  --window S, --step S    sliding window and step in seconds [%g, %g]\n"
                  "  --unknown-distance X    label unknown above this distance [never]\n"
                  "  --settle S, --segment-penalty X, --stay-penalty X, --skip-penalty X, --unknown-cost X\n"

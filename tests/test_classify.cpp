@@ -171,6 +171,22 @@ TEST_CASE("exemplars: each label's nearest centre, penalties relative to the nea
                           std::numeric_limits<float>::infinity()};
     exemplar_penalties(reps.view, none, 4, p);
     CHECK((p[0] == 0.0f && p[1] == 0.0f && p[2] == 0.0f));
+    // Centres of "no action" (unknown_label, after every label's): not a label's,
+    // and reported apart when asked for.
+    CHECK_FALSE(reps.view.has_no_action_exemplars());
+    const LabelId with_none[] = {0, 1, unknown_label};
+    reps.view.exemplar_labels = with_none;
+    CHECK(reps.view.has_no_action_exemplars());
+    float to_none = 0.0f;
+    exemplar_distances(reps.view, feature, d, &to_none);
+    CHECK(d[0] == 5.0f);  // (0,0) alone now
+    CHECK(d[1] == 8.0f);
+    CHECK(d[2] == std::numeric_limits<float>::infinity());
+    CHECK(to_none == 1.0f);  // (1,1)
+    const LabelId none_first[] = {unknown_label, 1, 0};  // refused by validation (test_training.cpp)
+    reps.view.exemplar_labels = none_first;
+    CHECK_FALSE(reps.view.has_no_action_exemplars());
+    reps.view.exemplar_labels = labels;
     // Without a weight the model has no exemplars to use.
     reps.view.exemplar_weight = 0.0f;
     CHECK_FALSE(reps.view.has_exemplars());

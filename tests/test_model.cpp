@@ -21,6 +21,27 @@ TEST_CASE("the toy model is valid") {
     CHECK(validate_model(world.model.view()) == Status::ok);
 }
 
+namespace {
+// Valid exemplars for the toy model: one centre per entry of `labels`
+// (unknown_label: a centre of no action), at the origin.
+void with_exemplars(host::ModelData& m, const std::vector<LabelId>& labels) {
+    m.exemplar_labels = labels;
+    m.exemplars.assign(labels.size() * m.feature_dim, 0.0f);
+    m.exemplar_weight = 1.0f;
+    m.exemplar_scale = 1.0f;
+}
+}  // namespace
+
+TEST_CASE("exemplars of the labels and of no action validate") {
+    host::ToyWorld world = host::make_toy_world();
+    with_exemplars(world.model, {0, 1, 1, unknown_label, unknown_label});
+    CHECK(validate_model(world.model.view()) == Status::ok);
+    CHECK(world.model.view().has_no_action_exemplars());
+    with_exemplars(world.model, {0, 1});
+    CHECK(validate_model(world.model.view()) == Status::ok);
+    CHECK_FALSE(world.model.view().has_no_action_exemplars());
+}
+
 TEST_CASE("each kind of corruption is refused") {
     const std::vector<std::pair<const char*, std::function<void(host::ModelData&)>>> corruptions = {
         {"root out of range", [](host::ModelData& m) { m.root_joint = 9; }},
@@ -90,6 +111,18 @@ TEST_CASE("each kind of corruption is refused") {
          [](host::ModelData& m) {
              m.has_label_bounds = 1;
              m.label_bounds.assign(m.label_names.size(), -1.0f);
+         }},
+        {"exemplar label out of range", [](host::ModelData& m) { with_exemplars(m, {0, 9}); }},
+        {"a label's exemplar after no action's", [](host::ModelData& m) { with_exemplars(m, {unknown_label, 0}); }},
+        {"NaN exemplar",
+         [](host::ModelData& m) {
+             with_exemplars(m, {0, 1});
+             m.exemplars[1] = kNaN;
+         }},
+        {"exemplar weight without a scale",
+         [](host::ModelData& m) {
+             with_exemplars(m, {0, 1});
+             m.exemplar_scale = 0.0f;
          }},
         {"vote not a log-probability",
          [](host::ModelData& m) {

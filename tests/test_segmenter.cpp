@@ -92,12 +92,17 @@ Tables random_tables(std::mt19937& rng) {
         for (int v = 0; v < 4 * K; ++v) t.votes.push_back(-static_cast<float>(uniform(0, 16)) * 0.25f);
     if (!t.votes.empty() && uniform(0, 1) == 1)
         for (int v = 0; v < K; ++v) t.none.push_back(-static_cast<float>(uniform(0, 16)) * 0.25f);
-    if (uniform(0, 1) == 1)  // half carry exemplars: one or two whole-number centres per label
+    if (uniform(0, 1) == 1) {  // half carry exemplars: one or two whole-number centres per label
         for (LabelId l = 0; l < 4; ++l)
             for (int e = uniform(1, 2); e > 0; --e) {
                 t.centres.push_back(static_cast<float>(uniform(0, 3)));
                 t.centre_labels.push_back(l);
             }
+        for (int e = uniform(0, 2); e > 0; --e) {  // and some of those, of "no action" too (last)
+            t.centres.push_back(static_cast<float>(uniform(0, 3)));
+            t.centre_labels.push_back(unknown_label);
+        }
+    }
     t.finish(K);
     return t;
 }
@@ -137,22 +142,27 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
         if (l == unknown_label) return m.has_no_action_votes ? config.vote_weight * (best_vote - m.no_action_votes[c]) : 0.0f;
         return config.vote_weight * (best_vote - m.character_votes[l * K + c]);
     };
-    // The exemplars: what character t's feature costs label l's explanations.
+    // The exemplars: what character t's feature costs label l's explanations
+    // (l = unknown_label: "no action", when the model has centres of it).
     auto exemplar = [&](LabelId l, std::size_t t) {
-        if (!(config.exemplar_weight > 0.0f) || !m.has_exemplars() || features == nullptr || l == unknown_label)
-            return 0.0f;
-        std::vector<float> nearest(m.label_count, inf);
+        if (!(config.exemplar_weight > 0.0f) || !m.has_exemplars() || features == nullptr) return 0.0f;
+        const std::size_t L = m.label_count;
+        std::vector<float> nearest(L + 1, inf);  // the last: no action
         for (std::size_t e = 0; e < m.exemplar_count; ++e) {
             const float d = (*features)[t] - m.exemplars[e];
-            nearest[m.exemplar_labels[e]] = std::min(nearest[m.exemplar_labels[e]], d * d);
+            const std::size_t slot = m.exemplar_labels[e] == unknown_label ? L : m.exemplar_labels[e];
+            nearest[slot] = std::min(nearest[slot], d * d);
         }
         const float best = *std::min_element(nearest.begin(), nearest.end());
-        return (nearest[l] - best) * (config.exemplar_weight / m.exemplar_scale);
+        const float own = nearest[l == unknown_label ? L : l];
+        if (best == inf || (l == unknown_label && own == inf)) return 0.0f;
+        return (own - best) * (config.exemplar_weight / m.exemplar_scale);
     };
     for (std::size_t t = 0; t < T; ++t) {
         const float before = t == 0 ? 0.0f : end_cost[t - 1];
         const float entry = before + config.segment_penalty;
-        float best = before + (config.unknown_cost + vote(unknown_label, stream[t])), best_end = best;
+        const float no_action = config.unknown_cost + (vote(unknown_label, stream[t]) + exemplar(unknown_label, t));
+        float best = before + no_action, best_end = best;
         int best_rep = -1, end_rep = -1;
         std::size_t best_start = t, end_start = t;
         std::vector<std::vector<float>> next = cost;
@@ -182,7 +192,7 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
         }
         if (margins != nullptr) {
             const LabelId live = label(best_rep);
-            float rival = live == unknown_label ? inf : before + (config.unknown_cost + vote(unknown_label, stream[t]));
+            float rival = live == unknown_label ? inf : before + no_action;
             for (std::size_t r = 0; r < R; ++r)
                 if (label(static_cast<int>(r)) != live)
                     for (std::size_t i = 1; i <= m.representative_length(r); ++i) rival = std::min(rival, next[r][i]);
@@ -436,4 +446,46 @@ TEST_CASE("votes learned for 'no action' make the segmenter reject what only the
     for (std::size_t i = 4; i < 10; ++i) CHECK(voted[i] == unknown_label);  // rejected
     for (std::size_t i = 10; i < stream.size(); ++i) CHECK(voted[i] == 0);
     CHECK(labels(1.0f) == voted);  // deterministic
+}
+
+TEST_CASE("exemplars of 'no action' make the segmenter reject poses only they lie near") {
+    // Label a: characters 0 and 1, its poses near 0. Character 3 sits 1 from
+    // everything, so by the strings alone label a explains a stretch of 3s more
+    // cheaply than "no action" (cost 2); their poses lie near 3, where only
+    // "no action" has a centre (as from a recording's unlabelled stretches).
+    Tables t;
+    const int K = 4;
+    for (int a = 0; a < K; ++a)
+        for (int b = 0; b < K; ++b) t.w.push_back(a == b ? 0.0f : 1.0f);
+    t.add({0, 1, 0, 1}, 0);
+    t.centres = {0.0f, 3.0f};
+    t.centre_labels = {0, unknown_label};
+    t.finish(K);
+    REQUIRE(t.view.has_no_action_exemplars());
+    const std::vector<Character> stream{0, 1, 0, 1, 3, 3, 3, 3, 3, 3, 0, 1, 0, 1};
+    std::vector<float> features(stream.size(), 0.0f);
+    for (std::size_t i = 4; i < 10; ++i) features[i] = 3.0f;
+    SegmenterConfig config;
+    config.settle_delay_us = 0;
+    config.unknown_cost = 2.0f;
+    host::Stateful<ActionSegmenter> segmenter;
+    auto labels = [&](float exemplar_weight, bool with_none) {
+        t.view.exemplar_count = static_cast<std::uint16_t>(with_none ? 2 : 1);
+        config.exemplar_weight = exemplar_weight;
+        REQUIRE(segmenter.init(t.view, config) == Status::ok);
+        std::vector<LabelId> out;
+        for (std::size_t i = 0; i < stream.size(); ++i) {
+            segmenter->push(stream[i], &features[i]);
+            out.push_back(segmenter->settled_label());
+        }
+        return out;
+    };
+    const std::vector<LabelId> plain = labels(0.0f, true);
+    for (std::size_t i = 4; i < 10; ++i) CHECK(plain[i] == 0);  // no exemplars weighed: the 3s are "a"
+    const std::vector<LabelId> without_none = labels(1.0f, false);
+    for (std::size_t i = 4; i < 10; ++i) CHECK(without_none[i] == 0);  // a's centres alone: still "a"
+    const std::vector<LabelId> with_none = labels(1.0f, true);
+    for (std::size_t i = 0; i < 4; ++i) CHECK(with_none[i] == 0);
+    for (std::size_t i = 4; i < 10; ++i) CHECK(with_none[i] == unknown_label);  // rejected
+    for (std::size_t i = 10; i < stream.size(); ++i) CHECK(with_none[i] == 0);
 }

@@ -506,6 +506,19 @@ TEST_CASE("exemplars: a label with fewer features than centres keeps every featu
     // Every feature is a centre of its own label, so the scale is the nearest other label's mean distance.
     const double other = (50.0 + 41.0 + 41.0 + 41.0 + 41.0) / 5.0;  // (5,5)'s nearest of a is (1,0)
     CHECK(m.exemplar_scale == doctest::Approx(other));
+    // Features of no action (stretches of recordings): centres of their own, last,
+    // and no part in the scale.
+    std::vector<std::vector<float>> with_none = features;
+    with_none.push_back({9, 9, 8, 8});
+    std::vector<LabelId> none_labels = labels;
+    none_labels.push_back(unknown_label);
+    set_exemplars(m, with_none, none_labels, 8, 1.0, 1);
+    CHECK(m.exemplar_labels == std::vector<LabelId>{0, 0, 0, 1, 1, unknown_label, unknown_label});
+    CHECK(m.exemplars == std::vector<float>{0, 0, 1, 0, 0, 1, 5, 5, 5, 5, 9, 9, 8, 8});
+    CHECK(m.exemplar_scale == doctest::Approx(other));
+    CHECK(m.view().has_no_action_exemplars());
+    // Only no action's features: nothing to classify clips with.
+    CHECK_THROWS_AS(set_exemplars(m, {{9, 9}}, {unknown_label}, 8, 1.0, 1), std::invalid_argument);
     set_exemplars(m, features, labels, 0, 1.0, 1);
     CHECK(m.exemplar_labels.empty());
     CHECK(m.exemplar_weight == 0.0f);
@@ -726,4 +739,20 @@ TEST_CASE("'no action' votes: learned from the unlabelled stretches of recording
     // Without votes there is nothing to learn them for.
     options.vote_weight = 0;
     CHECK(train_model(train, options, nullptr, &stretches).has_no_action_votes == 0);
+    // With exemplars, the stretches get centres of their own, after every label's
+    // (unless told not to), and the artifact keeps them.
+    options.exemplars = 4;
+    options.exemplar_weight = 1.0;
+    const ModelData with_none = train_model(train, options, nullptr, &stretches);
+    CHECK(validate_model(with_none.view()) == Status::ok);
+    REQUIRE(with_none.view().has_no_action_exemplars());
+    CHECK(std::count(with_none.exemplar_labels.begin(), with_none.exemplar_labels.end(), unknown_label) == 4);
+    CHECK(with_none.exemplar_labels.size() == 4 * with_none.label_names.size() + 4);
+    CHECK(serialize_model(parse_model("x.model", serialize_model(with_none))) == serialize_model(with_none));
+    options.no_action_exemplars = false;
+    const ModelData without = train_model(train, options, nullptr, &stretches);
+    CHECK_FALSE(without.view().has_no_action_exemplars());
+    // The labels' centres and their scale do not depend on no action's.
+    CHECK(without.exemplar_scale == with_none.exemplar_scale);
+    CHECK(std::equal(without.exemplars.begin(), without.exemplars.end(), with_none.exemplars.begin()));
 }

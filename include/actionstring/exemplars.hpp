@@ -59,12 +59,15 @@ inline float exemplar_distance(const float* x, const float* centre, std::size_t 
 }
 
 /// A smaller distance replaces a label's nearest so far (a select, not a jump:
-/// which centre is nearer depends on the data).
-inline void keep_nearest(const ModelView& model, std::size_t e, float distance, float* distances) noexcept {
+/// which centre is nearer depends on the data); a centre of "no action" goes
+/// to `no_action` when the caller asked for it.
+inline void keep_nearest(const ModelView& model, std::size_t e, float distance, float* distances,
+                         float* no_action) noexcept {
     const LabelId label = model.exemplar_labels[e];
-    if (label >= model.label_count) return;
-    const float nearest = distances[label];
-    distances[label] = distance < nearest ? distance : nearest;
+    float* slot = label < model.label_count ? distances + label : (label == unknown_label ? no_action : nullptr);
+    if (slot == nullptr) return;
+    const float nearest = *slot;
+    *slot = distance < nearest ? distance : nearest;
 }
 
 }  // namespace detail
@@ -75,10 +78,14 @@ inline void keep_nearest(const ModelView& model, std::size_t e, float distance, 
 /// @param feature   feature_dim floats (the projected pose the character was
 ///                  made from, EncodedFrame's previous_feature / current_feature); read only during the call
 /// @param distances receives label_count floats (caller-owned)
-inline void exemplar_distances(const ModelView& model, const float* feature, float* distances) noexcept {
+/// @param no_action when not null, receives the distance to the nearest centre
+///                  of "no action" (ModelView::has_no_action_exemplars(); +inf without)
+inline void exemplar_distances(const ModelView& model, const float* feature, float* distances,
+                               float* no_action = nullptr) noexcept {
     if (distances == nullptr) return;
     const std::size_t L = model.label_count, d = model.feature_dim;
     for (std::size_t l = 0; l < L; ++l) distances[l] = detail::infinity();
+    if (no_action != nullptr) *no_action = detail::infinity();
     if (feature == nullptr || model.exemplars == nullptr || model.exemplar_labels == nullptr) return;
     const float* centre = model.exemplars;
     const std::size_t n = model.exemplar_count;
@@ -115,10 +122,11 @@ inline void exemplar_distances(const ModelView& model, const float* feature, flo
         detail::transpose(sums[0], sums[1], sums[2], sums[3]);
         float four[4];
         detail::store_lanes(four, (sums[0] + sums[1]) + (sums[2] + sums[3]));
-        for (std::size_t k = 0; k < 4; ++k) detail::keep_nearest(model, e + k, four[k], distances);
+        for (std::size_t k = 0; k < 4; ++k) detail::keep_nearest(model, e + k, four[k], distances, no_action);
     }
 #endif
-    for (; e < n; ++e, centre += d) detail::keep_nearest(model, e, detail::exemplar_distance(feature, centre, d), distances);
+    for (; e < n; ++e, centre += d)
+        detail::keep_nearest(model, e, detail::exemplar_distance(feature, centre, d), distances, no_action);
 }
 
 /// What the exemplars add to the distance of each label's representatives,

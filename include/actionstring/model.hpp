@@ -111,6 +111,13 @@ struct ModelView {
     constexpr bool has_exemplars() const noexcept {
         return exemplar_weight > 0.0f && exemplar_count > 0 && exemplars != nullptr;
     }
+    /// Whether the exemplars include centres of "no action" (labelled
+    /// unknown_label, after every label's): the segmenter then weighs "no
+    /// action" by its exemplars too. Learned from the unlabelled stretches of
+    /// training recordings.
+    constexpr bool has_no_action_exemplars() const noexcept {
+        return exemplar_count > 0 && exemplar_labels != nullptr && exemplar_labels[exemplar_count - 1] == unknown_label;
+    }
     /// Length of the vectors the tree is built on and descends with: the GMM
     /// posterior (J), or without a GMM the projected pose (d).
     constexpr std::size_t tree_dim() const noexcept { return has_gmm() ? component_count : feature_dim; }
@@ -374,8 +381,17 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
         return refuse(problem, "exemplar_weight: negative, non-finite or beyond 1000");
     if (m.exemplar_count > 0) {
         if (m.exemplar_labels == nullptr) return refuse(problem, "exemplar_labels: missing");
-        for (std::size_t e = 0; e < m.exemplar_count; ++e)
-            if (m.exemplar_labels[e] >= m.label_count) return refuse(problem, "exemplar_labels: not a label of the model");
+        // Each a label of the model, or unknown_label ("no action") after every label's.
+        bool no_action = false;
+        for (std::size_t e = 0; e < m.exemplar_count; ++e) {
+            const LabelId label = m.exemplar_labels[e];
+            if (label == unknown_label) {
+                no_action = true;
+                continue;
+            }
+            if (label >= m.label_count) return refuse(problem, "exemplar_labels: not a label of the model");
+            if (no_action) return refuse(problem, "exemplar_labels: a label's centre after those of no action");
+        }
         if (!detail::all_within(m.exemplars, std::size_t{m.exemplar_count} * m.feature_dim, -max_table_value,
                                 max_table_value))
             return refuse(problem, "exemplars: missing, non-finite or beyond 1e6");

@@ -60,7 +60,9 @@ struct SegmenterConfig {
     /// character also costs a label's representatives exemplar_weight × (its
     /// feature's squared distance to the label's nearest exemplar − the
     /// nearest label's) / exemplar_scale, so an explanation pays for poses its
-    /// action's training poses lie far from. 0 = off; it needs push() given
+    /// action's training poses lie far from. With centres of "no action" in
+    /// the model (ModelView::has_no_action_exemplars()), "no action" pays the
+    /// same way and "nearest" includes it. 0 = off; it needs push() given
     /// the character's feature, and exemplars in the model.
     float exemplar_weight = 0.0f;
 };
@@ -192,16 +194,21 @@ public:
             for (std::size_t l = 0; l < m.label_count; ++l) vote_costs_[l] = 0.0f;
         }
         // And what its pose costs them: the exemplars' distances, relative to
-        // the nearest label's ("no action" has no exemplars and pays none).
+        // the nearest label's, or to "no action"'s when the model has centres
+        // of it (learned from unlabelled stretches), which then pays the same
+        // way; without them "no action" pays nothing here.
         if (exemplar_distances_ != nullptr && feature != nullptr) {
-            exemplar_distances(m, feature, exemplar_distances_);
-            float nearest = detail::infinity();
+            float none = detail::infinity();
+            exemplar_distances(m, feature, exemplar_distances_, &none);
+            float nearest = none;
             for (std::size_t l = 0; l < m.label_count; ++l)
                 if (exemplar_distances_[l] < nearest) nearest = exemplar_distances_[l];
             const float scale = config_.exemplar_weight / m.exemplar_scale;
-            if (detail::is_finite(nearest))
+            if (detail::is_finite(nearest)) {
                 for (std::size_t l = 0; l < m.label_count; ++l)
                     vote_costs_[l] += (exemplar_distances_[l] - nearest) * scale;
+                if (detail::is_finite(none)) no_action_vote += (none - nearest) * scale;
+            }
         }
         // Costs are stored relative to the previous step's best so they stay small on endless streams.
         const float shift = best_.cost;

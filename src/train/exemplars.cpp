@@ -23,9 +23,15 @@ void set_exemplars(ModelData& m, const std::vector<std::vector<float>>& features
     std::vector<std::size_t> count(L, 0);
     for (std::size_t i = 0; i < features.size(); ++i)
         if (labels[i] < L) count[labels[i]] += features[i].size() / d;
-    for (std::size_t l = 0; l < L; ++l) {
-        if (count[l] == 0) continue;
-        Eigen::MatrixXd x(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(count[l]));
+    std::size_t none = 0;  // features of no action (unknown_label)
+    for (std::size_t i = 0; i < features.size(); ++i)
+        if (labels[i] == unknown_label) none += features[i].size() / d;
+    // Every label's centres, then no action's (the runtime finds them last).
+    for (std::size_t slot = 0; slot <= L; ++slot) {
+        const LabelId l = slot < L ? static_cast<LabelId>(slot) : unknown_label;
+        const std::size_t n_l = slot < L ? count[slot] : none;
+        if (n_l == 0) continue;
+        Eigen::MatrixXd x(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(n_l));
         Eigen::Index column = 0;
         for (std::size_t i = 0; i < features.size(); ++i) {
             if (labels[i] != l) continue;
@@ -34,17 +40,18 @@ void set_exemplars(ModelData& m, const std::vector<std::vector<float>>& features
                     x(static_cast<Eigen::Index>(k), column) = static_cast<double>(features[i][at + k]);
         }
         Eigen::MatrixXd centres = x;
-        if (count[l] > per_label) {
-            std::mt19937_64 rng(seed + static_cast<std::uint32_t>(l));
+        if (n_l > per_label) {
+            std::mt19937_64 rng(seed + static_cast<std::uint32_t>(slot));
             kmeans_plus_plus(x, static_cast<int>(per_label), rng, centres);
         }
         for (Eigen::Index c = 0; c < centres.cols(); ++c) {
-            m.exemplar_labels.push_back(static_cast<LabelId>(l));
+            m.exemplar_labels.push_back(l);
             for (std::size_t k = 0; k < d; ++k)
                 m.exemplars.push_back(static_cast<float>(centres(static_cast<Eigen::Index>(k), c)));
         }
     }
-    if (m.exemplar_labels.empty()) throw std::invalid_argument("exemplars: no label has a training feature");
+    if (m.exemplar_labels.empty() || m.exemplar_labels.front() == unknown_label)
+        throw std::invalid_argument("exemplars: no label has a training feature");
     if (m.exemplar_labels.size() > 65535)
         throw std::invalid_argument("exemplars: " + std::to_string(m.exemplar_labels.size()) +
                                     " centres are more than a model holds (65535): lower --exemplars");

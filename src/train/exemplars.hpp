@@ -18,7 +18,10 @@ namespace host {
 /// label has no more); exemplar_scale is the training features' mean squared
 /// distance to their own label's nearest centre through the runtime's
 /// exemplar_distances() (or, when that is 0 because every feature is a centre,
-/// to the nearest centre of another label). `weight` 0 or `per_label` 0: none.
+/// to the nearest centre of another label). Features labelled unknown_label
+/// (stretches of no action) get at most `per_label` centres of their own
+/// (seed + label_count), after every label's; they take no part in the scale.
+/// `weight` 0 or `per_label` 0: none.
 /// Deterministic. Throws std::invalid_argument when a weight is set but no
 /// label has a feature.
 void set_exemplars(ModelData& m, const std::vector<std::vector<float>>& features, const std::vector<LabelId>& labels,

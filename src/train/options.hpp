@@ -77,6 +77,10 @@ struct TrainingOptions {
     /// (relative to the training features' own mean distance). 0: none.
     int exemplars = 0;
     double exemplar_weight = 0.0;
+    /// With exemplars and a list of recordings: centres of "no action" too,
+    /// from the unlabelled stretches (at most `exemplars` of them), which the
+    /// segmenter weighs against the labels' (segment-exemplars).
+    bool no_action_exemplars = true;
     int neighbours = 1;
     double window_seconds = 2.0;
     double step_seconds = 0.5;

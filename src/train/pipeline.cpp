@@ -574,6 +574,14 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
         for (const LabelledClip& c : clips)
             labels.push_back(static_cast<LabelId>(
                 std::find(m.label_names.begin(), m.label_names.end(), c.label) - m.label_names.begin()));
+        // The stretches of no action, when the list has recordings: centres of their own.
+        if (no_action != nullptr && options.no_action_exemplars)
+            for (const LabelledClip& stretch : *no_action) {
+                Clip clip = stretch.clip;
+                conform_to_model(m.view(), clip);
+                string_features.push_back(encode_clip(m.view(), clip, true).features);
+                labels.push_back(unknown_label);
+            }
         set_exemplars(m, string_features, labels, static_cast<std::size_t>(options.exemplars), options.exemplar_weight,
                       options.seed);
         stage.finish("exemplars");
