@@ -7,6 +7,7 @@
 
 #include "toy/toy.hpp"
 #include "train/online_tuning.hpp"
+#include "train/settings.hpp"
 #include "train/tuning.hpp"
 
 using namespace actionstring::host;
@@ -112,4 +113,41 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     const OnlineTuningResult single = tune_online(one, options);
     CHECK(single.steps.empty());
     CHECK(single.chosen.segment_penalty == options.online.segment_penalty);
+}
+
+TEST_CASE("yes/no settings take true/false (or on/off, yes/no, 1/0) and refuse anything else") {
+    TrainingOptions options;
+    ReadOptions read;
+    CHECK(options.no_action_exemplars);
+    for (const char* no : {"false", "0", "off", "no"}) {
+        options.no_action_exemplars = true;
+        CHECK(apply_training_setting("no-action-exemplars", no, options, read));
+        CHECK_FALSE(options.no_action_exemplars);
+    }
+    for (const char* yes : {"", "true", "1", "on", "yes"}) {
+        options.mirror = false;
+        CHECK(apply_training_setting("mirror", yes, options, read));
+        CHECK(options.mirror);
+    }
+    CHECK_THROWS_WITH_AS(apply_training_setting("keep-singletons", "maybe", options, read),
+                         doctest::Contains("expected true or false, not 'maybe'"), std::invalid_argument);
+    // What self-tuning echoes as a config reads back to the same options.
+    options.exemplars = 8;
+    options.exemplar_weight = 2.0;
+    options.no_action_exemplars = false;
+    const std::string config = options_as_config(options);
+    CHECK(config.find("no-action-exemplars false") != std::string::npos);
+    TrainingOptions again;
+    std::size_t start = 0;
+    while (start < config.size()) {
+        const std::size_t end = config.find('\n', start);
+        const std::string line = config.substr(start, end - start);
+        start = end == std::string::npos ? config.size() : end + 1;
+        if (line.empty() || line[0] == '#') continue;
+        const std::size_t space = line.find(' ');
+        apply_training_setting(line.substr(0, space), space == std::string::npos ? "" : line.substr(space + 1), again,
+                               read);
+    }
+    CHECK_FALSE(again.no_action_exemplars);
+    CHECK(again.exemplars == 8);
 }

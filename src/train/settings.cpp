@@ -44,7 +44,13 @@ int choice(const std::string& name, const std::string& value, std::initializer_l
     throw std::invalid_argument("option --" + name + ": unknown value '" + value + "'");
 }
 
-bool flag(const std::string& value) { return value == "true" || value == "1" || value.empty(); }
+// A yes/no setting: a name alone means yes; anything but these words is refused,
+// so that a typo does not silently turn a setting off.
+bool flag(const std::string& name, const std::string& value) {
+    if (value.empty() || value == "true" || value == "1" || value == "on" || value == "yes") return true;
+    if (value == "false" || value == "0" || value == "off" || value == "no") return false;
+    throw std::invalid_argument("option --" + name + ": expected true or false, not '" + value + "'");
+}
 
 }  // namespace
 
@@ -113,7 +119,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "em-restarts") o.em_restarts = static_cast<int>(num(1, 64));
     else if (name == "scale")
         o.scale_mode = static_cast<ScaleMode>(choice(name, value, {"none", "hip-width", "bones"}));
-    else if (name == "mirror") o.mirror = flag(value);
+    else if (name == "mirror") o.mirror = flag(name, value);
     else if (name == "pose-joints") o.pose_joints = joint_list(name, value);
     else if (name == "velocity") o.velocity_weight = num(0, 1000);
     else if (name == "velocity-span") o.velocity_span_s = num(0.01, 2);
@@ -125,16 +131,16 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "normalization")
         o.normalization = static_cast<LengthNormalization>(choice(name, value, {"none", "path", "query"}));
     else if (name == "sigma") o.sigma = num(0, 1e9);
-    else if (name == "keep-singletons") o.keep_singletons = flag(value);
+    else if (name == "keep-singletons") o.keep_singletons = flag(name, value);
     else if (name == "max-representative-chars") o.max_representative_chars = static_cast<int>(num(0, 1e9));
-    else if (name == "reject") o.reject = flag(value);
+    else if (name == "reject") o.reject = flag(name, value);
     else if (name == "reject-keep") o.reject_keep = num(0.01, 1);
     else if (name == "neighbours") o.neighbours = static_cast<int>(num(1, 64));
     else if (name == "vote-weight") o.vote_weight = num(0, 1000);
     else if (name == "vote-smoothing") o.vote_smoothing = num(1e-6, 1e3);
     else if (name == "exemplars") o.exemplars = static_cast<int>(num(0, 4096));
     else if (name == "exemplar-weight") o.exemplar_weight = num(0, 1000);
-    else if (name == "no-action-exemplars") o.no_action_exemplars = flag(value);
+    else if (name == "no-action-exemplars") o.no_action_exemplars = flag(name, value);
     else if (name == "window") o.window_seconds = num(0.01, 3600);
     else if (name == "step") o.step_seconds = num(0.01, 3600);
     else if (name == "unknown-distance") o.unknown_distance = num(0, 1e30);
