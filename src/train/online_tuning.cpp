@@ -36,12 +36,20 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     // The grid, in order of preference on ties (simpler first).
     const float infinity = std::numeric_limits<float>::infinity();
     std::vector<OnlineTuningStep> steps;
-    // The exemplars in the explanation only when the model has them (models/README.md).
+    // The exemplars in the explanation only when the model has them
+    // (models/README.md); with recordings the model also has centres of no
+    // action, which favour a heavier weight and a lower unknown cost.
     const bool exemplars = options.exemplars > 0 && options.exemplar_weight > 0;
-    for (const float unknown : recordings != nullptr ? std::vector<float>{0.0f, 0.2f} : std::vector<float>{infinity})
+    const std::vector<float> unknowns =
+        recordings == nullptr ? std::vector<float>{infinity}
+                              : (exemplars ? std::vector<float>{0.0f, 0.05f, 0.2f} : std::vector<float>{0.0f, 0.2f});
+    const std::vector<float> exemplar_weights =
+        !exemplars ? std::vector<float>{0.0f}
+                   : (recordings != nullptr ? std::vector<float>{0.0f, 0.1f, 0.2f} : std::vector<float>{0.0f, 0.1f});
+    for (const float unknown : unknowns)
         for (const float votes : {0.0f, 0.1f, 0.25f})
             for (const float penalty : {1.0f, 3.0f})
-                for (const float exemplar : exemplars ? std::vector<float>{0.0f, 0.1f} : std::vector<float>{0.0f}) {
+                for (const float exemplar : exemplar_weights) {
                     OnlineTuningStep step;
                     step.config = options.online;
                     step.config.vote_weight = votes;
