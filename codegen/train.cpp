@@ -158,7 +158,7 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
     // settings: the folds train with them, so the choice fits within the bound.
     start.pose_joints = given.pose_joints;
     start.max_representative_chars = given.max_representative_chars;
-    start.reject = given.reject;  // learned rejection rules out the exemplars (tuning.cpp)
+    start.reject = given.reject;  // the folds learn their bounds too, so the choice is made with them
     std::set<std::string> subjects;
     for (const host::LabelledClip& c : clips) subjects.insert(c.subject);
     if (subjects.size() < 2) {

@@ -376,6 +376,21 @@ TEST_CASE("synthetic negatives: spliced halves of two labels, each clip faster a
     CHECK(negatives[2].own == 0);
     CHECK(negatives[3].string == std::vector<Character>{1, 1, 1, 1, 2, 2, 2, 2});  // half as fast
     CHECK(synthetic_negatives(strings, labels, 7)[0].string == negatives[0].string);
+    // Rows per character (two floats each here) are cut and repeated with the characters.
+    std::vector<std::vector<float>> rows;
+    for (const auto& string : strings) {
+        rows.emplace_back();
+        for (const Character c : string) rows.back().insert(rows.back().end(), {static_cast<float>(c), -1.0f});
+    }
+    for (const SyntheticNegative& n : synthetic_negatives(strings, labels, 7, &rows, 2)) {
+        REQUIRE(n.rows.size() == 2 * n.string.size());
+        for (std::size_t t = 0; t < n.string.size(); ++t) {
+            CHECK(n.rows[2 * t] == static_cast<float>(n.string[t]));
+            CHECK(n.rows[2 * t + 1] == -1.0f);
+        }
+    }
+    rows[1].pop_back();
+    CHECK_THROWS_AS(synthetic_negatives(strings, labels, 7, &rows, 2), std::invalid_argument);
 }
 
 TEST_CASE("learned rejection: the toy world's performances kept, what is none of them unknown, deterministic") {
@@ -486,10 +501,40 @@ TEST_CASE("exemplars: k-means centres per label, their scale measured, determini
     // No weight or no centres: none.
     options.exemplar_weight = 0.0;
     CHECK_FALSE(train_model(train, options).view().has_exemplars());
-    // Rejection bounds are learned on strings alone: the two are refused together, with a reason.
+    // Rejection bounds learned with the exemplars: the samples' exemplar rows are
+    // spliced and warped with their characters, measured with centres fitted
+    // without their subject. The positives are kept, held-out clips still
+    // recognised, spliced performances (features spliced too) partly rejected.
     options.exemplar_weight = 2.0;
     options.reject = true;
-    CHECK_THROWS_WITH_AS(train_model(train, options), doctest::Contains("reject and exemplars"), std::invalid_argument);
+    TrainingReport report;
+    const ModelData rejecting = train_model(train, options, &report);
+    const ModelView rview = rejecting.view();
+    REQUIRE(validate_model(rview) == Status::ok);
+    REQUIRE(rview.has_exemplars());
+    REQUIRE(rview.has_label_bounds == 1);
+    for (const LabelBoundReport& b : report.label_bounds) {
+        CHECK(b.positives > 0);
+        CHECK(b.positives_kept >= options.reject_keep);
+    }
+    CHECK(clip_accuracy(rview, held_out) >= 0.9);
+    std::size_t rejected = 0, spliced = 0;
+    for (std::size_t i = 0; i + 1 < held_out.size(); ++i) {
+        if (held_out[i].label == held_out[i + 1].label) continue;
+        EncodedClip a = encode_clip(rview, held_out[i].clip, true);
+        const EncodedClip b = encode_clip(rview, held_out[i + 1].clip, true);
+        const std::size_t first = a.string.size() / 2, second = b.string.size() / 2, dim = rview.feature_dim;
+        a.string.resize(first);
+        a.string.insert(a.string.end(), b.string.begin() + static_cast<long>(second), b.string.end());
+        a.features.resize(first * dim);
+        a.features.insert(a.features.end(), b.features.begin() + static_cast<long>(second * dim), b.features.end());
+        ++spliced;
+        const std::vector<float> sums = exemplar_sums(rview, a.features);
+        rejected += classify_string(rview, a.string, {}, sums.data()).label == unknown_label;
+    }
+    REQUIRE(spliced > 0);
+    CHECK(rejected > 0);
+    CHECK(serialize_model(train_model(train, options)) == serialize_model(rejecting));
 }
 
 TEST_CASE("exemplars: a label with fewer features than centres keeps every feature as a centre") {

@@ -25,18 +25,27 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
     e.clips = std::move(clips);
     conform_to_model(view, e.clips);
     e.results.push_back(evaluate_model(view, e.clips));
-    {   // The classifier's rejection of synthetic non-actions made from these clips.
+    {   // The classifier's rejection of synthetic non-actions made from these clips
+        // (with exemplars, each character's exemplar distances spliced and warped
+        // with it, and summed as classify_clip() sums a clip's).
+        const std::size_t L = view.label_count;
+        const bool exemplars = view.has_exemplars();
         std::vector<std::vector<Character>> strings;
+        std::vector<std::vector<float>> rows;
         std::vector<LabelId> labels;
         const std::vector<std::string> names = name_strings(view.label_names, view.label_count);
         for (const LabelledClip& c : e.clips) {
             const auto at = std::find(names.begin(), names.end(), c.label);
             if (at == names.end()) continue;
-            strings.push_back(clip_string(view, c.clip));
+            EncodedClip encoded = encode_clip(view, c.clip, exemplars);
+            strings.push_back(std::move(encoded.string));
+            rows.push_back(exemplar_rows(view, encoded.features));
             labels.push_back(static_cast<LabelId>(at - names.begin()));
         }
-        for (const SyntheticNegative& n : synthetic_negatives(strings, labels, seed)) {
-            const Classification c = classify_string(view, n.string);
+        for (const SyntheticNegative& n :
+             synthetic_negatives(strings, labels, seed, exemplars ? &rows : nullptr, exemplars ? L : 0)) {
+            const std::vector<float> sums = sum_exemplar_rows(n.rows, L);
+            const Classification c = classify_string(view, n.string, {}, exemplars ? sums.data() : nullptr);
             if (n.own != unknown_label && c.nearest_label == n.own) continue;  // still its own action
             ++e.synthetic_negatives;
             e.synthetic_unknown += c.label == unknown_label;

@@ -37,15 +37,29 @@ Classification classify_string(const ModelView& model, const std::vector<Charact
     return classify_distances(model, distances.data(), model.has_votes() || exemplars ? penalties.data() : nullptr);
 }
 
-std::vector<float> exemplar_sums(const ModelView& model, const std::vector<float>& features) {
+std::vector<float> exemplar_rows(const ModelView& model, const std::vector<float>& features) {
     const std::size_t L = model.label_count, d = model.feature_dim;
-    std::vector<float> sums(L, 0.0f), distances(L);
-    if (!model.has_exemplars() || d == 0) return sums;
+    std::vector<float> rows;
+    if (!model.has_exemplars() || d == 0) return rows;
+    rows.reserve(features.size() / d * L);
+    std::vector<float> distances(L);
     for (std::size_t at = 0; at + d <= features.size(); at += d) {
         exemplar_distances(model, &features[at], distances.data());
-        for (std::size_t l = 0; l < L; ++l) sums[l] += distances[l];
+        rows.insert(rows.end(), distances.begin(), distances.end());
     }
+    return rows;
+}
+
+std::vector<float> sum_exemplar_rows(const std::vector<float>& rows, std::size_t label_count) {
+    std::vector<float> sums(label_count, 0.0f);
+    if (label_count == 0) return sums;
+    for (std::size_t at = 0; at + label_count <= rows.size(); at += label_count)
+        for (std::size_t l = 0; l < label_count; ++l) sums[l] += rows[at + l];
     return sums;
+}
+
+std::vector<float> exemplar_sums(const ModelView& model, const std::vector<float>& features) {
+    return sum_exemplar_rows(exemplar_rows(model, features), model.label_count);
 }
 
 Classification classify_clip(const ModelView& model, const Clip& clip) {

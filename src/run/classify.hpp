@@ -27,6 +27,16 @@ Classification classify_string(const ModelView& model, const std::vector<Charact
 /// runtime's exemplar_distances(): label_count floats, all 0 without exemplars.
 std::vector<float> exemplar_sums(const ModelView& model, const std::vector<float>& features);
 
+/// The runtime's exemplar_distances() of each of `features` (feature_dim floats
+/// each): label_count floats per feature, in order (empty without exemplars).
+/// Rows can be cut and joined with their characters (learned rejection's
+/// synthetic negatives) and summed afterwards.
+std::vector<float> exemplar_rows(const ModelView& model, const std::vector<float>& features);
+
+/// Per label, the sum of `rows` (label_count floats per character), in order:
+/// exemplar_sums() of the features the rows came from, bit for bit.
+std::vector<float> sum_exemplar_rows(const std::vector<float>& rows, std::size_t label_count);
+
 /// A clip classified as a model says: its string, and with exemplars its features too.
 Classification classify_clip(const ModelView& model, const Clip& clip);
 

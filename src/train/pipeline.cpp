@@ -18,6 +18,7 @@
 #include "actionstring/string_distance.hpp"
 #include "common/parallel.hpp"
 #include "common/stats.hpp"
+#include "run/classify.hpp"
 #include "run/encode.hpp"
 #include "run/skeleton.hpp"
 #include "train/augment.hpp"
@@ -74,9 +75,6 @@ void check_options(const TrainingOptions& o) {
     require(o.vote_smoothing >= 1e-6 && o.vote_smoothing <= 1e3, "the vote smoothing must be between 1e-6 and 1000");
     require(o.exemplars >= 0 && o.exemplars <= 4096, "exemplars per label must be between 0 and 4096");
     require(o.exemplar_weight >= 0 && o.exemplar_weight <= 1000, "the exemplar weight must be between 0 and 1000");
-    // The bounds are learned on strings, and a spliced negative has no features to splice.
-    require(!(o.reject && o.exemplars > 0 && o.exemplar_weight > 0),
-            "reject and exemplars cannot be combined yet: the rejection bounds are learned on strings alone");
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
             "the settle delay must be 0 to 60 s");
 }
@@ -455,9 +453,16 @@ void set_no_action_votes(ModelData& m, const std::vector<LabelledClip>& stretche
 
 // Stage 8: each label's rejection bound (train/rejection.hpp), from the
 // training clips, synthetic negatives and the stretches of no action.
+// With exemplars, the bounds see what clip classification sees: each
+// character's exemplar distances (rejection.hpp's rows). A clip's rows come
+// from centres fitted without its subject's clips, as its string is compared
+// only with representatives made from other people's (with one subject in the
+// list, from the model's own centres).
 void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips,
-                      const std::vector<std::vector<Character>>& strings, const std::vector<long>& own_representative,
-                      const std::vector<LabelledClip>* no_action, const TrainingOptions& options, TrainingReport& r) {
+                      const std::vector<std::vector<Character>>& strings,
+                      const std::vector<std::vector<float>>& string_features,
+                      const std::vector<long>& own_representative, const std::vector<LabelledClip>* no_action,
+                      const TrainingOptions& options, TrainingReport& r) {
     m.has_label_bounds = 0;
     m.label_bounds.clear();
     const ModelView view = m.view();
@@ -468,15 +473,49 @@ void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips,
             std::find(m.label_names.begin(), m.label_names.end(), c.label) - m.label_names.begin()));
         subjects.push_back(c.subject);
     }
+    const bool exemplars = view.has_exemplars();
     std::vector<std::vector<Character>> stretches;
+    std::vector<std::vector<float>> stretch_features;
+    std::vector<std::string> stretch_subjects;
     if (no_action != nullptr)
         for (const LabelledClip& stretch : *no_action) {
             Clip clip = stretch.clip;
             conform_to_model(view, clip);
-            stretches.push_back(clip_string(view, clip));
+            EncodedClip encoded = encode_clip(view, clip, exemplars);
+            stretches.push_back(std::move(encoded.string));
+            stretch_features.push_back(std::move(encoded.features));
+            stretch_subjects.push_back(stretch.subject);
         }
-    const std::vector<float> bounds = learn_label_bounds(view, strings, labels, subjects, own_representative, stretches,
-                                                         options.reject_keep, options.seed, &r.label_bounds);
+    ExemplarRows rows;
+    if (exemplars) {
+        // Per subject, centres that leave that subject's clips out (a model of
+        // the exemplar tables alone: exemplar_distances() reads nothing else).
+        std::map<std::string, ModelData> folds;
+        const std::set<std::string> distinct(subjects.begin(), subjects.end());
+        if (distinct.size() >= 2)
+            for (const std::string& subject : distinct) {
+                std::vector<std::vector<float>> features;
+                std::vector<LabelId> fold_labels;
+                for (std::size_t i = 0; i < clips.size(); ++i)
+                    if (subjects[i] != subject) features.push_back(string_features[i]), fold_labels.push_back(labels[i]);
+                ModelData fold;
+                fold.feature_dim = m.feature_dim;
+                fold.label_names = m.label_names;
+                set_exemplars(fold, features, fold_labels, static_cast<std::size_t>(options.exemplars),
+                              options.exemplar_weight, options.seed);
+                folds.emplace(subject, std::move(fold));
+            }
+        auto rows_of = [&](const std::vector<float>& features, const std::string& subject) {
+            const auto fold = folds.find(subject);
+            return exemplar_rows(fold != folds.end() ? fold->second.view() : view, features);
+        };
+        for (std::size_t i = 0; i < clips.size(); ++i) rows.strings.push_back(rows_of(string_features[i], subjects[i]));
+        for (std::size_t i = 0; i < stretches.size(); ++i)
+            rows.no_action.push_back(rows_of(stretch_features[i], stretch_subjects[i]));
+    }
+    const std::vector<float> bounds =
+        learn_label_bounds(view, strings, labels, subjects, own_representative, stretches, options.reject_keep,
+                           options.seed, &r.label_bounds, exemplars ? &rows : nullptr);
     m.label_bounds = bounds;
     m.has_label_bounds = 1;
 }
@@ -590,7 +629,7 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
     set_matching(m, options, r.representatives);
     if (options.reject) {
         stage.start("learning each label's rejection bound");
-        set_label_bounds(m, clips, strings, own_representative, no_action, options, r);
+        set_label_bounds(m, clips, strings, string_features, own_representative, no_action, options, r);
         stage.finish("rejection bounds");
     }
     return m;

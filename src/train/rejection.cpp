@@ -42,27 +42,35 @@ float choose_label_bound(std::vector<float> positives, std::vector<float> negati
 
 namespace {
 
-std::vector<Character> spliced(const std::vector<Character>& a, const std::vector<Character>& b) {
-    std::vector<Character> s(a.begin(), a.begin() + static_cast<long>(a.size() / 2));
-    s.insert(s.end(), b.begin() + static_cast<long>(b.size() / 2), b.end());
+// The same cuts for characters (w = 1) and for their exemplar rows (w floats
+// per character): `n` characters of `a`, `m` of `b`.
+template <class T>
+std::vector<T> spliced(const std::vector<T>& a, std::size_t n, const std::vector<T>& b, std::size_t m, std::size_t w) {
+    std::vector<T> s(a.begin(), a.begin() + static_cast<long>(n / 2 * w));
+    s.insert(s.end(), b.begin() + static_cast<long>(m / 2 * w), b.begin() + static_cast<long>(m * w));
     return s;
 }
 
-std::vector<Character> faster(const std::vector<Character>& a) {  // every other character: twice the speed
-    std::vector<Character> s;
-    for (std::size_t t = 0; t < a.size(); t += 2) s.push_back(a[t]);
+template <class T>
+std::vector<T> faster(const std::vector<T>& a, std::size_t n, std::size_t w) {  // every other character: twice the speed
+    std::vector<T> s;
+    for (std::size_t t = 0; t < n; t += 2) s.insert(s.end(), a.begin() + static_cast<long>(t * w), a.begin() + static_cast<long>((t + 1) * w));
     return s;
 }
 
-std::vector<Character> slower(const std::vector<Character>& a) {  // each character twice: half the speed
-    std::vector<Character> s;
-    for (const Character c : a) s.insert(s.end(), 2, c);
+template <class T>
+std::vector<T> slower(const std::vector<T>& a, std::size_t n, std::size_t w) {  // each character twice: half the speed
+    std::vector<T> s;
+    for (std::size_t t = 0; t < n; ++t)
+        for (int twice = 0; twice < 2; ++twice)
+            s.insert(s.end(), a.begin() + static_cast<long>(t * w), a.begin() + static_cast<long>((t + 1) * w));
     return s;
 }
 
 // One string to classify: what it is, and which label it may not count against.
 struct Sample {
     std::vector<Character> string;
+    std::vector<float> rows;  // its exemplar rows (with exemplars)
     std::vector<std::size_t> excluded;  // representatives left out (its subjects')
     LabelId own = unknown_label;  // positives: the true label; warped clips: the label they may land on
     bool positive = false;
@@ -71,8 +79,16 @@ struct Sample {
 }  // namespace
 
 std::vector<SyntheticNegative> synthetic_negatives(const std::vector<std::vector<Character>>& strings,
-                                                   const std::vector<LabelId>& labels, std::uint32_t seed) {
+                                                   const std::vector<LabelId>& labels, std::uint32_t seed,
+                                                   const std::vector<std::vector<float>>* rows, std::size_t row_width) {
     if (strings.size() != labels.size()) throw std::invalid_argument("synthetic_negatives: one label per string");
+    if (rows != nullptr) {
+        if (rows->size() != strings.size()) throw std::invalid_argument("synthetic_negatives: one row set per string");
+        for (std::size_t i = 0; i < strings.size(); ++i)
+            if ((*rows)[i].size() != strings[i].size() * row_width)
+                throw std::invalid_argument("synthetic_negatives: a string's rows are not row_width per character");
+    }
+    auto rows_of = [&](std::size_t i) -> const std::vector<float>& { return (*rows)[i]; };
     std::vector<SyntheticNegative> negatives;
     std::mt19937 rng(seed);
     for (std::size_t i = 0; i < strings.size(); ++i) {
@@ -81,12 +97,18 @@ std::vector<SyntheticNegative> synthetic_negatives(const std::vector<std::vector
             if (labels[j] != labels[i] && strings[j].size() >= 2) others.push_back(j);
         if (others.empty() || strings[i].size() < 2) continue;
         const std::size_t j = others[std::uniform_int_distribution<std::size_t>(0, others.size() - 1)(rng)];
-        negatives.push_back({spliced(strings[i], strings[j]), unknown_label, i, j});
+        const std::size_t n = strings[i].size(), m = strings[j].size();
+        negatives.push_back({spliced(strings[i], n, strings[j], m, 1),
+                             rows != nullptr ? spliced(rows_of(i), n, rows_of(j), m, row_width) : std::vector<float>{},
+                             unknown_label, i, j});
     }
     for (std::size_t i = 0; i < strings.size(); ++i) {
-        if (strings[i].size() < 2) continue;
-        negatives.push_back({faster(strings[i]), labels[i], i, i});
-        negatives.push_back({slower(strings[i]), labels[i], i, i});
+        const std::size_t n = strings[i].size();
+        if (n < 2) continue;
+        negatives.push_back({faster(strings[i], n, 1),
+                             rows != nullptr ? faster(rows_of(i), n, row_width) : std::vector<float>{}, labels[i], i, i});
+        negatives.push_back({slower(strings[i], n, 1),
+                             rows != nullptr ? slower(rows_of(i), n, row_width) : std::vector<float>{}, labels[i], i, i});
     }
     return negatives;
 }
@@ -95,11 +117,21 @@ std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<
                                       const std::vector<LabelId>& labels, const std::vector<std::string>& subjects,
                                       const std::vector<long>& own_representative,
                                       const std::vector<std::vector<Character>>& no_action, double keep,
-                                      std::uint32_t seed, std::vector<LabelBoundReport>* report) {
+                                      std::uint32_t seed, std::vector<LabelBoundReport>* report,
+                                      const ExemplarRows* rows) {
     if (strings.size() != labels.size() || strings.size() != subjects.size() ||
         strings.size() != own_representative.size())
         throw std::invalid_argument("learn_label_bounds: one label, subject and representative per string");
     const std::size_t L = model.label_count;
+    // The exemplars' rows, when the model weighs exemplars: one set per string, label_count per character.
+    const bool exemplars = rows != nullptr && model.has_exemplars();
+    if (exemplars) {
+        if (rows->strings.size() != strings.size() || rows->no_action.size() != no_action.size())
+            throw std::invalid_argument("learn_label_bounds: one set of exemplar rows per string");
+        for (std::size_t i = 0; i < no_action.size(); ++i)
+            if (rows->no_action[i].size() != no_action[i].size() * L)
+                throw std::invalid_argument("learn_label_bounds: a stretch's exemplar rows are not label_count per character");
+    }
     // What a string made from clip i is measured without: the representatives
     // made from its subject's clips, or with one subject only its own.
     const bool one_subject = std::all_of(subjects.begin(), subjects.end(),
@@ -112,21 +144,29 @@ std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<
     std::vector<Sample> samples;
     for (std::size_t i = 0; i < strings.size(); ++i) {
         if (strings[i].empty()) continue;
-        samples.push_back({strings[i], {}, labels[i], true});
+        samples.push_back({strings[i], exemplars ? rows->strings[i] : std::vector<float>{}, {}, labels[i], true});
         left_out(i, samples.back().excluded);
     }
-    for (SyntheticNegative& n : synthetic_negatives(strings, labels, seed)) {
-        samples.push_back({std::move(n.string), {}, n.own, false});
+    for (SyntheticNegative& n :
+         synthetic_negatives(strings, labels, seed, exemplars ? &rows->strings : nullptr, exemplars ? L : 0)) {
+        samples.push_back({std::move(n.string), std::move(n.rows), {}, n.own, false});
         left_out(n.first, samples.back().excluded);
         if (n.second != n.first) left_out(n.second, samples.back().excluded);
     }
-    for (const auto& s : no_action)
-        if (!s.empty()) samples.push_back({s, {}, unknown_label, false});
+    for (std::size_t i = 0; i < no_action.size(); ++i)
+        if (!no_action[i].empty())
+            samples.push_back({no_action[i], exemplars ? rows->no_action[i] : std::vector<float>{}, {}, unknown_label, false});
 
     // Classify every sample with the runtime's code, bounds off; each on its own, so any order gives the same.
+    // With exemplars, a sample's rows summed in order (as exemplar_sums() sums a clip's distances).
     std::vector<Classification> results(samples.size());
     parallel_for(samples.size(), hardware_workers(), [&](std::size_t k) {
-        results[k] = classify_string(model, samples[k].string, samples[k].excluded);
+        if (!exemplars) {
+            results[k] = classify_string(model, samples[k].string, samples[k].excluded);
+            return;
+        }
+        const std::vector<float> sums = sum_exemplar_rows(samples[k].rows, L);
+        results[k] = classify_string(model, samples[k].string, samples[k].excluded, sums.data());
     });
     std::vector<std::vector<float>> positives(L), negatives(L);
     for (std::size_t k = 0; k < samples.size(); ++k) {

@@ -40,17 +40,30 @@ struct LabelBoundReport {
     double negatives_rejected = 0.0;  ///< Fraction of the negatives beyond it.
 };
 
+/// With exemplars (exemplars.hpp): each character's distances to every
+/// label's nearest centre, label_count floats per character, so that a
+/// synthetic negative splices and warps them with its characters. Training
+/// measures a clip's rows with centres fitted without its subject's clips (as
+/// the representatives it is compared with leave them out).
+struct ExemplarRows {
+    std::vector<std::vector<float>> strings;    ///< per training string: its length × label_count floats
+    std::vector<std::vector<float>> no_action;  ///< per string of no action, likewise
+};
+
 /// Learns label_count bounds for `model` (complete but for the bounds; its own
 /// has_label_bounds is ignored). `strings[i]` is training clip i's string,
 /// `labels[i]` its label, `subjects[i]` its performer, `own_representative[i]`
 /// the representative made from it (or −1); `no_action` holds strings of
-/// stretches that are no action (may be empty). `keep` in (0, 1].
+/// stretches that are no action (may be empty). `keep` in (0, 1]. With
+/// `rows` (a model with exemplars), each sample's summed rows join its
+/// classification as the exemplars' penalties, as classify_clip() does.
 /// Deterministic for a seed, on any number of cores.
 std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<std::vector<Character>>& strings,
                                       const std::vector<LabelId>& labels, const std::vector<std::string>& subjects,
                                       const std::vector<long>& own_representative,
                                       const std::vector<std::vector<Character>>& no_action, double keep,
-                                      std::uint32_t seed, std::vector<LabelBoundReport>* report = nullptr);
+                                      std::uint32_t seed, std::vector<LabelBoundReport>* report = nullptr,
+                                      const ExemplarRows* rows = nullptr);
 
 /// A synthetic string that is no performance of a label: a spliced pair of
 /// halves (`own` unknown_label: no label fits it), or a clip at twice or half
@@ -58,6 +71,7 @@ std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<
 /// counts as a negative only against the others).
 struct SyntheticNegative {
     std::vector<Character> string;
+    std::vector<float> rows;  ///< its exemplar rows, when the strings' were given
     LabelId own = unknown_label;
     std::size_t first = 0, second = 0;  ///< The strings it was made from (the same one when warped).
 };
@@ -66,8 +80,12 @@ struct SyntheticNegative {
 /// of two characters or more, its first half joined to the second half of a
 /// string of another label (picked by a generator seeded with `seed`), then
 /// the string sped up (every other character) and slowed down (each twice).
+/// `rows`, when given, holds `row_width` floats per character of each string,
+/// cut and repeated with its characters.
 std::vector<SyntheticNegative> synthetic_negatives(const std::vector<std::vector<Character>>& strings,
-                                                   const std::vector<LabelId>& labels, std::uint32_t seed);
+                                                   const std::vector<LabelId>& labels, std::uint32_t seed,
+                                                   const std::vector<std::vector<float>>* rows = nullptr,
+                                                   std::size_t row_width = 0);
 
 /// The bound for one label's positive and negative distances (the rule above).
 float choose_label_bound(std::vector<float> positives, std::vector<float> negatives, double keep);

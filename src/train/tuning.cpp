@@ -64,8 +64,7 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
          [](TrainingOptions& o, double v) {
              o.exemplars = v > 0 ? 64 : 0;
              o.exemplar_weight = v;
-         },
-         [](const TrainingOptions& o) { return !o.reject; }},
+         }},
     };
     auto describe = [](const Axis& axis, double v) {
         if (std::string(axis.name) == "scale") return std::string("scale ") + (v > 0 ? "bones" : "none");
