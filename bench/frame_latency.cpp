@@ -586,10 +586,11 @@ int main(int argc, char** argv) {
               "| varied | J | d | K | representatives | window s | exemplars per label | median ns (all frames) | median ns (character frames) | p99.9 ns | segmenter alone: character frames median / p99 ns |\n"
               "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
         for (const auto& p : points) {
-            std::snprintf(cell, sizeof cell, "| %s | %d | %d | %d | %d | %.1f | %d | %.0f | %.0f | %.0f | %.0f / %.0f |\n",
+            std::snprintf(cell, sizeof cell,
+                          "| %s | %d | %d | %d | %d | %.1f | %d | %.0f | %.0f | %.0f | %.0f / %.0f |\n",
                           p.varied.c_str(), p.size.components, p.size.feature_dim, p.size.characters,
-                          p.size.representatives, p.size.window_seconds, p.size.exemplars_per_label, p.every.median, p.character.median,
-                          p.every.p999, p.own_character.median, p.own_character.p99);
+                          p.size.representatives, p.size.window_seconds, p.size.exemplars_per_label, p.every.median,
+                          p.character.median, p.every.p999, p.own_character.median, p.own_character.p99);
             md << cell;
         }
     }

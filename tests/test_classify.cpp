@@ -183,7 +183,8 @@ TEST_CASE("exemplars: each label's nearest centre, penalties relative to the nea
     CHECK(d[1] == 8.0f);
     CHECK(d[2] == std::numeric_limits<float>::infinity());
     CHECK(to_none == 1.0f);  // (1,1)
-    const LabelId none_first[] = {unknown_label, 1, 0};  // refused by validation (test_training.cpp)
+    // Not last: refused by validation (test_model.cpp).
+    const LabelId none_first[] = {unknown_label, 1, 0};
     reps.view.exemplar_labels = none_first;
     CHECK_FALSE(reps.view.has_no_action_exemplars());
     reps.view.exemplar_labels = labels;

@@ -112,8 +112,14 @@ TEST_CASE("each kind of corruption is refused") {
              m.has_label_bounds = 1;
              m.label_bounds.assign(m.label_names.size(), -1.0f);
          }},
-        {"exemplar label out of range", [](host::ModelData& m) { with_exemplars(m, {0, 9}); }},
-        {"a label's exemplar after no action's", [](host::ModelData& m) { with_exemplars(m, {unknown_label, 0}); }},
+        {"exemplar label out of range",
+         [](host::ModelData& m) {
+             with_exemplars(m, {0, 9});
+         }},
+        {"a label's exemplar after no action's",
+         [](host::ModelData& m) {
+             with_exemplars(m, {unknown_label, 0});
+         }},
         {"NaN exemplar",
          [](host::ModelData& m) {
              with_exemplars(m, {0, 1});

@@ -25,7 +25,7 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
     e.clips = std::move(clips);
     conform_to_model(view, e.clips);
     e.results.push_back(evaluate_model(view, e.clips));
-    {   // The classifier's rejection of synthetic non-actions made from these clips
+    {  // The classifier's rejection of synthetic non-actions made from these clips
         // (with exemplars, each character's exemplar distances spliced and warped
         // with it, and summed as classify_clip() sums a clip's).
         const std::size_t L = view.label_count;

@@ -497,7 +497,8 @@ void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips,
                 std::vector<std::vector<float>> features;
                 std::vector<LabelId> fold_labels;
                 for (std::size_t i = 0; i < clips.size(); ++i)
-                    if (subjects[i] != subject) features.push_back(string_features[i]), fold_labels.push_back(labels[i]);
+                    if (subjects[i] != subject)
+                        features.push_back(string_features[i]), fold_labels.push_back(labels[i]);
                 ModelData fold;
                 fold.feature_dim = m.feature_dim;
                 fold.label_names = m.label_names;

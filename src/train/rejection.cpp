@@ -51,15 +51,18 @@ std::vector<T> spliced(const std::vector<T>& a, std::size_t n, const std::vector
     return s;
 }
 
+// Every other character: twice the speed.
 template <class T>
-std::vector<T> faster(const std::vector<T>& a, std::size_t n, std::size_t w) {  // every other character: twice the speed
+std::vector<T> faster(const std::vector<T>& a, std::size_t n, std::size_t w) {
     std::vector<T> s;
-    for (std::size_t t = 0; t < n; t += 2) s.insert(s.end(), a.begin() + static_cast<long>(t * w), a.begin() + static_cast<long>((t + 1) * w));
+    for (std::size_t t = 0; t < n; t += 2)
+        s.insert(s.end(), a.begin() + static_cast<long>(t * w), a.begin() + static_cast<long>((t + 1) * w));
     return s;
 }
 
+// Each character twice: half the speed.
 template <class T>
-std::vector<T> slower(const std::vector<T>& a, std::size_t n, std::size_t w) {  // each character twice: half the speed
+std::vector<T> slower(const std::vector<T>& a, std::size_t n, std::size_t w) {
     std::vector<T> s;
     for (std::size_t t = 0; t < n; ++t)
         for (int twice = 0; twice < 2; ++twice)
@@ -70,9 +73,9 @@ std::vector<T> slower(const std::vector<T>& a, std::size_t n, std::size_t w) {  
 // One string to classify: what it is, and which label it may not count against.
 struct Sample {
     std::vector<Character> string;
-    std::vector<float> rows;  // its exemplar rows (with exemplars)
+    std::vector<float> rows;            // its exemplar rows (with exemplars)
     std::vector<std::size_t> excluded;  // representatives left out (its subjects')
-    LabelId own = unknown_label;  // positives: the true label; warped clips: the label they may land on
+    LabelId own = unknown_label;        // positives: the true label; warped clips: the label they may land on
     bool positive = false;
 };
 
@@ -105,10 +108,10 @@ std::vector<SyntheticNegative> synthetic_negatives(const std::vector<std::vector
     for (std::size_t i = 0; i < strings.size(); ++i) {
         const std::size_t n = strings[i].size();
         if (n < 2) continue;
-        negatives.push_back({faster(strings[i], n, 1),
-                             rows != nullptr ? faster(rows_of(i), n, row_width) : std::vector<float>{}, labels[i], i, i});
-        negatives.push_back({slower(strings[i], n, 1),
-                             rows != nullptr ? slower(rows_of(i), n, row_width) : std::vector<float>{}, labels[i], i, i});
+        std::vector<float> fast_rows, slow_rows;
+        if (rows != nullptr) fast_rows = faster(rows_of(i), n, row_width), slow_rows = slower(rows_of(i), n, row_width);
+        negatives.push_back({faster(strings[i], n, 1), std::move(fast_rows), labels[i], i, i});
+        negatives.push_back({slower(strings[i], n, 1), std::move(slow_rows), labels[i], i, i});
     }
     return negatives;
 }
@@ -130,7 +133,8 @@ std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<
             throw std::invalid_argument("learn_label_bounds: one set of exemplar rows per string");
         for (std::size_t i = 0; i < no_action.size(); ++i)
             if (rows->no_action[i].size() != no_action[i].size() * L)
-                throw std::invalid_argument("learn_label_bounds: a stretch's exemplar rows are not label_count per character");
+                throw std::invalid_argument(
+                    "learn_label_bounds: a stretch's exemplar rows are not label_count per character");
     }
     // What a string made from clip i is measured without: the representatives
     // made from its subject's clips, or with one subject only its own.
@@ -155,7 +159,8 @@ std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<
     }
     for (std::size_t i = 0; i < no_action.size(); ++i)
         if (!no_action[i].empty())
-            samples.push_back({no_action[i], exemplars ? rows->no_action[i] : std::vector<float>{}, {}, unknown_label, false});
+            samples.push_back(
+                {no_action[i], exemplars ? rows->no_action[i] : std::vector<float>{}, {}, unknown_label, false});
 
     // Classify every sample with the runtime's code, bounds off; each on its own, so any order gives the same.
     // With exemplars, a sample's rows summed in order (as exemplar_sums() sums a clip's distances).
