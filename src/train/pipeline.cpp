@@ -422,21 +422,18 @@ void set_votes(ModelData& m, const std::vector<LabelledClip>& clips,
         }
 }
 
-// Stage 6c: log P(c | no action) from stretches that are no action, each
-// counting as one as a clip does; their joints are read onto the model's.
-void set_no_action_votes(ModelData& m, const std::vector<LabelledClip>& stretches, const TrainingOptions& options,
+// Stage 6c: log P(c | no action) from stretches that are no action (their
+// strings, encoded once by train_model()), each counting as one as a clip does.
+void set_no_action_votes(ModelData& m, const std::vector<EncodedClip>& stretches, const TrainingOptions& options,
                          TrainingReport& r) {
     m.has_no_action_votes = 0;
     m.no_action_votes.clear();
     if (!(options.vote_weight > 0)) return;
-    const ModelView view = m.view();
     const std::size_t K = m.character_count;
     std::vector<double> counts(K, 0.0);
     double used = 0;
-    for (const LabelledClip& stretch : stretches) {
-        Clip clip = stretch.clip;
-        conform_to_model(view, clip);
-        const std::vector<Character> s = clip_string(view, clip);
+    for (const EncodedClip& stretch : stretches) {
+        const std::vector<Character>& s = stretch.string;
         if (s.empty()) continue;
         for (const Character c : s) counts[c] += 1.0 / static_cast<double>(s.size());
         used += 1.0;
@@ -458,34 +455,20 @@ void set_no_action_votes(ModelData& m, const std::vector<LabelledClip>& stretche
 // from centres fitted without its subject's clips, as its string is compared
 // only with representatives made from other people's (with one subject in the
 // list, from the model's own centres).
-void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips,
+// `stretches[i]` is `(*no_action)[i]` encoded (with features when the model has exemplars).
+void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips, const std::vector<LabelId>& labels,
                       const std::vector<std::vector<Character>>& strings,
                       const std::vector<std::vector<float>>& string_features,
                       const std::vector<long>& own_representative, const std::vector<LabelledClip>* no_action,
-                      const TrainingOptions& options, TrainingReport& r) {
+                      const std::vector<EncodedClip>& stretches, const TrainingOptions& options, TrainingReport& r) {
     m.has_label_bounds = 0;
     m.label_bounds.clear();
     const ModelView view = m.view();
-    std::vector<LabelId> labels;
     std::vector<std::string> subjects;
-    for (const LabelledClip& c : clips) {
-        labels.push_back(static_cast<LabelId>(
-            std::find(m.label_names.begin(), m.label_names.end(), c.label) - m.label_names.begin()));
-        subjects.push_back(c.subject);
-    }
+    for (const LabelledClip& c : clips) subjects.push_back(c.subject);
     const bool exemplars = view.has_exemplars();
-    std::vector<std::vector<Character>> stretches;
-    std::vector<std::vector<float>> stretch_features;
-    std::vector<std::string> stretch_subjects;
-    if (no_action != nullptr)
-        for (const LabelledClip& stretch : *no_action) {
-            Clip clip = stretch.clip;
-            conform_to_model(view, clip);
-            EncodedClip encoded = encode_clip(view, clip, exemplars);
-            stretches.push_back(std::move(encoded.string));
-            stretch_features.push_back(std::move(encoded.features));
-            stretch_subjects.push_back(stretch.subject);
-        }
+    std::vector<std::vector<Character>> stretch_strings;
+    for (const EncodedClip& stretch : stretches) stretch_strings.push_back(stretch.string);
     ExemplarRows rows;
     if (exemplars) {
         // Per subject, centres that leave that subject's clips out (a model of
@@ -512,10 +495,10 @@ void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips,
         };
         for (std::size_t i = 0; i < clips.size(); ++i) rows.strings.push_back(rows_of(string_features[i], subjects[i]));
         for (std::size_t i = 0; i < stretches.size(); ++i)
-            rows.no_action.push_back(rows_of(stretch_features[i], stretch_subjects[i]));
+            rows.no_action.push_back(rows_of(stretches[i].features, (*no_action)[i].subject));
     }
     const std::vector<float> bounds =
-        learn_label_bounds(view, strings, labels, subjects, own_representative, stretches, options.reject_keep,
+        learn_label_bounds(view, strings, labels, subjects, own_representative, stretch_strings, options.reject_keep,
                            options.seed, &r.label_bounds, exemplars ? &rows : nullptr);
     m.label_bounds = bounds;
     m.has_label_bounds = 1;
@@ -600,37 +583,45 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
         string_features.push_back(std::move(encoded.features));
     }
     r.strings = static_cast<int>(strings.size());
+    // The stretches of no action (a list of recordings), encoded once for the
+    // votes, the exemplars and the bounds; their joints are read onto the model's.
+    std::vector<EncodedClip> stretches;
+    if (no_action != nullptr)
+        for (const LabelledClip& stretch : *no_action) {
+            Clip clip = stretch.clip;
+            conform_to_model(m.view(), clip);
+            stretches.push_back(encode_clip(m.view(), clip, exemplars));
+        }
     stage.finish("training strings");
 
     stage.start("agglomerating representatives");
     const std::vector<long> own_representative = choose_representatives(m, clips, strings, options, r);
     set_votes(m, clips, strings, options);
-    if (no_action != nullptr && !no_action->empty()) set_no_action_votes(m, *no_action, options, r);
+    if (!stretches.empty()) set_no_action_votes(m, stretches, options, r);
     stage.finish("representatives");
 
+    std::vector<LabelId> labels;  // each clip's label
+    for (const LabelledClip& c : clips)
+        labels.push_back(static_cast<LabelId>(
+            std::find(m.label_names.begin(), m.label_names.end(), c.label) - m.label_names.begin()));
     if (exemplars) {
         stage.start("clustering each label's exemplars");
-        std::vector<LabelId> labels;
-        for (const LabelledClip& c : clips)
-            labels.push_back(static_cast<LabelId>(
-                std::find(m.label_names.begin(), m.label_names.end(), c.label) - m.label_names.begin()));
-        // The stretches of no action, when the list has recordings: centres of their own.
-        if (no_action != nullptr && options.no_action_exemplars)
-            for (const LabelledClip& stretch : *no_action) {
-                Clip clip = stretch.clip;
-                conform_to_model(m.view(), clip);
-                string_features.push_back(encode_clip(m.view(), clip, true).features);
-                labels.push_back(unknown_label);
-            }
-        set_exemplars(m, string_features, labels, static_cast<std::size_t>(options.exemplars), options.exemplar_weight,
-                      options.seed);
+        // The labels' features, then no action's (centres of their own) when asked.
+        std::vector<std::vector<float>> labelled = string_features;
+        std::vector<LabelId> feature_labels = labels;
+        if (options.no_action_exemplars)
+            for (const EncodedClip& stretch : stretches)
+                labelled.push_back(stretch.features), feature_labels.push_back(unknown_label);
+        set_exemplars(m, labelled, feature_labels, static_cast<std::size_t>(options.exemplars),
+                      options.exemplar_weight, options.seed);
         stage.finish("exemplars");
     }
 
     set_matching(m, options, r.representatives);
     if (options.reject) {
         stage.start("learning each label's rejection bound");
-        set_label_bounds(m, clips, strings, string_features, own_representative, no_action, options, r);
+        set_label_bounds(m, clips, labels, strings, string_features, own_representative, no_action, stretches,
+                         options, r);
         stage.finish("rejection bounds");
     }
     return m;
