@@ -230,6 +230,25 @@ TEST_CASE("frame F1, the trivial baseline and the event metrics on a timeline sc
     CHECK(r.detection_latency_s == doctest::Approx(3.0));  // true start 4 s, reported at 7 s
     CHECK(r.start_error_s == doctest::Approx(1.0));
     CHECK(r.end_error_s == doctest::Approx(0.0));
+    CHECK(r.start_bias_s == doctest::Approx(1.0));  // one action, reported 1 s late
+    CHECK(r.end_bias_s == doctest::Approx(0.0));
+    {
+        // One action reported a second early, the other a second late: the
+        // error is 1 s, the bias (what a constant offset would fix) none.
+        host::OnlineResults both = r;
+        const std::vector<std::vector<host::ReportedEvent>> early_and_late{{
+            event(ActionEvent::Kind::started, 0, 3, 4, 6),
+            event(ActionEvent::Kind::ended, 0, 3, 10, 12),
+            event(ActionEvent::Kind::started, 1, 15, 16, 17),
+            event(ActionEvent::Kind::ended, 1, 15, 16, 19),
+        }};
+        host::score_events(both, truth, times, starts, early_and_late);
+        CHECK(both.matched_events == 2);
+        CHECK(both.start_error_s == doctest::Approx(1.0));
+        CHECK(both.start_bias_s == doctest::Approx(0.0));
+        CHECK(both.end_error_s == doctest::Approx(1.0));  // 10 for 9, 16 for 17
+        CHECK(both.end_bias_s == doctest::Approx(0.0));
+    }
     // One false event in 9 s of no action (frame steps whose first frame is no action).
     CHECK_FALSE(r.false_events_per_stream_min);
     CHECK(r.false_events_per_min == doctest::Approx(60.0 / 9.0));

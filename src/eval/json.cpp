@@ -58,6 +58,8 @@ void write_json(JsonWriter& out, const OnlineResults& r) {
             .field("detection_latency_s", r.detection_latency_s)
             .field("start_error_s", r.start_error_s)
             .field("end_error_s", r.end_error_s)
+            .field("start_bias_s", r.start_bias_s)
+            .field("end_bias_s", r.end_bias_s)
             .field("false_events_per_min", r.false_events_per_min)
             .field("false_events_per", r.false_events_per_stream_min ? "minute of stream" : "minute of no action")
             .end_object();

@@ -143,7 +143,7 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
         bool used = false;
     };
     std::size_t true_actions = 0, matched = 0, reported = 0;
-    double latency = 0, start_error = 0, end_error = 0, no_action_s = 0, stream_s = 0;
+    double latency = 0, start_error = 0, end_error = 0, start_bias = 0, end_bias = 0, no_action_s = 0, stream_s = 0;
     for (std::size_t s = 0; s + 1 < stream_starts.size() && s < stream_events.size(); ++s) {
         const std::size_t begin = stream_starts[s], end = stream_starts[s + 1];
         if (end <= begin) continue;
@@ -181,6 +181,8 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
                     latency += a.reported_s - t_begin;
                     start_error += std::fabs(a.start_s - t_begin);
                     end_error += std::fabs(a.end_s - t_end);
+                    start_bias += a.start_s - t_begin;
+                    end_bias += a.end_s - t_end;
                     break;
                 }
             }
@@ -198,6 +200,8 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
         r.detection_latency_s = latency / static_cast<double>(matched);
         r.start_error_s = start_error / static_cast<double>(matched);
         r.end_error_s = end_error / static_cast<double>(matched);
+        r.start_bias_s = start_bias / static_cast<double>(matched);
+        r.end_bias_s = end_bias / static_cast<double>(matched);
     }
     const std::size_t false_events = reported - matched;
     r.false_events_per_stream_min = no_action_s <= 0.0;

@@ -45,6 +45,9 @@ struct OnlineResults {
     double detection_latency_s = 0;  ///< Mean, true start → the matched action's `started` report.
     double start_error_s = 0;        ///< Mean |reported start − true start| over matched actions.
     double end_error_s = 0;          ///< Mean |reported end − true end| over matched actions.
+    /// Mean reported − true start (end) over matched actions: positive when the
+    /// reports come late, the part of the error a constant offset would explain.
+    double start_bias_s = 0, end_bias_s = 0;
     /// Unmatched actions per minute of no action; per minute of stream when
     /// the streams have no no-action frames (concatenated clips).
     double false_events_per_min = 0;
