@@ -13,6 +13,7 @@
 #include "eval/evaluation.hpp"
 #include "eval/json.hpp"
 #include "eval/online.hpp"
+#include "eval/perturb.hpp"
 #include "eval/report.hpp"
 #include "io/clip_list.hpp"
 #include "io/recordings.hpp"
@@ -32,7 +33,7 @@ void print_eval_usage(std::FILE* out) {
                  "                         [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
                  "                         [--skip-penalty X] [--unknown-cost X] [--segment-votes X]\n"
                  "                         [--segment-exemplars X]\n"
-                 "                         [--report DIR]\n"
+                 "                         [--report DIR] [--perturb SPEC]\n"
                  "\n"
                  "Classifies every clip of LIST with the runtime's own code and reports clip\n"
                  "accuracy, per-class precision and recall, the confusion matrix, the unknown rate\n"
@@ -53,7 +54,15 @@ void print_eval_usage(std::FILE* out) {
                  "--segment-votes X weighs the characters' label votes in the explanation,\n"
                  "--segment-exemplars X the exemplars).\n"
                  "--report DIR writes SVG pictures (confusion matrix, true vs predicted timelines)\n"
-                 "and a Markdown summary linking them.\n");
+                 "and a Markdown summary linking them.\n"
+                 "--perturb SPEC changes the evaluated clips and recordings (never the training\n"
+                 "clips) as another sensor or person would, so every figure, the baselines'\n"
+                 "too, is measured on the changed clips: SPEC is name=value items separated by\n"
+                 "commas: scale=F (positions times F: 0.7 is a child beside an adult),\n"
+                 "noise=M (Gaussian noise of M metres on every coordinate), rate=HZ (resampled\n"
+                 "to HZ by linear interpolation), jitter=S (timestamps moved by up to +-S\n"
+                 "seconds), drop=P (each frame but the first and last missing with\n"
+                 "probability P), seed=N [1]; e.g. --perturb scale=0.7,noise=0.01.\n");
 }
 
 void print_online(const char* rule, const host::OnlineResults& r) {
@@ -80,14 +89,15 @@ using host::Evaluation;
 
 // Reads the list (and the training list for the baselines), then evaluates.
 Evaluation evaluate(const ModelView& view, const std::string& clips_path, const std::string& train_path,
-                    const host::ReadOptions& read, bool online, std::uint32_t seed, const AnnotatorConfig& config) {
+                    const host::ReadOptions& read, bool online, std::uint32_t seed, const AnnotatorConfig& config,
+                    const host::Perturbation& perturbation) {
     const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
     std::vector<host::LabelledClip> train;
     if (!train_path.empty()) train = host::load_labelled_clips(train_path, read);
     std::vector<host::LabelledRecording> recordings;
     if (online && host::has_intervals(entries)) recordings = host::read_recordings(entries, read);
     Evaluation e = host::evaluate(view, host::load_labelled_clips(entries, read), std::move(train),
-                                  std::move(recordings), online, seed, config);
+                                  std::move(recordings), online, seed, config, perturbation);
     e.recordings = host::has_intervals(entries);
     return e;
 }
@@ -95,6 +105,8 @@ Evaluation evaluate(const ModelView& view, const std::string& clips_path, const 
 void print_evaluation(const Evaluation& e, const std::string& clips_path, std::uint32_t seed) {
     const host::ClipResults& main = e.results.front();
     std::printf("%s: %zu clips\n", clips_path.c_str(), e.clips.size());
+    if (e.perturbation != "none")
+        std::printf("evaluated clips perturbed: %s; training clips as read\n", e.perturbation.c_str());
     for (const auto& r : e.results) print_results(r);
     std::printf("  %-44s %zu of %zu synthetic non-actions from these clips come out unknown\n",
                 "rejection (model, label_bounds)", e.synthetic_unknown, e.synthetic_negatives);
@@ -142,7 +154,7 @@ int run_eval(int argc, char** argv) {
     bool online = false;
     std::uint32_t seed = 1;
     SegmenterOverrides overrides;
-    std::string report_dir;
+    std::string report_dir, perturb_spec;
     ArgumentReader args("eval", argc, argv);
     while (args.more()) {
         const std::string arg = args.next();
@@ -159,6 +171,7 @@ int run_eval(int argc, char** argv) {
         else if (arg == "--seed") seed = static_cast<std::uint32_t>(args.number(arg, 0, 4294967295.0));
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
         else if (arg == "--report") report_dir = args.value(arg);
+        else if (arg == "--perturb") perturb_spec = args.value(arg);
         else if (!parse_segmenter_option(args, arg, overrides)) return args.unknown(arg);
     }
     if (!args.ok()) return 2;
@@ -170,11 +183,15 @@ int run_eval(int argc, char** argv) {
         const host::ModelData model = host::load_model(model_path);
         const ModelView view = model.view();
         const AnnotatorConfig config = overrides.over(view, args);
-        const Evaluation e = evaluate(view, clips_path, train_path, read, online, seed, config);
+        const host::Perturbation perturbation =
+            perturb_spec.empty() ? host::Perturbation{} : host::parse_perturbation(perturb_spec);
+        const Evaluation e = evaluate(view, clips_path, train_path, read, online, seed, config, perturbation);
         print_evaluation(e, clips_path, seed);
         if (!report_dir.empty()) {
-            host::write_report(report_dir, "Evaluation of " + host::short_path(model_path) + " on " + host::short_path(clips_path), e.results,
-                               online ? &e.online_report : nullptr, model.label_names.strings());
+            std::string title = "Evaluation of " + host::short_path(model_path) + " on " + host::short_path(clips_path);
+            if (e.perturbation != "none") title += ", perturbed: " + e.perturbation;
+            host::write_report(report_dir, title, e.results, online ? &e.online_report : nullptr,
+                               model.label_names.strings());
             std::printf("\nreport: %s/report.md\n", report_dir.c_str());
         }
         if (!json_path.empty()) host::write_file(json_path, host::evaluation_json(e, model_path, seed, config));

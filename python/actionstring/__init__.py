@@ -181,12 +181,16 @@ class Model:
         return [self.classify(clip).label for clip in clips]
 
     def evaluate(self, clips: Sequence[Clip], *, train: Optional[Sequence[Clip]] = None, online: bool = False,
-                 seed: int = 1, name: str = "<python>", **online_settings: Any) -> Dict[str, Any]:
+                 seed: int = 1, name: str = "<python>", perturb: str = "",
+                 **online_settings: Any) -> Dict[str, Any]:
         """The figures ``actionstring eval --json`` reports, computed by the same code:
         clip accuracy, per-class precision and recall, confusion, predictions; with
         ``train`` the baselines on the same split (DTW 1-NN among them); with
-        ``online`` the streaming figures over the clips concatenated per subject."""
-        text = self._native._evaluate_json(list(clips), list(train or []), online, seed, online_settings, name)
+        ``online`` the streaming figures over the clips concatenated per subject.
+        ``perturb`` changes the evaluated clips (never ``train``) as ``eval --perturb``
+        does, e.g. ``"scale=0.7,noise=0.01"``; a bad spec raises ValueError."""
+        text = self._native._evaluate_json(list(clips), list(train or []), online, seed, online_settings, name,
+                                           perturb)
         return json.loads(text)
 
     def annotate(self, clip: Clip, **online_settings: Any) -> List[Dict[str, Any]]:

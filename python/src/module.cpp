@@ -461,12 +461,14 @@ PYBIND11_MODULE(_actionstring, m) {
              })
         .def("_evaluate_json",
              [](const ModelData& model, std::vector<LabelledClip> clips, std::vector<LabelledClip> train, bool online,
-                std::uint32_t seed, const py::dict& settings, const std::string& name) {
+                std::uint32_t seed, const py::dict& settings, const std::string& name, const std::string& perturb) {
                  const ModelView view = model.view();
                  const AnnotatorConfig config = online_config(model, settings);
+                 const host::Perturbation perturbation =
+                     perturb.empty() ? host::Perturbation{} : host::parse_perturbation(perturb);
                  py::gil_scoped_release release;
                  const host::Evaluation e =
-                     host::evaluate(view, std::move(clips), std::move(train), {}, online, seed, config);
+                     host::evaluate(view, std::move(clips), std::move(train), {}, online, seed, config, perturbation);
                  return host::evaluation_json(e, name, seed, config);
              })
         .def("annotate", [](const ModelData& model, const LabelledClip& clip, const py::dict& settings) {

@@ -74,6 +74,16 @@ def test_evaluate_on_toy_clips(toy_model, toy_clips):
     assert report["clip_accuracy"] == pytest.approx(1.0)
     assert len(report["baselines"]) == 3
     assert 0.0 <= report["online"]["settled"]["frame_accuracy"] <= 1.0
+    assert report["perturbation"] == "none"
+
+
+def test_evaluate_perturbed_clips(toy_model, toy_clips):
+    moved = toy_model.evaluate(toy_clips, perturb="rate=20,seed=3")
+    assert moved["perturbation"] == "resampled to 20 Hz (seed 3)"
+    noisy = toy_model.evaluate(toy_clips, perturb="noise=0.3")
+    assert noisy["clip_accuracy"] < toy_model.evaluate(toy_clips)["clip_accuracy"]
+    with pytest.raises(ValueError, match="'bright' is not a perturbation"):
+        toy_model.evaluate(toy_clips, perturb="bright=2")
 
 
 @pytest.fixture(scope="module")

@@ -19,10 +19,14 @@ namespace host {
 
 Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std::vector<LabelledClip> train,
                     std::vector<LabelledRecording> recordings, bool online, std::uint32_t seed,
-                    const AnnotatorConfig& config) {
+                    const AnnotatorConfig& config, const Perturbation& perturbation) {
     Evaluation e;
     e.recordings = !recordings.empty();
     e.clips = std::move(clips);
+    e.perturbation = perturbation.describe();
+    for (std::size_t i = 0; i < e.clips.size(); ++i) perturb_clip(e.clips[i].clip, perturbation, i);
+    for (std::size_t r = 0; r < recordings.size(); ++r)
+        perturb_clip(recordings[r].clip, perturbation, (std::uint64_t{1} << 32) + r);
     conform_to_model(view, e.clips);
     e.results.push_back(evaluate_model(view, e.clips));
     {  // The classifier's rejection of synthetic non-actions made from these clips
@@ -78,6 +82,7 @@ std::string evaluation_json(const Evaluation& e, const std::string& model_name, 
     out.begin_object();
     write_fields(out, e.results.front(), e.clips);
     out.field("model", model_name);
+    out.field("perturbation", e.perturbation);
     out.key("frame_time_ns")
         .begin_object()
         .field("median", sorted_quantile(e.frame_ns, 0.5))

@@ -9,6 +9,7 @@
 #include "actionstring/annotator.hpp"
 #include "eval/clip_eval.hpp"
 #include "eval/online.hpp"
+#include "eval/perturb.hpp"
 #include "io/clip_list.hpp"
 #include "io/recordings.hpp"
 
@@ -31,6 +32,8 @@ struct Evaluation {
     /// spliced halves, and clips sped up or slowed down that land on another
     /// label than their own), and how many came out unknown.
     std::size_t synthetic_negatives = 0, synthetic_unknown = 0;
+    /// How the evaluated clips and recordings were changed (Perturbation::describe(); "none").
+    std::string perturbation = "none";
 };
 
 /// Evaluates a model on labelled clips, conformed to its skeleton: the
@@ -38,10 +41,12 @@ struct Evaluation {
 /// over all training strings, the same with PCA-only characters, DTW 1-NN on
 /// poses), the annotator's per-frame time, and with `online` the streaming
 /// figures: over `recordings` whole when given, else over the clips
-/// concatenated per subject in a seeded order.
+/// concatenated per subject in a seeded order. `perturbation` changes the
+/// evaluated clips and recordings first (each its own draws: clip i index i,
+/// recording r index 2^32 + r), never the training clips.
 Evaluation evaluate(const ModelView& model, std::vector<LabelledClip> clips, std::vector<LabelledClip> train,
                     std::vector<LabelledRecording> recordings, bool online, std::uint32_t seed,
-                    const AnnotatorConfig& config);
+                    const AnnotatorConfig& config, const Perturbation& perturbation = {});
 
 /// The run as the JSON object `actionstring eval --json` writes.
 std::string evaluation_json(const Evaluation& e, const std::string& model_name, std::uint32_t seed,
