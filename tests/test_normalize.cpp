@@ -153,6 +153,63 @@ TEST_CASE("frames that are not poses are rejected with a reason") {
     CHECK(normalize_pose(view, nullptr, pose.data()) == Status::invalid_argument);
 }
 
+TEST_CASE("torso scaling: a bigger body gives the same pose, its own proportions kept") {
+    host::ToyWorld world = host::make_toy_world();
+    host::TrainingOptions options;
+    options.scale_mode = ScaleMode::torso;
+    options.components = 0;
+    options.pca_dim = 6;
+    const std::vector<host::LabelledClip> clips = host::toy_clips(world, 2, 4);
+    const host::ModelData model = host::train_model(clips, options);
+    const ModelView view = model.view();
+    REQUIRE(view.scale_mode == ScaleMode::torso);
+    REQUIRE_FALSE(uses_bones(view.scale_mode));  // no scratch skeleton needed
+    REQUIRE(uses_kinematic_tree(view.scale_mode));
+    CHECK(view.bone_lengths[0] == 0.0f);  // the root has no bone
+    CHECK(view.bone_lengths[1] > 0.05f);  // root → left hip, a torso bone
+
+    const host::Clip& clip = clips.front().clip;
+    const std::size_t J = clip.joint_count(), D = view.pose_dim();
+    std::vector<float> pose(D), other(D);
+    for (std::size_t f = 0; f < clip.frame_count(); f += 7) {
+        const float* p = clip.frame(f);
+        REQUIRE(normalize_pose(view, p, pose.data()) == Status::ok);
+        // A person 1.3× or 0.7× the size, standing elsewhere: the same pose.
+        for (const float size : {1.3f, 0.7f}) {
+            std::vector<float> q(p, p + 3 * J);
+            for (std::size_t j = 0; j < J; ++j)
+                for (std::size_t a = 0; a < 3; ++a) q[3 * j + a] = 2.0f + p[a] + size * (p[3 * j + a] - p[a]);
+            REQUIRE(normalize_pose(view, q.data(), other.data()) == Status::ok);
+            for (std::size_t k = 0; k < D; ++k) CHECK(other[k] == doctest::Approx(pose[k]).epsilon(1e-5));
+        }
+        // Unlike bone lengths, one factor for the whole body: hips twice as wide
+        // (a torso bone) shrink the whole pose, so it is not the same.
+        std::vector<float> wide(p, p + 3 * J);
+        for (std::size_t j = 1; j <= 2; ++j)
+            for (std::size_t a = 0; a < 3; ++a) wide[3 * j + a] = p[a] + 2.0f * (p[3 * j + a] - p[a]);
+        REQUIRE(normalize_pose(view, wide.data(), other.data()) == Status::ok);
+        float largest = 0.0f;
+        for (std::size_t k = 0; k < D; ++k) largest = std::max(largest, std::fabs(other[k] - pose[k]));
+        CHECK(largest > 0.01f);
+    }
+    // Every torso bone at one point: no size to measure.
+    std::vector<float> collapsed(3 * J, 0.0f);
+    for (std::size_t a = 0; a < 3; ++a) collapsed[a] = 1.0f;
+    for (std::size_t j = 1; j < J; ++j)
+        for (std::size_t a = 0; a < 3; ++a) collapsed[3 * j + a] = 1.0f;
+    collapsed[3 * 1 + 2] += 1.0e-7f;  // hips a hair apart: a facing, no length
+    CHECK(normalize_pose(view, collapsed.data(), pose.data()) == Status::degenerate_pose);
+    // The lengths round-trip through the artifact; a model whose torso has no length is refused.
+    const host::ModelData loaded = host::parse_model("torso.model", host::serialize_model(model));
+    CHECK(loaded.bone_lengths == model.bone_lengths);
+    CHECK(loaded.scale_mode == ScaleMode::torso);
+    host::ModelData broken = host::parse_model("torso.model", host::serialize_model(model));
+    for (float& length : broken.bone_lengths) length = 0.0f;
+    const char* problem = nullptr;
+    CHECK(validate_model(broken.view(), &problem) == Status::invalid_model);
+    CHECK(std::string(problem) == "bone_lengths: no torso bone to scale by");
+}
+
 TEST_CASE("bone-length scaling: a bigger or differently built body gives the same pose") {
     host::ToyWorld world = host::make_toy_world();
     host::TrainingOptions options;

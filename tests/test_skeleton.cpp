@@ -250,3 +250,31 @@ TEST_CASE("a 100-joint engine rig trains end to end on its body joints, files of
     CHECK_THROWS_WITH_AS(train_model(clips, options), doctest::Contains("of them are not in the file (mixamorig:Face3)"),
                          ReadError);
 }
+
+TEST_CASE("the torso's bones: hips, the spine up to the chest, and the chest's children") {
+    auto joints = [](const std::vector<bool>& torso) {
+        std::vector<int> out;
+        for (std::size_t j = 0; j < torso.size(); ++j)
+            if (torso[j]) out.push_back(static_cast<int>(j));
+        return out;
+    };
+    // Kinect v1 (SDK order): HipCenter 0, Spine 1, ShoulderCenter 2, Head 3, ShoulderLeft 4 … HandLeft 7,
+    // ShoulderRight 8 … HandRight 11, HipLeft 12 … FootLeft 15, HipRight 16 … FootRight 19.
+    const std::vector<int> v1 = {-1, 0, 1, 2, 2, 4, 5, 6, 2, 8, 9, 10, 0, 12, 13, 14, 0, 16, 17, 18};
+    CHECK(joints(host::torso_bones(v1, {0, 12, 16})) == std::vector<int>{1, 2, 3, 4, 8, 12, 16});
+    // Kinect v2: SpineBase 0, SpineMid 1, Neck 2, Head 3, shoulders 4 and 8, hips 12 and 16,
+    // SpineShoulder 20 (the chest), hand tips and thumbs 21–24 (not torso: the wrists branch, not the chest).
+    const std::vector<int> v2 = {-1, 0,  20, 2, 20, 4,  5,  6, 20, 8, 9,  10, 0,
+                                 12, 13, 14, 0, 16, 17, 18, 1, 7,  7, 11, 11};
+    CHECK(joints(host::torso_bones(v2, {0, 12, 16})) == std::vector<int>{1, 2, 4, 8, 12, 16, 20});
+    // An ASF-like tree whose hip roles sit two bones below the root: root 0, lhipjoint 1, lfemur 2,
+    // rhipjoint 3, rfemur 4, lowerback 5, upperback 6, thorax 7, lowerneck 8, lclavicle 9, rclavicle 10,
+    // lhumerus 11, rhumerus 12.
+    const std::vector<int> asf = {-1, 0, 1, 0, 3, 0, 5, 6, 7, 7, 7, 9, 10};
+    CHECK(joints(host::torso_bones(asf, {0, 2, 4})) == std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10});
+    // Incomplete roles, or roles outside the skeleton: nothing to measure.
+    CHECK(host::torso_bones(v1, {0, -1, 16}).empty());
+    CHECK(host::torso_bones(v1, {0, 12, 40}).empty());
+    // A cycle in the parents cannot hang the walk.
+    CHECK_NOTHROW(host::torso_bones({1, 2, 0, 0}, {0, 1, 2}));
+}

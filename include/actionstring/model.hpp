@@ -55,15 +55,31 @@ enum class ScaleMode : std::uint8_t {
     /// the kinematic tree from its roots, so a child and an adult doing the
     /// same thing give the same pose.
     bone_lengths = 2,
+    /// Scale the whole pose by one factor per frame: the training mean length
+    /// of the torso's bones (the hips', the spine's up to the chest, and the
+    /// chest's children: neck and shoulders) over this frame's. Only the
+    /// body's size is taken out; its proportions and every limb stay as
+    /// tracked. Depth sensors track the torso well and the limbs poorly (an
+    /// occluded or foreshortened leg rebuilt at full length moves the foot far
+    /// from where it was), so on Kinect data this holds up where
+    /// bone_lengths does not (models/README.md, "Size on UTKinect").
+    /// bone_lengths holds the torso bones' reference lengths, 0 for the others.
+    torso = 3,
 };
 
 /// Most joints a model scaled by bone lengths may have (its validation is
 /// quadratic in them); larger rigs train on a body subset.
 constexpr std::size_t max_bone_joints = 256;
 
+/// Whether a model's scale mode rebuilds the skeleton bone by bone (and so
+/// needs a scratch skeleton, normalize_pose()).
+constexpr bool uses_bones(ScaleMode mode) noexcept { return mode == ScaleMode::bone_lengths; }
+
 /// Whether a model's scale mode needs its kinematic tree (joint_parents,
 /// bone_order, bone_lengths).
-constexpr bool uses_bones(ScaleMode mode) noexcept { return mode == ScaleMode::bone_lengths; }
+constexpr bool uses_kinematic_tree(ScaleMode mode) noexcept {
+    return mode == ScaleMode::bone_lengths || mode == ScaleMode::torso;
+}
 
 /// Names (of joints, of labels) packed end to end, each NUL-terminated: name
 /// i starts at text + offsets[i], and a table of n names has n + 1 offsets
@@ -253,7 +269,7 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
         !detail::names_ok(m.joint_names, m.joint_count))
         return refuse(problem, "joint_names: not joint_count non-empty NUL-terminated names");
     if (m.up_axis > 2) return refuse(problem, "up_axis: not 0, 1 or 2");
-    if (m.scale_mode > ScaleMode::bone_lengths) return refuse(problem, "scale_mode: unknown mode");
+    if (m.scale_mode > ScaleMode::torso) return refuse(problem, "scale_mode: unknown mode");
     if (m.covariance > Covariance::diagonal) return refuse(problem, "covariance: unknown kind");
     if (m.root_joint >= m.joint_count) return refuse(problem, "root_joint: not a joint of the skeleton");
     if (m.left_hip_joint >= m.joint_count) return refuse(problem, "left_hip_joint: not a joint of the skeleton");
@@ -262,7 +278,7 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
         return refuse(problem, "right_hip_joint: the same joint as the left hip");
     if (m.scale_mode == ScaleMode::hip_width && !(m.reference_scale > 0.0f && m.reference_scale <= big))
         return refuse(problem, "reference_scale: not a positive finite length");
-    if (uses_bones(m.scale_mode)) {
+    if (uses_kinematic_tree(m.scale_mode)) {
         if (m.joint_parents == nullptr || m.bone_order == nullptr || m.bone_lengths == nullptr)
             return refuse(problem, "joint_parents: bone-length scaling needs the kinematic tree");
         if (m.joint_count > max_bone_joints) return refuse(problem, "joint_count: over 256 joints to scale by bones");
@@ -283,6 +299,12 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
         }
         if (!detail::all_within(m.bone_lengths, m.joint_count, 0.0f, 1000.0f))
             return refuse(problem, "bone_lengths: missing, negative, non-finite or beyond 1 km");
+        if (m.scale_mode == ScaleMode::torso) {
+            float torso = 0.0f;
+            for (std::size_t j = 0; j < m.joint_count; ++j)
+                if (m.joint_parents[j] >= 0) torso += m.bone_lengths[j];
+            if (!(torso > 1.0e-3f)) return refuse(problem, "bone_lengths: no torso bone to scale by");
+        }
     }
     if (m.pose_joint_count == 0 || m.pose_joints == nullptr) return refuse(problem, "pose_joints: empty");
     for (std::size_t i = 0; i < m.pose_joint_count; ++i)

@@ -36,12 +36,12 @@
     SCALAR(std::uint16_t, left_hip_joint, 0, 0, 65535)     /* with the right hip: the facing direction */ \
     SCALAR(std::uint16_t, right_hip_joint, 0, 0, 65535)                                                   \
     SCALAR(std::uint8_t, up_axis, 1, 0, 2)                 /* 0 = x, 1 = y, 2 = z */                      \
-    SCALAR(ScaleMode, scale_mode, ScaleMode::none, 0, 2)                                                  \
+    SCALAR(ScaleMode, scale_mode, ScaleMode::none, 0, 3)                                                  \
     SCALAR(float, reference_scale, 1.0f, 0, 0)             /* target hip width when scaling by it */      \
-    /* the kinematic tree, for bone-length scaling only (empty otherwise) */                              \
-    TABLE(std::int16_t, joint_parents, (uses_bones(m.scale_mode) ? m.joint_count : 0u), -1, 32767)        \
-    TABLE(std::uint16_t, bone_order, (uses_bones(m.scale_mode) ? m.joint_count : 0u), 0, 65535)           \
-    TABLE(float, bone_lengths, (uses_bones(m.scale_mode) ? m.joint_count : 0u), 0, 0) /* to the parent */ \
+    /* the kinematic tree, for bone-length or torso scaling only (empty otherwise) */                     \
+    TABLE(std::int16_t, joint_parents, (uses_kinematic_tree(m.scale_mode) ? m.joint_count : 0u), -1, 32767) \
+    TABLE(std::uint16_t, bone_order, (uses_kinematic_tree(m.scale_mode) ? m.joint_count : 0u), 0, 65535)    \
+    TABLE(float, bone_lengths, (uses_kinematic_tree(m.scale_mode) ? m.joint_count : 0u), 0, 0) /* to the parent */ \
     COUNT(std::uint16_t, pose_joint_count, pose_joints)                                                   \
     TABLE(std::uint16_t, pose_joints, m.pose_joint_count, 0, 65535) /* joints of the pose vector */       \
     /* --- motion (design §1.1): the pose's velocity beside it, weighted; 0 = none --- */                 \

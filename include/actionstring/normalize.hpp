@@ -3,8 +3,9 @@
 // Joint positions become a pose vector that does not depend on where the
 // actor stands or which way they face: positions relative to the root joint,
 // rotated about the up axis so the hips face a canonical direction. Optionally
-// the body's size is taken out too: scaled by hip width, or rebuilt with the
-// model's reference bone lengths (each bone keeps its direction).
+// the body's size is taken out too: scaled by hip width or by the torso's bone
+// lengths, or rebuilt with the model's reference bone lengths (each bone keeps
+// its direction).
 #pragma once
 
 #include <cmath>
@@ -43,6 +44,7 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
                              float* skeleton = nullptr) noexcept {
     if (input == nullptr || pose_out == nullptr || model.up_axis > 2) return Status::invalid_argument;
     const bool bones = uses_bones(model.scale_mode);
+    const bool tree = uses_kinematic_tree(model.scale_mode);
     if (bones && skeleton == nullptr) return Status::invalid_argument;
     // Coordinates are read and written as plain floats: under -Os the compiler
     // keeps Eigen's element-wise assignments out of line, a call per joint that
@@ -52,7 +54,8 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     auto raw = [input](std::size_t index) { return input + 3 * index; };
 
     // Validate only the joints the model reads: engine rigs carry many more
-    // (with bone lengths, every joint: each one places its children). One
+    // (with bone or torso lengths, every joint: each one places its children
+    // or may measure the torso). One
     // number answers both questions: the largest coordinate's bits shifted
     // left by one (the sign dropped) is 0 when every coordinate is ±0, and at
     // least 0xFF000000 (an exponent of all ones) when any is infinite or NaN.
@@ -68,7 +71,7 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     check(model.root_joint);
     check(model.left_hip_joint);
     check(model.right_hip_joint);
-    if (bones) {
+    if (tree) {
         for (std::size_t j = 0; j < model.joint_count; ++j) check(j);
     } else {
         for (std::size_t k = 0; k < model.pose_joint_count; ++k) check(model.pose_joints[k]);
@@ -117,7 +120,23 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     if (!(horizontal > 1.0e-6f) || !(horizontal > 1.0e-3f * hip_width)) return Status::degenerate_pose;
     const float cos_a = hips[h1] / horizontal;
     const float sin_a = hips[h2] / horizontal;
-    const float scale = model.scale_mode == ScaleMode::hip_width ? model.reference_scale / hip_width : 1.0f;
+    float scale = model.scale_mode == ScaleMode::hip_width ? model.reference_scale / hip_width : 1.0f;
+    if (model.scale_mode == ScaleMode::torso) {
+        // The torso's reference length over this frame's, each summed in joint order.
+        float reference = 0.0f, measured = 0.0f;
+        for (std::size_t j = 0; j < model.joint_count; ++j) {
+            const int parent = model.joint_parents[j];
+            if (parent < 0 || !(model.bone_lengths[j] > 0.0f)) continue;
+            const float* at = joint(j);
+            const float* from = joint(static_cast<std::size_t>(parent));
+            const float bone[3] = {at[0] - from[0], at[1] - from[1], at[2] - from[2]};
+            reference += model.bone_lengths[j];
+            measured += length3(bone);
+        }
+        // A torso of (almost) no length gives no size (validation keeps reference > 1 mm).
+        if (!(measured > 1.0e-3f * reference)) return Status::degenerate_pose;
+        scale = reference / measured;
+    }
 
     // Every coordinate is written, and the range is judged once at the end
     // (pose_out means nothing unless the call returns ok).

@@ -253,5 +253,42 @@ void require_joint_count(const ModelView& model, std::size_t joints, const std::
                                     expectation(model) + " (conform_to_model() maps joints by name)");
 }
 
+std::vector<bool> torso_bones(const std::vector<int>& parents, const JointRoles& roles) {
+    const std::size_t J = parents.size();
+    if (!roles.complete() || static_cast<std::size_t>(roles.root) >= J ||
+        static_cast<std::size_t>(roles.left_hip) >= J || static_cast<std::size_t>(roles.right_hip) >= J)
+        return {};
+    std::vector<bool> torso(J, false), hip_path(J, false);
+    const auto root = static_cast<std::size_t>(roles.root);
+    // The hips: every bone from a hip up to the root (at most J steps, whatever the parents say).
+    for (const int hip : {roles.left_hip, roles.right_hip}) {
+        std::size_t j = static_cast<std::size_t>(hip);
+        for (std::size_t steps = 0; j != root && steps < J; ++steps) {
+            hip_path[j] = true;
+            const int parent = parents[j];
+            if (parent < 0 || static_cast<std::size_t>(parent) >= J) break;
+            torso[j] = true;
+            j = static_cast<std::size_t>(parent);
+        }
+    }
+    std::vector<std::vector<std::size_t>> children(J);
+    for (std::size_t j = 0; j < J; ++j)
+        if (parents[j] >= 0 && static_cast<std::size_t>(parents[j]) < J)
+            children[static_cast<std::size_t>(parents[j])].push_back(j);
+    // The spine: each other child of the root, up through single children to the chest.
+    for (std::size_t c : children[root]) {
+        if (hip_path[c]) continue;
+        std::size_t j = c;
+        torso[j] = true;
+        for (std::size_t steps = 0; children[j].size() == 1 && steps < J; ++steps) {
+            j = children[j].front();
+            torso[j] = true;
+        }
+        if (children[j].size() >= 2)
+            for (std::size_t k : children[j]) torso[k] = true;
+    }
+    return torso;
+}
+
 }  // namespace host
 }  // namespace actionstring

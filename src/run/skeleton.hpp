@@ -48,6 +48,14 @@ void keep_joints(Clip& clip, const std::vector<std::string>& names);
 /// Returns a note for the user ("CC_Base rig: 23 of 100 joints"), or "".
 std::string select_pose_joints(std::vector<LabelledClip>& clips, const std::vector<std::string>& pose_joints);
 
+/// The torso's bones of a skeleton, by the joint each ends at (ScaleMode::torso):
+/// those on the path from each hip role up to the root; from each other child
+/// of the root, the chain of single children up to the first joint with two or
+/// more (the chest); and the bones from the chest to its children (neck and
+/// shoulders or clavicles). Needs `parents` (one per joint, −1 at a root) and
+/// the roles; empty when they are incomplete.
+std::vector<bool> torso_bones(const std::vector<int>& parents, const JointRoles& roles);
+
 /// Throws std::invalid_argument unless a frame of `joints` joints is what the
 /// model reads (every host function that streams frames checks this first).
 void require_joint_count(const ModelView& model, std::size_t joints, const std::string& source);

@@ -104,7 +104,7 @@ void set_bones(ModelData& m, const std::vector<LabelledClip>& clips) {
     const std::size_t J = first.joint_count();
     if (first.parents.size() != J)
         throw std::invalid_argument(first.source +
-                                    ": bone-length scaling needs the skeleton's parents, which this "
+                                    ": bone and torso scaling need the skeleton's parents, which this "
                                     "format does not give; use --scale none");
     if (J > max_bone_joints)
         throw std::invalid_argument(first.source + ": " + std::to_string(J) +
@@ -140,6 +140,19 @@ void set_bones(ModelData& m, const std::vector<LabelledClip>& clips) {
     m.bone_lengths.clear();
     for (std::size_t j = 0; j < J; ++j)
         m.bone_lengths.push_back(static_cast<float>(sum[j] / static_cast<double>(frames)));
+    if (m.scale_mode == ScaleMode::torso) {
+        // Only the torso's bones measure a frame's size; the others keep length 0.
+        const std::vector<bool> torso = torso_bones(first.parents, first.roles);
+        float total = 0.0f;
+        for (std::size_t j = 0; j < J; ++j) {
+            if (j >= torso.size() || !torso[j]) m.bone_lengths[j] = 0.0f;
+            total += m.bone_lengths[j];
+        }
+        if (!(total > 1.0e-3f))
+            throw std::invalid_argument(first.source +
+                                        ": no torso bone (hips, spine, neck, shoulders) of any length to scale "
+                                        "by; use --scale bones or none");
+    }
 }
 
 // Stage 0: the skeleton tables, from the first clip (all clips share its joints).
@@ -177,7 +190,7 @@ ModelData start_model(const std::vector<LabelledClip>& clips, const TrainingOpti
                                     " joints besides the root; at most " + std::to_string(most_pose_joints) +
                                     " are supported");
     m.scale_mode = options.scale_mode;
-    if (uses_bones(options.scale_mode)) set_bones(m, clips);
+    if (uses_kinematic_tree(options.scale_mode)) set_bones(m, clips);
     m.velocity_weight = static_cast<float>(options.velocity_weight);
     m.velocity_span_us =
         options.velocity_weight > 0 ? static_cast<std::uint32_t>(std::lround(options.velocity_span_s * 1e6)) : 0u;

@@ -118,7 +118,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "em-tolerance") o.em_tolerance = num(0, 1);
     else if (name == "em-restarts") o.em_restarts = static_cast<int>(num(1, 64));
     else if (name == "scale")
-        o.scale_mode = static_cast<ScaleMode>(choice(name, value, {"none", "hip-width", "bones"}));
+        o.scale_mode = static_cast<ScaleMode>(choice(name, value, {"none", "hip-width", "bones", "torso"}));
     else if (name == "mirror") o.mirror = flag(name, value);
     else if (name == "pose-joints") o.pose_joints = joint_list(name, value);
     else if (name == "velocity") o.velocity_weight = num(0, 1000);
