@@ -48,8 +48,9 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
          {0.2, 0.4, 0.6},
          [](TrainingOptions& o, double v) { o.velocity_span_s = v; },
          [](const TrainingOptions& o) { return o.velocity_weight > 0; }},
+        // Size: from the torso's length (the start, below) to bone lengths, never none.
         {"scale",
-         {0.0, 2.0},
+         {static_cast<double>(ScaleMode::bone_lengths)},
          [](TrainingOptions& o, double v) { o.scale_mode = static_cast<ScaleMode>(static_cast<int>(v)); },
          [has_parents](const TrainingOptions&) { return has_parents; }},
         {"mirror", {0.0, 1.0}, [](TrainingOptions& o, double v) { o.mirror = v > 0; }},
@@ -67,7 +68,9 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
          }},
     };
     auto describe = [](const Axis& axis, double v) {
-        if (std::string(axis.name) == "scale") return std::string("scale ") + (v > 0 ? "bones" : "none");
+        if (std::string(axis.name) == "scale")
+            return std::string("scale ") +
+                   (static_cast<ScaleMode>(static_cast<int>(v)) == ScaleMode::torso ? "torso" : "bones");
         if (std::string(axis.name) == "mirror") return std::string("mirror ") + (v > 0 ? "true" : "false");
         if (std::string(axis.name) == "exemplar-weight") return "exemplars 64, exemplar-weight " + number(v);
         return std::string(axis.name) + " " + number(v);
@@ -79,6 +82,7 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
         if (static_cast<std::size_t>(o.pca_dim) > input_dim) o.pca_dim = static_cast<int>(input_dim);
         return o;
     };
+    if (has_parents && result.options.scale_mode == ScaleMode::none) result.options.scale_mode = ScaleMode::torso;
     result.options = fitted(result.options);
     // A setting's score: the fold mean averaged over three seeds of the tree's
     // k-means (one seed's luck moves a fold mean by several points).
@@ -127,7 +131,7 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
 
 std::string options_as_config(const TrainingOptions& o) {
     static const char* const covariance[] = {"full", "diagonal"};
-    static const char* const scale[] = {"none", "hip-width", "bones"};
+    static const char* const scale[] = {"none", "hip-width", "bones", "torso"};
     static const char* const variant[] = {"paper", "whole", "subsequence"};
     static const char* const normalization[] = {"none", "path", "query"};
     std::ostringstream out;

@@ -34,7 +34,7 @@ struct TuningResult {
 TrainingOptions tuning_start();
 
 /// Coordinate search from `start`: the velocity weight and span, the size
-/// normalisation (bone lengths when the skeleton has parents), mirroring, the string
+/// normalisation, mirroring, the string
 /// rate, ε, σ, the PCA dimension, the votes' weight and the exemplars' (64 per
 /// label; not with `reject`), one at a time, each value judged by
 /// cross_validate()'s fold mean averaged over the seeds seed, seed + 1 and
@@ -42,6 +42,13 @@ TrainingOptions tuning_start();
 /// simpler choice). Deterministic. `folds` are those of the choice at its seed. `progress`, when
 /// set, is told each step. The fold mean of the choice is optimistic: it was
 /// chosen on those folds.
+///
+/// Size is normalised whenever the skeleton has parents: the search starts
+/// from the torso's length (ScaleMode::torso, when `start` says none) and
+/// tries bone lengths, never none. The folds cannot judge it: a list's few
+/// subjects are often of one size, and on UTKinect's three adults `none`
+/// won by chance and then lost 0.10 of the held-out clips scaled as a child's
+/// (models/README.md, "Size on UTKinect").
 TuningResult tune_training(const std::vector<LabelledClip>& clips, const TrainingOptions& start,
                            const std::function<void(const TuningStep&)>& progress = {});
 
