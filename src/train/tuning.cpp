@@ -48,11 +48,6 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
          {0.2, 0.4, 0.6},
          [](TrainingOptions& o, double v) { o.velocity_span_s = v; },
          [](const TrainingOptions& o) { return o.velocity_weight > 0; }},
-        // Size: from the torso's length (the start, below) to bone lengths, never none.
-        {"scale",
-         {static_cast<double>(ScaleMode::bone_lengths)},
-         [](TrainingOptions& o, double v) { o.scale_mode = static_cast<ScaleMode>(static_cast<int>(v)); },
-         [has_parents](const TrainingOptions&) { return has_parents; }},
         {"mirror", {0.0, 1.0}, [](TrainingOptions& o, double v) { o.mirror = v > 0; }},
         {"string-rate", {8.0, 12.0, 15.0, 20.0}, [](TrainingOptions& o, double v) { o.string_rate_hz = v; }},
         {"epsilon", {0.5, 0.7, 1.0}, [](TrainingOptions& o, double v) { o.epsilon = v; }},
@@ -68,9 +63,6 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
          }},
     };
     auto describe = [](const Axis& axis, double v) {
-        if (std::string(axis.name) == "scale")
-            return std::string("scale ") +
-                   (static_cast<ScaleMode>(static_cast<int>(v)) == ScaleMode::torso ? "torso" : "bones");
         if (std::string(axis.name) == "mirror") return std::string("mirror ") + (v > 0 ? "true" : "false");
         if (std::string(axis.name) == "exemplar-weight") return "exemplars 64, exemplar-weight " + number(v);
         return std::string(axis.name) + " " + number(v);

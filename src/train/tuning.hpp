@@ -43,12 +43,13 @@ TrainingOptions tuning_start();
 /// set, is told each step. The fold mean of the choice is optimistic: it was
 /// chosen on those folds.
 ///
-/// Size is normalised whenever the skeleton has parents: the search starts
-/// from the torso's length (ScaleMode::torso, when `start` says none) and
-/// tries bone lengths, never none. The folds cannot judge it: a list's few
-/// subjects are often of one size, and on UTKinect's three adults `none`
-/// won by chance and then lost 0.10 of the held-out clips scaled as a child's
-/// (models/README.md, "Size on UTKinect").
+/// Size is not searched: whenever the skeleton has parents the pose is scaled
+/// by the torso's length (ScaleMode::torso, when `start` says none). The folds
+/// cannot judge size: a list's few subjects are often of one size, and on
+/// UTKinect's three adults `none` won by chance and then lost 0.10 of the
+/// held-out clips scaled as a child's (models/README.md, "Size on UTKinect").
+/// Bone lengths were searched beside it and won the folds by less than a clip
+/// while losing online; models/README.md has the measurements.
 TuningResult tune_training(const std::vector<LabelledClip>& clips, const TrainingOptions& start,
                            const std::function<void(const TuningStep&)>& progress = {});
 
