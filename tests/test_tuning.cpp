@@ -59,6 +59,14 @@ TEST_CASE("self-tuning is deterministic and keeps a setting only when its folds 
     const std::string config = options_as_config(a.options);
     for (const char* line : {"components 0\n", "keep-singletons true\n", "variant whole\n"})
         CHECK(config.find(line) != std::string::npos);
+    // The toy skeleton has parents: size is normalised by the torso, never searched.
+    CHECK(a.options.scale_mode == actionstring::ScaleMode::torso);
+    CHECK(config.find("scale torso\n") != std::string::npos);
+    for (const TuningStep& step : a.steps) CHECK(step.setting.rfind("scale", 0) == std::string::npos);
+    // Without parents there is no torso to measure: size stays as it is.
+    std::vector<LabelledClip> flat = clips;
+    for (LabelledClip& c : flat) c.clip.parents.clear();
+    CHECK(tune_training(flat, tuning_start()).options.scale_mode == actionstring::ScaleMode::none);
 }
 
 TEST_CASE("cross-validation needs two subjects") {
