@@ -280,7 +280,7 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
         return refuse(problem, "reference_scale: not a positive finite length");
     if (uses_kinematic_tree(m.scale_mode)) {
         if (m.joint_parents == nullptr || m.bone_order == nullptr || m.bone_lengths == nullptr)
-            return refuse(problem, "joint_parents: bone-length scaling needs the kinematic tree");
+            return refuse(problem, "joint_parents: bone-length or torso scaling needs the kinematic tree");
         if (m.joint_count > max_bone_joints) return refuse(problem, "joint_count: over 256 joints to scale by bones");
         // bone_order lists every joint once, each after its parent.
         for (std::size_t k = 0; k < m.joint_count; ++k) {

@@ -2,14 +2,15 @@
 #include "eval/perturb.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include "train/settings.hpp"
 
 namespace actionstring {
 namespace host {
@@ -94,14 +95,9 @@ void drop_frames(Clip& clip, double drop, Draws& draws) {
 }
 
 double number(const std::string& item, const std::string& text, double low, double high, const char* expected) {
-    const char* begin = text.c_str();
-    char* end = nullptr;
-    errno = 0;
-    const double value = std::strtod(begin, &end);
-    if (text.empty() || end != begin + text.size() || errno != 0 || !std::isfinite(value) || value < low ||
-        value > high)
-        throw std::invalid_argument("--perturb: '" + item + "': expected " + expected);
-    return value;
+    const std::optional<double> value = parse_real(text, low, high);
+    if (!value) throw std::invalid_argument("--perturb: '" + item + "': expected " + expected);
+    return *value;
 }
 
 }  // namespace

@@ -33,9 +33,8 @@ struct TuningResult {
 /// PCA 24, ε 0.7, σ 0.75, singletons kept; models/README.md).
 TrainingOptions tuning_start();
 
-/// Coordinate search from `start`: the velocity weight and span, the size
-/// normalisation, mirroring, the string
-/// rate, ε, σ, the PCA dimension, the votes' weight and the exemplars' (64 per
+/// Coordinate search from `start`: the velocity weight and span, mirroring,
+/// the string rate, ε, σ, the PCA dimension, the votes' weight and the exemplars' (64 per
 /// label; not with `reject`), one at a time, each value judged by
 /// cross_validate()'s fold mean averaged over the seeds seed, seed + 1 and
 /// seed + 2, and kept only when strictly higher (so ties keep the earlier,
