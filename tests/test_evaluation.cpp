@@ -10,6 +10,7 @@
 #include "eval/online.hpp"
 #include "run/stream_labels.hpp"
 #include "toy/toy.hpp"
+#include "toy_options.hpp"
 #include "train/pipeline.hpp"
 
 using namespace actionstring;
@@ -40,12 +41,7 @@ TEST_CASE("accuracy, unknown rate, confusion, precision and recall") {
 
 TEST_CASE("the model and every baseline recognise held-out toy performances") {
     ToyWorld world = make_toy_world();
-    TrainingOptions options;
-    options.components = 6;
-    options.pca_dim = 0;
-    options.string_rate_hz = 10.0;
-    options.sigma = 4.0;
-    options.covariance_floor = 1e-3;
+    const TrainingOptions options = test::toy_options();
     const auto train = toy_clips(world, 5, 300);
     const auto test = toy_clips(world, 4, 7000, 30.0);
     ModelData model = train_model(train, options);
@@ -91,12 +87,7 @@ TEST_CASE("online metrics on a timeline scored by hand") {
 
 TEST_CASE("online evaluation streams concatenated toy clips deterministically") {
     ToyWorld world = make_toy_world();
-    TrainingOptions options;
-    options.components = 6;
-    options.pca_dim = 0;
-    options.string_rate_hz = 10.0;
-    options.sigma = 4.0;
-    options.covariance_floor = 1e-3;
+    const TrainingOptions options = test::toy_options();
     ModelData model = train_model(toy_clips(world, 5, 300), options);
     const ModelView view = model.view();
     const auto test = toy_clips(world, 4, 7000, 30.0);

@@ -52,6 +52,15 @@ double max_difference(const std::vector<float>& a, const std::vector<float>& b) 
     return worst;
 }
 
+// A model without a GMM (PCA 6) trained on `clips` with this size normalisation.
+host::ModelData scaled_model(const std::vector<host::LabelledClip>& clips, ScaleMode mode) {
+    host::TrainingOptions options;
+    options.scale_mode = mode;
+    options.components = 0;
+    options.pca_dim = 6;
+    return host::train_model(clips, options);
+}
+
 }  // namespace
 
 TEST_CASE("translation and rotation about the up axis leave the pose and feature unchanged") {
@@ -154,13 +163,8 @@ TEST_CASE("frames that are not poses are rejected with a reason") {
 }
 
 TEST_CASE("torso scaling: a bigger body gives the same pose, its own proportions kept") {
-    host::ToyWorld world = host::make_toy_world();
-    host::TrainingOptions options;
-    options.scale_mode = ScaleMode::torso;
-    options.components = 0;
-    options.pca_dim = 6;
-    const std::vector<host::LabelledClip> clips = host::toy_clips(world, 2, 4);
-    const host::ModelData model = host::train_model(clips, options);
+    const std::vector<host::LabelledClip> clips = host::toy_clips(host::make_toy_world(), 2, 4);
+    const host::ModelData model = scaled_model(clips, ScaleMode::torso);
     const ModelView view = model.view();
     REQUIRE(view.scale_mode == ScaleMode::torso);
     REQUIRE_FALSE(uses_bones(view.scale_mode));  // no scratch skeleton needed
@@ -211,13 +215,8 @@ TEST_CASE("torso scaling: a bigger body gives the same pose, its own proportions
 }
 
 TEST_CASE("bone-length scaling: a bigger or differently built body gives the same pose") {
-    host::ToyWorld world = host::make_toy_world();
-    host::TrainingOptions options;
-    options.scale_mode = ScaleMode::bone_lengths;
-    options.components = 0;
-    options.pca_dim = 6;
-    const std::vector<host::LabelledClip> clips = host::toy_clips(world, 2, 4);
-    const host::ModelData model = host::train_model(clips, options);
+    const std::vector<host::LabelledClip> clips = host::toy_clips(host::make_toy_world(), 2, 4);
+    const host::ModelData model = scaled_model(clips, ScaleMode::bone_lengths);
     const ModelView view = model.view();
     REQUIRE(uses_bones(view.scale_mode));
     REQUIRE(view.bone_lengths != nullptr);

@@ -10,6 +10,7 @@
 #include "eval/evaluation.hpp"
 #include "eval/perturb.hpp"
 #include "toy/toy.hpp"
+#include "toy_options.hpp"
 #include "train/pipeline.hpp"
 
 using namespace actionstring;
@@ -171,12 +172,7 @@ TEST_CASE("dropped frames: the first and last stay, the rest keep their own time
 
 TEST_CASE("an evaluation measures the perturbed clips, not the training clips") {
     ToyWorld world = make_toy_world();
-    TrainingOptions options;
-    options.components = 6;
-    options.pca_dim = 0;
-    options.string_rate_hz = 10.0;
-    options.sigma = 4.0;
-    options.covariance_floor = 1e-3;
+    const TrainingOptions options = test::toy_options();
     const auto train = toy_clips(world, 5, 300);
     const auto test = toy_clips(world, 4, 7000, 30.0);
     ModelData model = train_model(train, options);

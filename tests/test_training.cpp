@@ -28,6 +28,7 @@
 #include "train/pipeline.hpp"
 #include "train/exemplars.hpp"
 #include "train/rejection.hpp"
+#include "toy_options.hpp"
 
 using namespace actionstring;
 using namespace actionstring::host;
@@ -47,15 +48,7 @@ Eigen::MatrixXd blobs(int per_blob, std::uint32_t seed) {
     return x;
 }
 
-TrainingOptions toy_options() {
-    TrainingOptions o;
-    o.components = 6;
-    o.pca_dim = 0;  // the toy pose has 12 dimensions
-    o.string_rate_hz = 10.0;
-    o.sigma = 4.0;
-    o.covariance_floor = 1e-3;
-    return o;
-}
+using test::toy_options;
 
 // The toy options without a GMM: characters on the projected poses.
 TrainingOptions toy_pca_only_options() {
