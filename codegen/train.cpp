@@ -45,7 +45,8 @@ void print_train_usage(std::FILE* out) {
                  "                          hip width, every bone at its mean training length,\n"
                  "                          or the whole pose by the torso's length [none]\n"
                  "  --velocity W            weight of the pose's velocity beside the pose, 0 = none [%g]\n"
-                 "  --velocity-span S       seconds the velocity is taken over [%g]\n"
+                 "  --velocity-span S       seconds the velocity (and acceleration) is taken over [%g]\n"
+                 "  --acceleration W        weight of the change of that velocity across the span, 0 = none [%g]\n"
                  "  --epsilon E             split clusters whose L1 diameter is >= E [%g]\n"
                  "  --max-characters K      cap on tree leaves [%d]\n"
                  "  --string-rate HZ        characters per second [%g]\n"
@@ -90,8 +91,8 @@ void print_train_usage(std::FILE* out) {
                  "  --sweep                 with --validate: vary one setting at a time around the\n"
                  "                          given ones and print a table (choose on validation data)\n",
                  d.components, d.covariance_floor, d.pca_dim, d.feature_rate_hz, d.em_max_iterations, d.em_tolerance,
-                 d.em_restarts, d.velocity_weight, d.velocity_span_s, d.epsilon, d.max_characters, d.string_rate_hz,
-                 d.sigma, d.neighbours, d.window_seconds, d.step_seconds, d.seed);
+                 d.em_restarts, d.velocity_weight, d.velocity_span_s, d.acceleration_weight, d.epsilon,
+                 d.max_characters, d.string_rate_hz, d.sigma, d.neighbours, d.window_seconds, d.step_seconds, d.seed);
 }
 
 bool apply(ArgumentReader& args, const std::string& name, const std::string& value, host::TrainingOptions& o,

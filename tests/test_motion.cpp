@@ -1,6 +1,6 @@
-// The velocity beside the pose (motion.hpp): measured over time, so frame
-// rate, jitter and dropped frames leave it unchanged; zero until the ring
-// holds a pose old enough; forgotten at a restart; bounded.
+// The velocity and acceleration beside the pose (motion.hpp): measured over
+// time, so frame rate, jitter and dropped frames leave them unchanged; zero
+// until the ring holds a pose old enough; forgotten at a restart; bounded.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -13,6 +13,7 @@
 
 #include "actionstring/motion.hpp"
 #include "actionstring/encoder.hpp"
+#include "model/artifact.hpp"
 #include "run/encode.hpp"
 #include "run/state.hpp"
 #include "toy/toy.hpp"
@@ -23,23 +24,25 @@ using namespace actionstring;
 namespace {
 
 // A view with one pose joint (D = 3) and motion: all the ring reads.
-ModelView motion_view(float weight, std::uint32_t span_us) {
+ModelView motion_view(float weight, std::uint32_t span_us, float acceleration = 0.0f) {
     ModelView m;
     m.pose_joint_count = 1;
     m.velocity_weight = weight;
     m.velocity_span_us = span_us;
+    m.acceleration_weight = acceleration;
     return m;
 }
 
-// Streams x(t) = (a t, b t², c) at the given times; returns each frame's velocity.
+// Streams x(t) = (0.8 t, 0.3 t², 1) at the given times; returns each frame's
+// motion (what follows the pose: velocity and acceleration, as the view has).
 std::vector<std::vector<float>> run(const ModelView& view, const std::vector<double>& times) {
     host::Stateful<MotionRing> ring;
     REQUIRE(ring.init(view) == Status::ok);
     std::vector<std::vector<float>> out;
     for (double t : times) {
-        float input[6] = {static_cast<float>(0.8 * t), static_cast<float>(0.3 * t * t), 1.0f, 0, 0, 0};
+        float input[9] = {static_cast<float>(0.8 * t), static_cast<float>(0.3 * t * t), 1.0f, 0, 0, 0, 0, 0, 0};
         ring->update(view, static_cast<std::int64_t>(std::llround(t * 1e6)), input);
-        out.push_back({input[3], input[4], input[5]});
+        out.emplace_back(input + 3, input + view.input_dim());
     }
     return out;
 }
@@ -88,6 +91,48 @@ TEST_CASE("the velocity of a steady motion is its speed, weighted, at any frame 
     }
 }
 
+TEST_CASE("the acceleration is the change of velocity across the span, weighted, at any timing") {
+    // For x = c t² the velocity over the span's newer part minus that over its
+    // older part is exactly c · a (a: the earliest pose's age), whatever the
+    // middle pose's age: the ring's uneven ages divide out. Here c = 0.3 for y
+    // and 0 for x and z.
+    const float w = 1.5f;
+    const std::uint32_t span = 200000;
+    for (const float velocity : {2.0f, 0.0f}) {  // with the velocity before it, and alone
+        const ModelView view = motion_view(velocity, span, w);
+        REQUIRE(view.has_motion());
+        REQUIRE(view.input_dim() == (velocity > 0 ? 9u : 6u));
+        const std::size_t at = velocity > 0 ? 3 : 0;  // where the acceleration starts in the motion
+        for (const auto& times :
+             {clock(30, 3, 0, 0, 1), clock(120, 3, 0, 0, 2), clock(60, 3, 0.3, 0.2, 3), clock(15, 3, 0.1, 0.1, 4)}) {
+            const auto m = run(view, times);
+            for (std::size_t f = 0; f < times.size(); ++f) {
+                CAPTURE(times[f]);
+                if (times[f] < 0.0999) {  // before half a span: nothing old enough
+                    CHECK(m[f][at + 1] == 0.0f);
+                    continue;
+                }
+                if (times[f] < 0.1001 || m[f][at + 1] == 0.0f) continue;  // the boundary; no middle pose yet
+                const float age = m[f][at + 1] / (w * 0.3f);              // a, from y's exact value
+                CHECK(age >= 0.5f * 0.2f - 1e-4f);                        // at least half the span old
+                CHECK(age <= 1.5f * 0.2f + 1e-4f);                        // and within the ring
+                CHECK(std::fabs(m[f][at + 0]) <= 1e-3f);                  // x moves steadily
+                CHECK(m[f][at + 2] == 0.0f);                              // z stands still
+            }
+            // With frames every 1/120 s and no jitter, every pose is a span old within a frame.
+            if (times.size() == 360) CHECK(m.back()[at + 1] == doctest::Approx(w * 0.3f * 0.2f).epsilon(0.05));
+            // Once the ring is full, every frame has its middle pose when
+            // frames come much more often than the span (not so at 15 Hz with
+            // drops, where a span holds three frames).
+            if (times.size() >= 90)
+                for (std::size_t f = 0; f < times.size(); ++f) {
+                    CAPTURE(times.size());
+                    if (times[f] > 0.5) CHECK(m[f][at + 1] != 0.0f);
+                }
+        }
+    }
+}
+
 TEST_CASE("a restart forgets the ring, and a velocity beyond the coordinate bound is clamped") {
     const ModelView view = motion_view(1.0f, 100000);
     host::Stateful<MotionRing> ring;
@@ -106,12 +151,32 @@ TEST_CASE("a restart forgets the ring, and a velocity beyond the coordinate boun
     CHECK(input[3] == max_pose_coordinate);
 }
 
+TEST_CASE("an acceleration beyond the coordinate bound is clamped, and zero after a restart") {
+    const ModelView view = motion_view(0.0f, 100000, 1.0f);
+    host::Stateful<MotionRing> ring;
+    REQUIRE(ring.init(view) == Status::ok);
+    float input[6] = {0, 0, 0, 0, 0, 0};
+    for (int f = 0; f <= 10; ++f) ring->update(view, f * 20000, input);
+    CHECK(input[3] == 0.0f);  // standing still
+    input[0] = 1.0e4f;        // then 10 km in 20 ms
+    ring->update(view, 220000, input);
+    CHECK(input[3] == max_pose_coordinate);
+    input[0] = -1.0e4f;
+    ring->update(view, 240000, input);
+    CHECK(input[3] == -max_pose_coordinate);
+    ring->reset();
+    ring->update(view, 260000, input);
+    CHECK(input[3] == 0.0f);
+}
+
 TEST_CASE("a model with motion trains, and its encoder's storage holds the ring") {
     host::ToyWorld world = host::make_toy_world();
     const host::TrainingOptions options = toy_motion_options();
     const host::ModelData model = host::train_model(host::toy_clips(world, 2, 6), options);
     const ModelView view = model.view();
     CHECK(view.has_motion());
+    CHECK(view.has_velocity());
+    CHECK_FALSE(view.has_acceleration());
     CHECK(view.input_dim() == 2 * view.pose_dim());
     CHECK(MotionRing::required_bytes(view) >= motion_ring_poses * view.pose_dim() * sizeof(float));
     ModelView still = view;
@@ -120,9 +185,22 @@ TEST_CASE("a model with motion trains, and its encoder's storage holds the ring"
     CHECK(StringEncoder::required_bytes(view) > MotionRing::required_bytes(view));
     host::Stateful<StringEncoder> encoder;
     CHECK(encoder.init(view, EncoderConfig{1000000, 0}) == Status::ok);
+    // With the acceleration too the input is three poses long, and the model
+    // keeps its weight through the artifact.
+    host::TrainingOptions with_acceleration = options;
+    with_acceleration.acceleration_weight = 0.5;
+    const host::ModelData accelerating = host::train_model(host::toy_clips(world, 2, 6), with_acceleration);
+    CHECK(accelerating.view().input_dim() == 3 * view.pose_dim());
+    CHECK(accelerating.view().acceleration_weight == 0.5f);
+    const host::ModelData back = host::parse_model("a.model", host::serialize_model(accelerating));
+    CHECK(back.acceleration_weight == 0.5f);
+    CHECK(host::serialize_model(back) == host::serialize_model(accelerating));
+    with_acceleration.acceleration_weight = -1.0;
+    CHECK_THROWS_WITH_AS(host::train_model(host::toy_clips(world, 2, 6), with_acceleration),
+                         doctest::Contains("acceleration weight"), std::invalid_argument);
 }
 
-TEST_CASE("a frame's velocity taken after its own keep() is the same, bit for bit") {
+TEST_CASE("a frame's motion taken after its own keep() is the same, bit for bit") {
     // The encoder takes a frame's velocity only when its character is due,
     // which for the earlier of two frames is after that frame was kept.
     std::mt19937_64 rng(17);
@@ -130,7 +208,11 @@ TEST_CASE("a frame's velocity taken after its own keep() is the same, bit for bi
     std::normal_distribution<float> noise(0.0f, 0.3f);
     for (int trial = 0; trial < 200; ++trial) {
         const auto span = static_cast<std::uint32_t>(10000 + rng() % 1990001);  // the model's bounds: 10 ms … 2 s
-        const ModelView view = motion_view(static_cast<float>(0.1 + 4.0 * unit(rng)), span);
+        // Velocity alone, acceleration alone, or both.
+        const int kind = trial % 3;
+        const float velocity = kind == 1 ? 0.0f : static_cast<float>(0.1 + 4.0 * unit(rng));
+        const float acceleration = kind == 0 ? 0.0f : static_cast<float>(0.1 + 4.0 * unit(rng));
+        const ModelView view = motion_view(velocity, span, acceleration);
         host::Stateful<MotionRing> eager, lazy;
         REQUIRE(eager.init(view) == Status::ok);
         REQUIRE(lazy.init(view) == Status::ok);
@@ -141,14 +223,14 @@ TEST_CASE("a frame's velocity taken after its own keep() is the same, bit for bi
             const double u = unit(rng);
             const double step = u < 0.05 ? 0.0 : u < 0.1 ? 3.0 * span * 1e-6 * unit(rng) : (0.5 + unit(rng)) / rate;
             t += static_cast<std::int64_t>(step * 1e6);
-            float a[6] = {noise(rng), noise(rng), noise(rng), 0, 0, 0};
-            float b[6] = {a[0], a[1], a[2], 9, 9, 9};
+            float a[9] = {noise(rng), noise(rng), noise(rng), 0, 0, 0, 0, 0, 0};
+            float b[9] = {a[0], a[1], a[2], 9, 9, 9, 9, 9, 9};
             eager->update(view, t, a);
             lazy->keep(view, t, b);
-            lazy->velocity(view, t, b);
+            lazy->motion(view, t, b);
             CAPTURE(trial);
             CAPTURE(f);
-            for (int i = 3; i < 6; ++i) REQUIRE(std::memcmp(&a[i], &b[i], sizeof(float)) == 0);
+            for (std::size_t i = 3; i < view.input_dim(); ++i) REQUIRE(std::memcmp(&a[i], &b[i], sizeof(float)) == 0);
         }
     }
 }
@@ -157,41 +239,46 @@ TEST_CASE("the encoder's string and features equal the eagerly sampled features'
     // The encoder takes velocities lazily; the trainer's sample_poses() takes
     // every frame's. Their characters, and the features the exemplars compare
     // (EncodedFrame's previous_feature / current_feature), must agree on any timing.
-    host::ToyWorld world = host::make_toy_world();
-    const host::TrainingOptions options = toy_motion_options();
-    auto clips = host::toy_clips(world, 2, 6);
-    const host::ModelData model = host::train_model(clips, options);
-    const ModelView view = model.view();
-    REQUIRE(view.has_motion());
-    std::mt19937_64 rng(5);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    std::size_t compared = 0;
-    for (auto& labelled : clips) {
-        host::Clip& clip = labelled.clip;
-        // Re-time the clip: jitter, repeated times and a gap longer than the span.
-        double t = 0.0;
-        for (std::size_t f = 0; f < clip.frame_count(); ++f) {
-            const double u = unit(rng);
-            t += u < 0.05 ? 0.0 : u < 0.08 ? 0.5 : (0.3 + 1.4 * unit(rng)) / 60.0;
-            clip.times[f] = t;
+    for (const bool acceleration : {false, true}) {
+        CAPTURE(acceleration);
+        host::ToyWorld world = host::make_toy_world();
+        host::TrainingOptions options = toy_motion_options();
+        if (acceleration) options.acceleration_weight = 0.7;
+        auto clips = host::toy_clips(world, 2, 6);
+        const host::ModelData model = host::train_model(clips, options);
+        const ModelView view = model.view();
+        REQUIRE(view.has_motion());
+        REQUIRE(view.has_acceleration() == acceleration);
+        std::mt19937_64 rng(5);
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        std::size_t compared = 0;
+        for (auto& labelled : clips) {
+            host::Clip& clip = labelled.clip;
+            // Re-time the clip: jitter, repeated times and a gap longer than the span.
+            double t = 0.0;
+            for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+                const double u = unit(rng);
+                t += u < 0.05 ? 0.0 : u < 0.08 ? 0.5 : (0.3 + 1.4 * unit(rng)) / 60.0;
+                clip.times[f] = t;
+            }
+            const std::vector<Character> string = host::clip_string(view, clip);
+            const host::EncodedClip encoded = host::encode_clip(view, clip, true);
+            REQUIRE(encoded.string == string);
+            REQUIRE(encoded.features.size() == string.size() * view.feature_dim);
+            CHECK(host::encode_clip(view, clip, false).features.empty());
+            std::vector<float> poses;
+            host::sample_poses(view, clip, 1e6 / view.string_period_us, poses);
+            const std::size_t D = view.input_dim();
+            REQUIRE(poses.size() == string.size() * D);
+            std::vector<float> feature(view.feature_dim);
+            for (std::size_t k = 0; k < string.size(); ++k) {
+                REQUIRE(project_pose(view, poses.data() + k * D, feature.data()) == Status::ok);
+                CHECK(descend_tree(view, feature.data()) == string[k]);
+                CHECK(std::memcmp(feature.data(), &encoded.features[k * view.feature_dim],
+                                  view.feature_dim * sizeof(float)) == 0);
+                ++compared;
+            }
         }
-        const std::vector<Character> string = host::clip_string(view, clip);
-        const host::EncodedClip encoded = host::encode_clip(view, clip, true);
-        REQUIRE(encoded.string == string);
-        REQUIRE(encoded.features.size() == string.size() * view.feature_dim);
-        CHECK(host::encode_clip(view, clip, false).features.empty());
-        std::vector<float> poses;
-        host::sample_poses(view, clip, 1e6 / view.string_period_us, poses);
-        const std::size_t D = view.input_dim();
-        REQUIRE(poses.size() == string.size() * D);
-        std::vector<float> feature(view.feature_dim);
-        for (std::size_t k = 0; k < string.size(); ++k) {
-            REQUIRE(project_pose(view, poses.data() + k * D, feature.data()) == Status::ok);
-            CHECK(descend_tree(view, feature.data()) == string[k]);
-            CHECK(std::memcmp(feature.data(), &encoded.features[k * view.feature_dim],
-                              view.feature_dim * sizeof(float)) == 0);
-            ++compared;
-        }
+        CHECK(compared > 100);
     }
-    CHECK(compared > 100);
 }

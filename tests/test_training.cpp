@@ -663,14 +663,17 @@ TEST_CASE("artifacts round-trip exactly and refuse corruption") {
 namespace {
 
 // A model's artifact as an earlier version wrote it: the version line, and
-// none of the fields added since (version 6: the exemplars).
+// none of the fields added since (version 6: the exemplars; 7: the
+// acceleration's weight).
 std::string older_artifact(const ModelData& model, int version) {
     std::string body;
     const std::string fields = serialize_fields(model);
     for (std::size_t at = 0; at < fields.size();) {
         const std::size_t end = fields.find('\n', at) + 1;
         const std::string line = fields.substr(at, end - at);
-        if (line.find("exemplar") == std::string::npos) body += line;
+        const bool added = (version < 6 && line.find("exemplar") != std::string::npos) ||
+                           (version < 7 && line.find("acceleration_weight") != std::string::npos);
+        if (!added) body += line;
         at = end;
     }
     char checksum[24];
@@ -688,7 +691,20 @@ TEST_CASE("a version-5 artifact (before the exemplars) is read, without exemplar
     // The same lines under the current version lack fields: refused, with the line.
     std::string current = older_artifact(world.model, 5);
     current.replace(0, std::string("actionstring-model 5").size(), "actionstring-model " + std::to_string(artifact_version));
-    CHECK_THROWS_WITH_AS(parse_model("v6.model", current), doctest::Contains("expected 'exemplar_weight'"), ReadError);
+    CHECK_THROWS_WITH_AS(parse_model("v7.model", current), doctest::Contains("expected 'acceleration_weight'"),
+                         ReadError);
+}
+
+TEST_CASE("a version-6 artifact (before the acceleration) is read, without acceleration") {
+    const ToyWorld world = make_toy_world();
+    REQUIRE_FALSE(world.model.view().has_acceleration());
+    const ModelData loaded = parse_model("v6.model", older_artifact(world.model, 6));
+    CHECK(serialize_model(loaded) == serialize_model(world.model));
+    std::string current = older_artifact(world.model, 6);
+    current.replace(0, std::string("actionstring-model 6").size(),
+                    "actionstring-model " + std::to_string(artifact_version));
+    CHECK_THROWS_WITH_AS(parse_model("v7.model", current), doctest::Contains("expected 'acceleration_weight'"),
+                         ReadError);
 }
 
 TEST_CASE("a version-4 artifact (factors component by component) is read and reordered") {

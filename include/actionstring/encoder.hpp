@@ -125,13 +125,14 @@ public:
         if (plan.status == Status::time_went_backwards) return out;
         ready_[current] = false;
         if (model_->has_motion()) {
-            // The velocity only of the frames whose character is due, and
+            // The motion only of the frames whose character is due, and
             // before this frame's pose is kept (motion.hpp: the previous
-            // frame's velocity taken now, after its own keep(), is the same).
+            // frame's motion taken now, after its own keep(), is the same).
             if (plan.status == Status::stream_restarted) motion_.reset();
             times_[current] = time_us;
-            if (plan.from_previous > 0 && !ready_[previous_]) motion_.velocity(*model_, times_[previous_], poses_[previous_]);
-            if (plan.from_current > 0) motion_.velocity(*model_, time_us, poses_[current]);
+            if (plan.from_previous > 0 && !ready_[previous_])
+                motion_.motion(*model_, times_[previous_], poses_[previous_]);
+            if (plan.from_current > 0) motion_.motion(*model_, time_us, poses_[current]);
             motion_.keep(*model_, time_us, poses_[current]);
         }
         if (plan.from_previous > 0) {
@@ -199,12 +200,12 @@ private:
 
     const ModelView* model_ = nullptr;
     StringSampler sampler_;
-    float* poses_[2] = {};  // input_dim() floats each: the pose, then with motion its velocity
+    float* poses_[2] = {};  // input_dim() floats each: the pose, then with motion its velocity and acceleration
     MotionRing motion_;
     float* skeleton_ = nullptr;  // the rebuilt skeleton (bone-length scaling)
     Character characters_[2] = {};
-    bool ready_[2] = {};             // the slot's character (and with motion its velocity) is computed
-    std::int64_t times_[2] = {};     // the slot's frame time (for its velocity)
+    bool ready_[2] = {};          // the slot's character (and its motion, if any) is computed
+    std::int64_t times_[2] = {};  // the slot's frame time (for its motion)
     std::size_t previous_ = 0;
     bool has_previous_ = false;
     Character last_ = 0;

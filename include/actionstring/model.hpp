@@ -115,10 +115,17 @@ struct ModelView {
     /// D, the length of the normalised pose vector.
     constexpr std::size_t pose_dim() const noexcept { return 3u * pose_joint_count; }
     /// Whether the pose's velocity is part of the input (motion.hpp).
-    constexpr bool has_motion() const noexcept { return velocity_weight > 0.0f; }
-    /// Length of what the projection reads: the pose, then with motion its
-    /// weighted velocity (2 D).
-    constexpr std::size_t input_dim() const noexcept { return has_motion() ? 2u * pose_dim() : pose_dim(); }
+    constexpr bool has_velocity() const noexcept { return velocity_weight > 0.0f; }
+    /// Whether the change of that velocity across the span is (motion.hpp).
+    constexpr bool has_acceleration() const noexcept { return acceleration_weight > 0.0f; }
+    /// Whether the input holds any motion, so the motion ring is needed.
+    constexpr bool has_motion() const noexcept { return has_velocity() || has_acceleration(); }
+    /// Length of what the projection reads: the pose (D), then with velocity
+    /// its weighted velocity (D more), then with acceleration its weighted
+    /// acceleration (D more).
+    constexpr std::size_t input_dim() const noexcept {
+        return pose_dim() * (1u + (has_velocity() ? 1u : 0u) + (has_acceleration() ? 1u : 0u));
+    }
     constexpr bool has_projection() const noexcept { return projection_matrix != nullptr; }
     constexpr bool has_gmm() const noexcept { return component_count > 0; }
     /// Whether clip classification adds the characters' label votes to DTW.
@@ -312,6 +319,8 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
     // Motion.
     if (!(m.velocity_weight >= 0.0f && m.velocity_weight <= 1000.0f))
         return refuse(problem, "velocity_weight: negative, non-finite or beyond 1000");
+    if (!(m.acceleration_weight >= 0.0f && m.acceleration_weight <= 1000.0f))
+        return refuse(problem, "acceleration_weight: negative, non-finite or beyond 1000");
     if (m.has_motion() && !(m.velocity_span_us >= 10000 && m.velocity_span_us <= 2000000))
         return refuse(problem, "velocity_span_us: not between 10 ms and 2 s");
     // Projection.

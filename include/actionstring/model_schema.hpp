@@ -46,7 +46,9 @@
     TABLE(std::uint16_t, pose_joints, m.pose_joint_count, 0, 65535) /* joints of the pose vector */       \
     /* --- motion (design §1.1): the pose's velocity beside it, weighted; 0 = none --- */                 \
     SCALAR(float, velocity_weight, 0.0f, 0, 0)                                                            \
-    SCALAR(std::uint32_t, velocity_span_us, 0, 0, 10000000) /* the velocity is taken over about this */   \
+    SCALAR(std::uint32_t, velocity_span_us, 0, 0, 10000000) /* motion is taken over about this */         \
+    /* then the change of the velocity across that span, weighted; 0 = none */                            \
+    SCALAR(float, acceleration_weight, 0.0f, 0, 0)                                                        \
     /* --- optional projection z = P (x - m) (design §1.2) --- */                                         \
     SCALAR(std::uint16_t, feature_dim, 0, 0, 65535)        /* d; input_dim() without PCA */               \
     TABLE(float, projection_mean, (m.has_projection() ? m.input_dim() : 0u), 0, 0)                        \

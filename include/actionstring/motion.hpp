@@ -1,19 +1,26 @@
-// actionstring — stage 1b: the pose's velocity (design.md §1.1).
+// actionstring — stage 1b: the pose's motion (design.md §1.1).
 //
 // A static pose cannot tell raising an arm from lowering it. With motion, the
 // input to the projection is the normalised pose followed by its velocity,
 // weighted: w · (x(t) − x(t − a)) / a, where the earlier pose is the one in a
 // short ring whose age a is nearest to the model's span (and at least half of
-// it). The ring keeps a pose every span / 4 of stream time, so the velocity is
-// measured over time, not frames: frame rate, jitter and dropped frames leave
-// it unchanged. Until the ring holds a pose old enough (a stream's first half
-// span) the velocity is 0. Each component is clamped to ±max_pose_coordinate,
+// it); and, with acceleration, by how much that velocity changed across the
+// span, weighted: w' · ((x(t) − x(t − b)) / b − (x(t − b) − x(t − a)) / (a − b)),
+// the velocity over the span's newer part minus that over its older part,
+// where x(t − b) is the kept pose whose age b is nearest a / 2 (between a / 4
+// and 3a / 4). That is the acceleration times about a / 2, in m/s like the
+// velocity, so the two weights compare. The ring keeps a pose every span / 4
+// of stream time, so motion is measured over time, not frames: frame rate,
+// jitter and dropped frames leave it unchanged, and uneven ages are divided
+// out exactly. Until the ring holds a pose old enough (a stream's first half
+// span) the motion is 0. Each component is clamped to ±max_pose_coordinate,
 // the bound the GMM's overflow check assumes for every input.
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "actionstring/model.hpp"
 #include "actionstring/normalize.hpp"
@@ -26,7 +33,7 @@ namespace actionstring {
 /// span is always within reach.
 constexpr std::size_t motion_ring_poses = 6;
 
-/// Recent poses of one stream, for the velocity. Works in caller-owned
+/// Recent poses of one stream, for its motion. Works in caller-owned
 /// storage (storage.hpp) of required_bytes(model) bytes: none for a model
 /// without motion.
 class MotionRing {
@@ -54,50 +61,61 @@ public:
         next_ = 0;
     }
 
-    /// Writes the velocity of the pose in `input[0, D)` at `time_us` into
-    /// `input[D, 2 D)` (D = model.pose_dim()), then keeps the pose if a
-    /// quarter span has passed since the last one kept: velocity() and keep()
-    /// in one call. The model must have motion and be the one given to init().
+    /// Writes the motion of the pose in `input[0, D)` at `time_us` after it
+    /// (D = model.pose_dim(); the velocity in `input[D, 2 D)` if the model has
+    /// it, then the acceleration in the next D if the model has it), then
+    /// keeps the pose if a quarter span has passed since the last one kept:
+    /// motion() and keep() in one call. The model must have motion and be the
+    /// one given to init().
     void update(const ModelView& model, std::int64_t time_us, float* input) noexcept {
-        velocity(model, time_us, input);
+        motion(model, time_us, input);
         keep(model, time_us, input);
     }
 
-    /// Writes the velocity of the pose in `input[0, D)` at `time_us` into
-    /// `input[D, 2 D)` from the poses kept so far; changes nothing kept.
+    /// Writes the motion of the pose in `input[0, D)` at `time_us` after it
+    /// (as update()) from the poses kept so far; changes nothing kept.
     ///
-    /// A frame's velocity may be asked for after keep() of that frame (and of
+    /// A frame's motion may be asked for after keep() of that frame (and of
     /// no later one) with the same result, bit for bit: the pose just kept is
-    /// younger than half a span, so it is never chosen, and the pose it
-    /// replaced, the oldest of a full ring, never is either (poses are kept at
-    /// least a quarter span apart, so the next oldest is at least a span old,
-    /// younger, and so nearer to the span). The encoder relies on this to take
-    /// the velocity only of frames whose character is asked for.
-    void velocity(const ModelView& model, std::int64_t time_us, float* input) const noexcept {
+    /// 0 s old, younger than half a span and than a quarter of the earliest
+    /// pose's age, so it is never chosen; and the pose it replaced, the oldest
+    /// of a full ring, never is either (poses are kept at least a quarter span
+    /// apart, so the next oldest is at least a span old, younger, and so
+    /// nearer to the span; the middle pose is younger than the earliest one
+    /// used). The encoder relies on this to take the motion only of frames
+    /// whose character is asked for.
+    void motion(const ModelView& model, std::int64_t time_us, float* input) const noexcept {
         const std::size_t D = pose_dim_;
         const std::int64_t span = model.velocity_span_us;
         // The kept pose whose age is nearest the span, among those at least half a span old.
-        std::size_t best = motion_ring_poses;
-        std::int64_t best_error = 0;
-        for (std::size_t k = 0; k < count_; ++k) {
-            const std::int64_t age = time_us - times_[k];
-            if (age < span / 2) continue;
-            const std::int64_t error = age > span ? age - span : span - age;
-            if (best == motion_ring_poses || error < best_error) best = k, best_error = error;
-        }
+        const std::size_t earliest = nearest(time_us, span, span / 2, std::numeric_limits<std::int64_t>::max());
         float* out = input + D;
-        if (best == motion_ring_poses) {
-            for (std::size_t i = 0; i < D; ++i) out[i] = 0.0f;
-        } else {
-            const float per_second = model.velocity_weight / (static_cast<float>(time_us - times_[best]) * 1.0e-6f);
-            const float* earlier = poses_ + best * D;
-            for (std::size_t i = 0; i < D; ++i) {
-                float v = (input[i] - earlier[i]) * per_second;
-                // One comparison for the usual case, within the bound (a
-                // Cortex-M4 then skips two compare-and-selects per value).
-                if (!(std::fabs(v) <= max_pose_coordinate))
-                    v = v > max_pose_coordinate ? max_pose_coordinate : v < -max_pose_coordinate ? -max_pose_coordinate : v;
-                out[i] = v;
+        if (model.has_velocity()) {
+            if (earliest == motion_ring_poses) {
+                zero(out, D);
+            } else {
+                const float* earlier = poses_ + earliest * D;
+                const float per_second =
+                    model.velocity_weight / (static_cast<float>(time_us - times_[earliest]) * 1.0e-6f);
+                for (std::size_t i = 0; i < D; ++i) out[i] = bounded((input[i] - earlier[i]) * per_second);
+            }
+            out += D;
+        }
+        if (model.has_acceleration()) {
+            // The middle pose: age nearest half the earliest's, between a quarter and three quarters of it.
+            const std::int64_t a = earliest == motion_ring_poses ? 0 : time_us - times_[earliest];
+            const std::size_t middle =
+                earliest == motion_ring_poses ? motion_ring_poses : nearest(time_us, a / 2, a / 4, a - a / 4);
+            if (middle == motion_ring_poses) {
+                zero(out, D);
+            } else {
+                const std::int64_t b = time_us - times_[middle];
+                const float* first = poses_ + earliest * D;
+                const float* second = poses_ + middle * D;
+                const float newer = model.acceleration_weight / (static_cast<float>(b) * 1.0e-6f);
+                const float older = model.acceleration_weight / (static_cast<float>(a - b) * 1.0e-6f);
+                for (std::size_t i = 0; i < D; ++i)
+                    out[i] = bounded((input[i] - second[i]) * newer - (second[i] - first[i]) * older);
             }
         }
     }
@@ -118,6 +136,30 @@ public:
     }
 
 private:
+    // The kept pose whose age is nearest `target` among those aged from `low`
+    // to `high` (the first such in ring order on a tie), or motion_ring_poses.
+    std::size_t nearest(std::int64_t time_us, std::int64_t target, std::int64_t low, std::int64_t high) const noexcept {
+        std::size_t best = motion_ring_poses;
+        std::int64_t best_error = 0;
+        for (std::size_t k = 0; k < count_; ++k) {
+            const std::int64_t age = time_us - times_[k];
+            if (age < low || age > high) continue;
+            const std::int64_t error = age > target ? age - target : target - age;
+            if (best == motion_ring_poses || error < best_error) best = k, best_error = error;
+        }
+        return best;
+    }
+    static void zero(float* out, std::size_t n) noexcept {
+        for (std::size_t i = 0; i < n; ++i) out[i] = 0.0f;
+    }
+    // One comparison for the usual case, within the bound (a Cortex-M4 then
+    // skips two compare-and-selects per value).
+    static float bounded(float v) noexcept {
+        if (!(std::fabs(v) <= max_pose_coordinate))
+            v = v > max_pose_coordinate ? max_pose_coordinate : v < -max_pose_coordinate ? -max_pose_coordinate : v;
+        return v;
+    }
+
     struct Plan {
         std::size_t poses = 0, times = 0, bytes = 0;
     };

@@ -161,6 +161,7 @@ std::string write_fields(const ModelData& m) {
 // The format version that added a field (0: every version this build reads).
 // A file of an earlier version lacks the field, which keeps its initial value.
 int field_since(std::string_view name) {
+    if (name == "acceleration_weight") return 7;
     return name.find("exemplar") != std::string_view::npos ? 6 : 0;
 }
 
@@ -231,7 +232,8 @@ ModelData parse_model(const std::string& name, std::string_view text) {
         scanner.fail("not an actionstring model (expected 'actionstring-model <version>')");
     // Version 4 differs only in the order of gmm_factors (component by
     // component); it is read and reordered, and version 5 lacks only the
-    // exemplars (field_since()), so a model trained before keeps working.
+    // exemplars and 6 the acceleration's weight (field_since()), so a model
+    // trained before keeps working.
     int version = 0;
     for (int v = 4; v <= artifact_version; ++v)
         if (magic[1] == std::to_string(v)) version = v;

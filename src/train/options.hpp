@@ -41,8 +41,12 @@ struct TrainingOptions {
     /// Also train on every clip mirrored (left and right swapped): for data
     /// whose classes are not lateral, so left- and right-handed people match.
     bool mirror = false;
-    /// Time the velocity is taken over, in seconds (10 ms to 2 s).
+    /// Time the velocity is taken over, in seconds (10 ms to 2 s); the
+    /// acceleration too.
     double velocity_span_s = 0.2;
+    /// Weight of the change of that velocity across the span (motion.hpp),
+    /// after the velocity; 0 = none.
+    double acceleration_weight = 0.0;
     /// The joints the model reads (names; the root and hips are added). Empty:
     /// an engine rig's built-in body joints, or every joint of other skeletons
     /// (select_pose_joints() in run/skeleton.hpp).

@@ -71,6 +71,8 @@ void check_options(const TrainingOptions& o) {
     require(o.max_characters >= 1 && o.max_characters <= 4096, "the character limit must be between 1 and 4096");
     require(o.velocity_weight >= 0 && o.velocity_weight <= 1000, "the velocity weight must be between 0 and 1000");
     require(o.velocity_span_s >= 0.01 && o.velocity_span_s <= 2, "the velocity span must be between 0.01 and 2 s");
+    require(o.acceleration_weight >= 0 && o.acceleration_weight <= 1000,
+            "the acceleration weight must be between 0 and 1000");
     require(o.vote_weight >= 0 && o.vote_weight <= 1000, "the vote weight must be between 0 and 1000");
     require(o.vote_smoothing >= 1e-6 && o.vote_smoothing <= 1e3, "the vote smoothing must be between 1e-6 and 1000");
     require(o.exemplars >= 0 && o.exemplars <= 4096, "exemplars per label must be between 0 and 4096");
@@ -183,8 +185,9 @@ ModelData start_model(const std::vector<LabelledClip>& clips, const TrainingOpti
     m.up_axis = static_cast<std::uint8_t>(first.up_axis);
     for (std::size_t j = 0; j < first.joint_count(); ++j)
         if (static_cast<int>(j) != first.roles.root) m.pose_joints.push_back(static_cast<std::uint16_t>(j));
-    // The model stores dimensions in 16 bits: the input (pose and velocity, 6 per joint) must fit.
-    constexpr std::size_t most_pose_joints = 65535 / 6;
+    // The model stores dimensions in 16 bits: the input (pose, velocity and
+    // acceleration, 9 per joint) must fit.
+    constexpr std::size_t most_pose_joints = 65535 / 9;
     if (m.pose_joints.size() > most_pose_joints)
         throw std::invalid_argument("the skeleton has " + std::to_string(m.pose_joints.size()) +
                                     " joints besides the root; at most " + std::to_string(most_pose_joints) +
@@ -192,8 +195,10 @@ ModelData start_model(const std::vector<LabelledClip>& clips, const TrainingOpti
     m.scale_mode = options.scale_mode;
     if (uses_kinematic_tree(options.scale_mode)) set_bones(m, clips);
     m.velocity_weight = static_cast<float>(options.velocity_weight);
-    m.velocity_span_us =
-        options.velocity_weight > 0 ? static_cast<std::uint32_t>(std::lround(options.velocity_span_s * 1e6)) : 0u;
+    m.acceleration_weight = static_cast<float>(options.acceleration_weight);
+    m.velocity_span_us = options.velocity_weight > 0 || options.acceleration_weight > 0
+                             ? static_cast<std::uint32_t>(std::lround(options.velocity_span_s * 1e6))
+                             : 0u;
     if (options.scale_mode == ScaleMode::hip_width) {
         m.reference_scale = static_cast<float>(median_hip_width(first));
         if (!(m.reference_scale > 0)) throw std::invalid_argument("hip width is zero: cannot scale by it");

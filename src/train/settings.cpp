@@ -123,6 +123,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "pose-joints") o.pose_joints = joint_list(name, value);
     else if (name == "velocity") o.velocity_weight = num(0, 1000);
     else if (name == "velocity-span") o.velocity_span_s = num(0.01, 2);
+    else if (name == "acceleration") o.acceleration_weight = num(0, 1000);
     else if (name == "epsilon") o.epsilon = num(1e-9, 1e9);
     else if (name == "max-characters") o.max_characters = static_cast<int>(num(1, 4096));
     else if (name == "string-rate") o.string_rate_hz = num(1, 1000);
@@ -186,6 +187,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "pose-joints",
                                                 "velocity",
                                                 "velocity-span",
+                                                "acceleration",
                                                 "epsilon",
                                                 "max-characters",
                                                 "string-rate",
