@@ -59,6 +59,11 @@ TEST_CASE("self-tuning is deterministic and keeps a setting only when its folds 
     const std::string config = options_as_config(a.options);
     for (const char* line : {"components 0\n", "keep-singletons true\n", "variant whole\n"})
         CHECK(config.find(line) != std::string::npos);
+    // The acceleration's weight is searched and echoed with the rest.
+    bool tried_acceleration = false;
+    for (const TuningStep& step : a.steps) tried_acceleration |= step.setting == "acceleration 0.5";
+    CHECK(tried_acceleration);
+    CHECK(config.find("\nacceleration ") != std::string::npos);
     // The toy skeleton has parents: size is normalised by the torso, never searched.
     CHECK(a.options.scale_mode == actionstring::ScaleMode::torso);
     CHECK(config.find("scale torso\n") != std::string::npos);

@@ -44,10 +44,13 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
     const bool has_parents = !clips.empty() && clips.front().clip.parents.size() == clips.front().clip.joint_count();
     std::vector<Axis> axes{
         {"velocity", {0.0, 0.5, 1.0, 2.0}, [](TrainingOptions& o, double v) { o.velocity_weight = v; }},
+        // One weight: the folds of the shared lists favour 0.5 where the
+        // acceleration helps at all (models/README.md, "Acceleration").
+        {"acceleration", {0.5}, [](TrainingOptions& o, double v) { o.acceleration_weight = v; }},
         {"velocity-span",
          {0.2, 0.4, 0.6},
          [](TrainingOptions& o, double v) { o.velocity_span_s = v; },
-         [](const TrainingOptions& o) { return o.velocity_weight > 0; }},
+         [](const TrainingOptions& o) { return o.velocity_weight > 0 || o.acceleration_weight > 0; }},
         {"mirror", {0.0, 1.0}, [](TrainingOptions& o, double v) { o.mirror = v > 0; }},
         {"string-rate", {8.0, 12.0, 15.0, 20.0}, [](TrainingOptions& o, double v) { o.string_rate_hz = v; }},
         {"epsilon", {0.5, 0.7, 1.0}, [](TrainingOptions& o, double v) { o.epsilon = v; }},
@@ -70,7 +73,8 @@ TuningResult tune_training(const std::vector<LabelledClip>& clips, const Trainin
     // The PCA dimension never exceeds the input's (a small skeleton, no velocity).
     const std::size_t pose_dim = clips.empty() ? 0 : 3 * (clips.front().clip.joint_count() - 1);
     auto fitted = [pose_dim](TrainingOptions o) {
-        const std::size_t input_dim = o.velocity_weight > 0 ? 2 * pose_dim : pose_dim;
+        const std::size_t input_dim =
+            pose_dim * (1u + (o.velocity_weight > 0 ? 1u : 0u) + (o.acceleration_weight > 0 ? 1u : 0u));
         if (static_cast<std::size_t>(o.pca_dim) > input_dim) o.pca_dim = static_cast<int>(input_dim);
         return o;
     };
@@ -129,16 +133,16 @@ std::string options_as_config(const TrainingOptions& o) {
     std::ostringstream out;
     out << "components " << o.components << "\ncovariance " << covariance[static_cast<int>(o.covariance)] << "\npca "
         << o.pca_dim << "\nscale " << scale[static_cast<int>(o.scale_mode)] << "\nvelocity "
-        << number(o.velocity_weight) << "\nvelocity-span " << number(o.velocity_span_s) << "\nepsilon "
-        << number(o.epsilon) << "\nstring-rate " << number(o.string_rate_hz) << "\nvariant "
-        << variant[static_cast<int>(o.variant)] << "\nnormalization "
+        << number(o.velocity_weight) << "\nvelocity-span " << number(o.velocity_span_s) << "\nacceleration "
+        << number(o.acceleration_weight) << "\nepsilon " << number(o.epsilon) << "\nstring-rate "
+        << number(o.string_rate_hz) << "\nvariant " << variant[static_cast<int>(o.variant)] << "\nnormalization "
         << normalization[static_cast<int>(o.normalization)] << "\nsigma " << number(o.sigma) << "\nkeep-singletons "
         << (o.keep_singletons ? "true" : "false") << "\nmirror " << (o.mirror ? "true" : "false") << "\nneighbours "
-        << o.neighbours << "\nvote-weight " << number(o.vote_weight) << "\nvote-smoothing "
-        << number(o.vote_smoothing) << "\nseed " << o.seed << "\nsettle " << number(us_to_seconds(o.online.settle_delay_us))
-        << "\nsegment-penalty " << number(o.online.segment_penalty) << "\nstay-penalty "
-        << number(o.online.stay_penalty) << "\nskip-penalty " << number(o.online.skip_penalty) << "\nunknown-cost "
-        << number(o.online.unknown_cost) << "\nsegment-votes " << number(o.online.vote_weight) << "\n";
+        << o.neighbours << "\nvote-weight " << number(o.vote_weight) << "\nvote-smoothing " << number(o.vote_smoothing)
+        << "\nseed " << o.seed << "\nsettle " << number(us_to_seconds(o.online.settle_delay_us)) << "\nsegment-penalty "
+        << number(o.online.segment_penalty) << "\nstay-penalty " << number(o.online.stay_penalty) << "\nskip-penalty "
+        << number(o.online.skip_penalty) << "\nunknown-cost " << number(o.online.unknown_cost) << "\nsegment-votes "
+        << number(o.online.vote_weight) << "\n";
     if (o.max_representative_chars > 0) out << "max-representative-chars " << o.max_representative_chars << "\n";
     if (o.reject) out << "reject true\nreject-keep " << number(o.reject_keep) << "\n";
     if (o.exemplars > 0) out << "exemplars " << o.exemplars << "\nexemplar-weight " << number(o.exemplar_weight) << "\n";
