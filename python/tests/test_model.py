@@ -41,6 +41,20 @@ def test_learned_rejection_keeps_the_toy_performances(toy_clips):
     assert kept >= 0.9 * len(toy_clips)
 
 
+def test_motion_settings_reach_the_model(toy_clips):
+    # Velocity and acceleration each add a pose's length to what the projection reads.
+    still = actionstring.train(toy_clips, **dict(TOY_SETTINGS, velocity=0.0))
+    moving = actionstring.train(toy_clips, **dict(TOY_SETTINGS, velocity=1.0, velocity_span=0.3, acceleration=0.5))
+    assert "velocity 1\nvelocity-span 0.3\nacceleration 0.5" in moving.training_report["settings"]
+    assert "\nacceleration_weight 0x1p-1\n" in moving._native.artifact()
+    assert "\nacceleration_weight 0x0p+0\n" in still._native.artifact()
+    assert moving.table_bytes > still.table_bytes  # the projection reads three poses' worth
+    result = moving.classify(toy_clips[5])
+    assert result.label is not None and np.isfinite(result.distance)
+    with pytest.raises(ValueError, match="acceleration"):
+        actionstring.train(toy_clips, **dict(TOY_SETTINGS, acceleration=-1.0))
+
+
 def test_settings_are_checked(toy_clips):
     with pytest.raises(ValueError, match="unknown training setting 'pcaa'"):
         actionstring.train(toy_clips, pcaa=3)
