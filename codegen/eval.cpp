@@ -82,7 +82,12 @@ void print_online(const char* rule, const host::OnlineResults& r) {
 }
 
 void print_results(const host::ClipResults& r) {
-    std::printf("  %-44s clip accuracy %.3f, unknown %.3f\n", r.method.c_str(), r.clip_accuracy, r.unknown_rate);
+    std::printf("  %-44s clip accuracy %.3f (95%% %.3f-%.3f), unknown %.3f\n", r.method.c_str(), r.clip_accuracy,
+                r.accuracy_interval.low, r.accuracy_interval.high, r.unknown_rate);
+    if (r.paired)
+        std::printf(
+            "  %-44s   paired with the model: the model alone right on %zu clips, this alone on %zu; McNemar p %.3f\n",
+            "", r.model_only, r.method_only, r.mcnemar_p);
 }
 
 using host::Evaluation;

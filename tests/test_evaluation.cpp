@@ -8,6 +8,7 @@
 #include "eval/clip_eval.hpp"
 #include "eval/json.hpp"
 #include "eval/online.hpp"
+#include "eval/significance.hpp"
 #include "run/stream_labels.hpp"
 #include "toy/toy.hpp"
 #include "toy_options.hpp"
@@ -37,6 +38,73 @@ TEST_CASE("accuracy, unknown rate, confusion, precision and recall") {
     CHECK(json.find("\"b\": {\"precision\": 0.5, \"recall\": 0.5, \"support\": 2}") != std::string::npos);
     CHECK(std::count(json.begin(), json.end(), '{') == std::count(json.begin(), json.end(), '}'));
     CHECK(std::count(json.begin(), json.end(), '[') == std::count(json.begin(), json.end(), ']'));
+}
+
+TEST_CASE("the 95% Wilson interval of an accuracy, against published values") {
+    // 0 of 10: the upper end is z² / (n + z²); 5 of 10 and 42 of 44 (HDM05 val's size).
+    const Interval none = wilson_interval(0, 10);
+    CHECK(none.low == 0.0);
+    CHECK(none.high == doctest::Approx(0.27753).epsilon(1e-4));
+    const Interval all = wilson_interval(10, 10);
+    CHECK(all.low == doctest::Approx(0.72247).epsilon(1e-4));
+    CHECK(all.high == 1.0);
+    const Interval half = wilson_interval(5, 10);
+    CHECK(half.low == doctest::Approx(0.23659).epsilon(1e-4));
+    CHECK(half.high == doctest::Approx(0.76341).epsilon(1e-4));
+    const Interval hdm05 = wilson_interval(42, 44);
+    CHECK(hdm05.low == doctest::Approx(0.8487).epsilon(1e-3));
+    CHECK(hdm05.high == doctest::Approx(0.9874).epsilon(1e-3));
+    // No trials: nothing is known. More trials: a narrower interval around the same rate.
+    CHECK(wilson_interval(0, 0).low == 0.0);
+    CHECK(wilson_interval(0, 0).high == 1.0);
+    const Interval many = wilson_interval(500, 1000);
+    CHECK(many.high - many.low < half.high - half.low);
+    CHECK(many.low < 0.5);
+    CHECK(many.high > 0.5);
+}
+
+TEST_CASE("the exact McNemar test: binomial tails by hand, symmetric, sane at scale") {
+    // 5 against 1: 2 · (C(6,0) + C(6,1)) / 2⁶ = 14 / 64; 6 against 0: 2 / 64.
+    CHECK(mcnemar_exact_p(5, 1) == doctest::Approx(14.0 / 64.0));
+    CHECK(mcnemar_exact_p(1, 5) == doctest::Approx(14.0 / 64.0));
+    CHECK(mcnemar_exact_p(6, 0) == doctest::Approx(2.0 / 64.0));
+    CHECK(mcnemar_exact_p(0, 0) == 1.0);
+    CHECK(mcnemar_exact_p(3, 3) == 1.0);
+    CHECK(mcnemar_exact_p(1, 0) == 1.0);
+    // 100 against 50: the normal approximation with continuity, (|b − c| − 1)² / (b + c) = 16.0,
+    // gives about 6e-5; the exact tail is of that order and neither overflows nor vanishes.
+    const double p = mcnemar_exact_p(100, 50);
+    CHECK(p > 1e-5);
+    CHECK(p < 2e-4);
+    const double huge = mcnemar_exact_p(60000, 40000);
+    CHECK(huge >= 0.0);
+    CHECK(huge < 1e-100);
+    CHECK(mcnemar_exact_p(50000, 50000) == 1.0);
+}
+
+TEST_CASE("a baseline is paired with the model clip by clip") {
+    std::vector<LabelledClip> clips(6);
+    for (std::size_t c = 0; c < clips.size(); ++c) clips[c].label = c < 3 ? "a" : "b";
+    ClipResults model, baseline;
+    model.labels = baseline.labels = {"a", "b"};
+    model.predictions = {0, 0, 1, 1, 1, -1};    // right on 0, 1, 3, 4
+    baseline.predictions = {0, 1, 1, 1, 0, 1};  // right on 0, 3, 5
+    summarise(model, clips);
+    summarise(baseline, clips);
+    CHECK(model.correct == 4);
+    CHECK(model.accuracy_interval.low < model.clip_accuracy);
+    CHECK(model.accuracy_interval.high > model.clip_accuracy);
+    compare_with_model(model, baseline, clips);
+    CHECK(baseline.paired);
+    CHECK(baseline.model_only == 2);   // clips 1 and 4
+    CHECK(baseline.method_only == 1);  // clip 5
+    CHECK(baseline.mcnemar_p == doctest::Approx(mcnemar_exact_p(2, 1)));
+    JsonWriter writer;
+    write_json(writer, baseline, clips);
+    const std::string json = writer.str();
+    CHECK(json.find("\"paired_with_model\": {\"model_only\": 2, \"baseline_only\": 1, \"mcnemar_p\": 1}") !=
+          std::string::npos);
+    CHECK(json.find("\"clip_accuracy_ci95\": [") != std::string::npos);
 }
 
 TEST_CASE("the model and every baseline recognise held-out toy performances") {

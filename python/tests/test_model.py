@@ -87,6 +87,13 @@ def test_evaluate_on_toy_clips(toy_model, toy_clips):
     report = toy_model.evaluate(toy_clips, train=toy_clips, online=True)
     assert report["clip_accuracy"] == pytest.approx(1.0)
     assert len(report["baselines"]) == 3
+    low, high = report["clip_accuracy_ci95"]
+    assert 0.0 <= low <= report["clip_accuracy"] <= high <= 1.0
+    assert report["correct"] == len(toy_clips)
+    for baseline in report["baselines"]:  # each paired with the model on the same clips
+        paired = baseline["paired_with_model"]
+        assert paired["model_only"] + paired["baseline_only"] <= len(toy_clips)
+        assert 0.0 < paired["mcnemar_p"] <= 1.0
     assert 0.0 <= report["online"]["settled"]["frame_accuracy"] <= 1.0
     assert report["perturbation"] == "none"
 

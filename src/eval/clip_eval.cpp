@@ -43,6 +43,8 @@ void summarise(ClipResults& r, const std::vector<LabelledClip>& clips) {
     }
     const double n = clips.empty() ? 1.0 : static_cast<double>(clips.size());
     r.clip_accuracy = right / n;
+    r.correct = static_cast<std::size_t>(right);
+    r.accuracy_interval = wilson_interval(r.correct, clips.size());
     r.unknown_rate = unknown / n;
     r.precision.assign(L, 0.0);
     r.recall.assign(L, 0.0);
@@ -53,6 +55,18 @@ void summarise(ClipResults& r, const std::vector<LabelledClip>& clips) {
         if (predicted_as > 0) r.precision[l] = static_cast<double>(r.confusion[l][l]) / predicted_as;
         if (support > 0) r.recall[l] = static_cast<double>(r.confusion[l][l]) / support;
     }
+}
+
+void compare_with_model(const ClipResults& model, ClipResults& baseline, const std::vector<LabelledClip>& clips) {
+    baseline.model_only = baseline.method_only = 0;
+    for (std::size_t c = 0; c < clips.size() && c < model.predictions.size() && c < baseline.predictions.size(); ++c) {
+        const bool model_right = model.predictions[c] == label_index(model.labels, clips[c].label);
+        const bool baseline_right = baseline.predictions[c] == label_index(baseline.labels, clips[c].label);
+        baseline.model_only += model_right && !baseline_right;
+        baseline.method_only += baseline_right && !model_right;
+    }
+    baseline.mcnemar_p = mcnemar_exact_p(baseline.model_only, baseline.method_only);
+    baseline.paired = true;
 }
 
 ClipResults evaluate_model(const ModelView& model, const std::vector<LabelledClip>& clips) {

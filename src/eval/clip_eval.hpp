@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "actionstring/model.hpp"
+#include "eval/significance.hpp"
 #include "io/clip_list.hpp"
 
 namespace actionstring {
@@ -18,8 +19,16 @@ struct ClipResults {
     std::vector<std::vector<int>> confusion;  ///< [true][predicted]; the last column counts "unknown".
     std::vector<int> predictions;             ///< Per clip: index into labels, or −1 for unknown.
     double clip_accuracy = 0;
+    std::size_t correct = 0;     ///< Clips predicted as their own label.
+    Interval accuracy_interval;  ///< 95% Wilson interval of clip_accuracy (significance.hpp).
     double unknown_rate = 0;
     std::vector<double> precision, recall;  ///< Per label (NaN-free: 0 when undefined).
+    /// A baseline against the model's own method on the same clips (paired;
+    /// compare_with_model()): the clips only the model gets right, those only
+    /// this method gets right, and the exact McNemar p of that difference.
+    bool paired = false;
+    std::size_t model_only = 0, method_only = 0;
+    double mcnemar_p = 1.0;
 };
 
 /// Results of `method` ready for predictions: the model's labels, then every
@@ -29,8 +38,12 @@ ClipResults start_results(const std::string& method, const ModelView& model, con
 /// Index of `label` in `labels` (labels.size() when absent).
 int label_index(const std::vector<std::string>& labels, const std::string& label);
 
-/// Fills accuracy, unknown rate, precision and recall from predictions.
+/// Fills accuracy (with its interval), unknown rate, precision and recall from predictions.
 void summarise(ClipResults& results, const std::vector<LabelledClip>& clips);
+
+/// Pairs a baseline's predictions with the model's on the same clips:
+/// model_only, method_only and mcnemar_p of `baseline`.
+void compare_with_model(const ClipResults& model, ClipResults& baseline, const std::vector<LabelledClip>& clips);
 
 /// The model's own method: each clip's string (runtime encoder) against the
 /// representatives (runtime batch distance, kNN).

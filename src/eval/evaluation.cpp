@@ -60,6 +60,7 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
         e.results.push_back(evaluate_all_strings(view, train, e.clips));
         e.results.push_back(evaluate_pca_characters(view, train, e.clips));
         e.results.push_back(evaluate_pose_dtw(view, train, e.clips));
+        for (std::size_t i = 1; i < e.results.size(); ++i) compare_with_model(e.results.front(), e.results[i], e.clips);
     }
     e.frame_ns = annotator_frame_times(view, e.clips);
     e.online = online;

@@ -8,7 +8,16 @@ void write_fields(JsonWriter& out, const ClipResults& r, const std::vector<Label
     out.field("method", r.method)
         .field("clips", clips.size())
         .field("clip_accuracy", r.clip_accuracy)
+        .field("correct", r.correct)
         .field("unknown_rate", r.unknown_rate);
+    out.key("clip_accuracy_ci95").array(std::vector<double>{r.accuracy_interval.low, r.accuracy_interval.high});
+    if (r.paired)
+        out.key("paired_with_model")
+            .begin_object()
+            .field("model_only", r.model_only)
+            .field("baseline_only", r.method_only)
+            .field("mcnemar_p", r.mcnemar_p)
+            .end_object();
     out.key("labels").array(r.labels);
     out.key("confusion").begin_array();
     for (const std::vector<int>& row : r.confusion) out.array(row);

@@ -158,10 +158,17 @@ void write_report(const std::string& dir, const std::string& title, const std::v
         throw std::runtime_error("cannot create the folder " + dir);
     std::ostringstream md;
     md.precision(3);
-    md << std::fixed << "# " << title
-       << "\n\n## Clip recognition\n\n| method | clip accuracy | unknown |\n|---|---:|---:|\n";
-    for (const ClipResults& r : clip_results)
-        md << "| " << r.method << " | " << r.clip_accuracy << " | " << r.unknown_rate << " |\n";
+    md << std::fixed << "# " << title << "\n\n## Clip recognition\n\n"
+       << "The interval is the 95% Wilson interval of the accuracy; a baseline's last column counts the clips\n"
+       << "only the model gets right and only the baseline does, with the exact McNemar p of that difference\n"
+       << "(small: the two really differ on such clips).\n\n"
+       << "| method | clip accuracy | 95% interval | unknown | paired with the model |\n|---|---:|---:|---:|---|\n";
+    for (const ClipResults& r : clip_results) {
+        md << "| " << r.method << " | " << r.clip_accuracy << " | " << r.accuracy_interval.low << "–"
+           << r.accuracy_interval.high << " | " << r.unknown_rate << " | ";
+        if (r.paired) md << r.model_only << " / " << r.method_only << ", p " << r.mcnemar_p;
+        md << " |\n";
+    }
     if (!clip_results.empty()) {
         write_file(dir + "/confusion.svg", confusion_svg(clip_results.front()));
         md << "\n![confusion matrix](confusion.svg)\n";
