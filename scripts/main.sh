@@ -50,17 +50,19 @@ run() {
     local header_accuracy
     header_accuracy=$(jq -r '.clip_accuracy' "$out/${name}_header_eval.json")
     echo "  evaluator built against the generated header: clip accuracy $header_accuracy"
-    # One table row: | title | clip | header | all strings | PCA-only | DTW | settled | window | bytes | ns | s |
+    # One table row: | title | clip (95% interval) | header | all strings | PCA-only | DTW (McNemar p against
+    # the model on the same clips) | settled | window | bytes | ns | s |
     rows+=("$(jq -r -n --arg title "$title" \
         --slurpfile e "$out/${name}_eval.json" --slurpfile t "$out/${name}_train.json" \
         --slurpfile h "$out/${name}_header_eval.json" '
-        def acc(method): [$e[0].baselines[] | select(.method == method) | .clip_accuracy][0];
-        [$title, $e[0].clip_accuracy, $h[0].clip_accuracy, acc("1-NN over all training strings"),
-         acc("1-NN, PCA-only characters (no GMM)"), acc("DTW 1-NN on normalised poses"),
+        def base(method): [$e[0].baselines[] | select(.method == method)][0];
+        [$title, $e[0].clip_accuracy, $e[0].clip_accuracy_ci95[0], $e[0].clip_accuracy_ci95[1], $h[0].clip_accuracy,
+         base("1-NN over all training strings").clip_accuracy, base("1-NN, PCA-only characters (no GMM)").clip_accuracy,
+         base("DTW 1-NN on normalised poses").clip_accuracy, base("DTW 1-NN on normalised poses").paired_with_model.mcnemar_p,
          $e[0].online.settled.frame_accuracy, $e[0].online.latest_window.frame_accuracy,
          $t[0].table_bytes, $e[0].frame_time_ns.median, $t[0].stage_seconds.total] | @tsv' |
-        awk -F'\t' '{ printf "| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %d | %.0f | %.2f |", \
-                       $1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11 }')")
+        awk -F'\t' '{ printf "| %s | %.3f (%.3f–%.3f) | %.3f | %.3f | %.3f | %.3f (p %.3f) | %.3f | %.3f | %d | %.0f | %.2f |", \
+                       $1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14 }')")
     # One row of the online table: the streams as the field judges them, beside the trivial baseline.
     online_rows+=("$(jq -r -n --arg title "$title" --slurpfile e "$out/${name}_eval.json" '
         $e[0].online as $o | $o.settled as $s |
@@ -102,7 +104,7 @@ if [ -f "$data/utkinect/actionLabel.txt" ]; then
         "$root/models/utkinect.config"
 fi
 
-echo "| evaluation | clip accuracy | same, generated header | 1-NN all strings | 1-NN PCA-only characters | DTW 1-NN | online frames (settled) | online (paper's window rule) | model table bytes | per frame median | training |"
+echo "| evaluation | clip accuracy (95% interval) | same, generated header | 1-NN all strings | 1-NN PCA-only characters | DTW 1-NN (McNemar p against the model) | online frames (settled) | online (paper's window rule) | model table bytes | per frame median | training |"
 echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 printf '%s\n' "${rows[@]}"
 echo
