@@ -5,8 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "eval/online.hpp"
 #include "toy/toy.hpp"
+#include "train/cross_validation.hpp"
 #include "train/online_tuning.hpp"
+#include "train/pipeline.hpp"
 #include "train/settings.hpp"
 #include "train/tuning.hpp"
 
@@ -120,6 +123,27 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
         for (const OnlineTuningStep& other : a.steps) CHECK(other.segment_f1 <= a.steps[i].segment_f1);
     }
     CHECK(kept == 1);
+    // Each setting's figure is the mean over the folds and over the orders the
+    // held-out clips are joined in: the first setting, recomputed by hand.
+    const auto folds = subject_folds(clips, tuning_max_folds);
+    REQUIRE(folds.size() == 3);
+    double f1 = 0, frames = 0;
+    for (const auto& held : folds) {
+        std::vector<LabelledClip> train, test;
+        for (const LabelledClip& c : clips) (c.subject == held.front() ? test : train).push_back(c);
+        REQUIRE(held.size() == 1);
+        const ModelData model = train_model(train, options);
+        actionstring::AnnotatorConfig config = actionstring::annotator_config(model.view());
+        config.segmenter = a.steps[0].config;
+        for (int order = 1; order <= online_tuning_orders; ++order) {
+            const OnlineReport report = evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), config);
+            f1 += report.settled.segment_f1;
+            frames += report.settled.frame_accuracy;
+        }
+    }
+    const double n = static_cast<double>(folds.size()) * online_tuning_orders;
+    CHECK(a.steps[0].segment_f1 == doctest::Approx(f1 / n).epsilon(1e-12));
+    CHECK(a.steps[0].frame_accuracy == doctest::Approx(frames / n).epsilon(1e-12));
     // One subject: nothing to hold out, the given settings come back.
     std::vector<LabelledClip> one = clips;
     for (LabelledClip& c : one) c.subject = "s";

@@ -76,13 +76,19 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
         const std::vector<LabelledClip> no_action = unlabelled_stretches(train_recordings, min_no_action_seconds);
         const ModelData model = train_model(train, options, nullptr, &no_action);
         const ModelView view = model.view();
+        // Recordings are streamed as they are; joined clips in several orders.
+        const int orders = recordings != nullptr ? 1 : online_tuning_orders;
+        const double share = 1.0 / static_cast<double>(folds.size() * static_cast<std::size_t>(orders));
         for (OnlineTuningStep& step : steps) {
             AnnotatorConfig config = annotator_config(view);
             config.segmenter = step.config;
-            const OnlineReport report = recordings != nullptr ? evaluate_recordings(view, test_recordings, config)
-                                                              : evaluate_online(view, test, 1, config);
-            step.segment_f1 += report.settled.segment_f1 / static_cast<double>(folds.size());
-            step.frame_accuracy += report.settled.frame_accuracy / static_cast<double>(folds.size());
+            for (int order = 1; order <= orders; ++order) {
+                const OnlineReport report =
+                    recordings != nullptr ? evaluate_recordings(view, test_recordings, config)
+                                          : evaluate_online(view, test, static_cast<std::uint32_t>(order), config);
+                step.segment_f1 += report.settled.segment_f1 * share;
+                step.frame_accuracy += report.settled.frame_accuracy * share;
+            }
         }
     }
     std::size_t best = 0;
