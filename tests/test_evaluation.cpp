@@ -71,6 +71,8 @@ TEST_CASE("the exact McNemar test: binomial tails by hand, symmetric, sane at sc
     CHECK(mcnemar_exact_p(0, 0) == 1.0);
     CHECK(mcnemar_exact_p(3, 3) == 1.0);
     CHECK(mcnemar_exact_p(1, 0) == 1.0);
+    CHECK(mcnemar_exact_p(3, 2) == 1.0);  // exactly, not 1 less rounding
+    CHECK(mcnemar_exact_p(4, 2) == doctest::Approx(2.0 * 22.0 / 64.0));  // 2 · (1 + 6 + 15) / 2⁶
     // 100 against 50: the normal approximation with continuity, (|b − c| − 1)² / (b + c) = 16.0,
     // gives about 6e-5; the exact tail is of that order and neither overflows nor vanishes.
     const double p = mcnemar_exact_p(100, 50);

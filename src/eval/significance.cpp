@@ -28,7 +28,9 @@ Interval wilson_interval(std::size_t successes, std::size_t trials) {
 double mcnemar_exact_p(std::size_t only_first, std::size_t only_second) {
     const std::size_t n = only_first + only_second;
     const std::size_t k = std::min(only_first, only_second);
-    if (n == 0) return 1.0;
+    // With the smaller count at least (n − 1) / 2 the tail holds half the
+    // mass or more, so p is 1 exactly (rather than 1 less rounding).
+    if (2 * k + 1 >= n) return 1.0;
     // P(X ≤ k) for X ~ Binomial(n, 1/2), term by term in logarithms so that
     // thousands of disagreements neither overflow nor underflow to nonsense.
     const double log_half_n = -static_cast<double>(n) * std::log(2.0);
