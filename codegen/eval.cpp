@@ -74,11 +74,12 @@ void print_online(const char* rule, const host::OnlineResults& r) {
                 r.flicker_per_min);
     if (r.has_events)
         std::printf(
-            "  %-28s %zu actions reported, %zu matched (event F1 %.3f), detection latency %.2f s,\n"
-            "  %-28s start error %.2f s (bias %+.2f), end error %.2f s (bias %+.2f), %.2f false events per %s\n",
-            "  events (once per action)", r.events, r.matched_events, r.event_f1, r.detection_latency_s, "",
-            r.start_error_s, r.start_bias_s, r.end_error_s, r.end_bias_s, r.false_events_per_min,
-            r.false_events_per_stream_min ? "minute of stream" : "minute of no action");
+            "  %-28s %zu actions reported, %zu matched (event F1 %.3f; as segments, IoU >= 0.5: %zu, F1 %.3f),\n"
+            "  %-28s detection latency %.2f s, start error %.2f s (bias %+.2f), end error %.2f s (bias %+.2f),\n"
+            "  %-28s %.2f false events per %s\n",
+            "  events (once per action)", r.events, r.matched_events, r.event_f1, r.iou_matched_events,
+            r.event_segment_f1, "", r.detection_latency_s, r.start_error_s, r.start_bias_s, r.end_error_s, r.end_bias_s,
+            "", r.false_events_per_min, r.false_events_per_stream_min ? "minute of stream" : "minute of no action");
 }
 
 void print_results(const host::ClipResults& r) {

@@ -293,6 +293,9 @@ TEST_CASE("frame F1, the trivial baseline and the event metrics on a timeline sc
     CHECK(r.end_error_s == doctest::Approx(0.0));
     CHECK(r.start_bias_s == doctest::Approx(1.0));  // one action, reported 1 s late
     CHECK(r.end_bias_s == doctest::Approx(0.0));
+    // As segments: action 0's 5-9 s against the true 4-9 s is IoU 4 / 5; the false one overlaps nothing.
+    CHECK(r.iou_matched_events == 1);
+    CHECK(r.event_segment_f1 == doctest::Approx(2.0 * 1 / (2 + 2)));
     {
         // One action reported a second early, the other a second late: the
         // error is 1 s, the bias (what a constant offset would fix) none.
@@ -305,6 +308,10 @@ TEST_CASE("frame F1, the trivial baseline and the event metrics on a timeline sc
         }};
         host::score_events(both, truth, times, starts, early_and_late);
         CHECK(both.matched_events == 2);
+        // Both overlap their action, but only the first is a segment of it:
+        // 3-10 s against 4-9 s is IoU 5 / 7, 15-16 s against 14-17 s only 1 / 3.
+        CHECK(both.iou_matched_events == 1);
+        CHECK(both.event_segment_f1 == doctest::Approx(0.5));
         CHECK(both.start_error_s == doctest::Approx(1.0));
         CHECK(both.start_bias_s == doctest::Approx(0.0));
         CHECK(both.end_error_s == doctest::Approx(1.0));  // 10 for 9, 16 for 17

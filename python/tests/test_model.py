@@ -95,6 +95,9 @@ def test_evaluate_on_toy_clips(toy_model, toy_clips):
         assert paired["model_only"] + paired["baseline_only"] <= len(toy_clips)
         assert 0.0 < paired["mcnemar_p"] <= 1.0
     assert 0.0 <= report["online"]["settled"]["frame_accuracy"] <= 1.0
+    events = report["online"]["settled"]["events"]  # the reported actions, also judged as segments
+    assert 0 <= events["iou_matched"] <= events["reported"]
+    assert 0.0 <= events["segment_f1"] <= 1.0
     assert report["perturbation"] == "none"
 
 

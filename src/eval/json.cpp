@@ -64,6 +64,8 @@ void write_json(JsonWriter& out, const OnlineResults& r) {
             .field("precision", r.event_precision)
             .field("recall", r.event_recall)
             .field("f1", r.event_f1)
+            .field("iou_matched", r.iou_matched_events)
+            .field("segment_f1", r.event_segment_f1)
             .field("detection_latency_s", r.detection_latency_s)
             .field("start_error_s", r.start_error_s)
             .field("end_error_s", r.end_error_s)

@@ -142,7 +142,7 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
         double start_s, end_s, reported_s;
         bool used = false;
     };
-    std::size_t true_actions = 0, matched = 0, reported = 0;
+    std::size_t true_actions = 0, matched = 0, reported = 0, iou_matched = 0;
     double latency = 0, start_error = 0, end_error = 0, start_bias = 0, end_bias = 0, no_action_s = 0, stream_s = 0;
     for (std::size_t s = 0; s + 1 < stream_starts.size() && s < stream_events.size(); ++s) {
         const std::size_t begin = stream_starts[s], end = stream_starts[s + 1];
@@ -166,6 +166,27 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
             const double step = times[i + 1] - times[i];
             stream_s += step;
             if (truth[i] == unknown_frame) no_action_s += step;
+        }
+        // The reported actions as segments (IoU ≥ 0.5, one-to-one), before the
+        // overlap matching below marks them used.
+        std::vector<bool> taken(actions.size(), false);
+        for (std::size_t i = begin; i < end;) {
+            std::size_t j = i;
+            while (j < end && truth[j] == truth[i]) ++j;
+            if (truth[i] >= 0)
+                for (std::size_t a = 0; a < actions.size(); ++a) {
+                    if (taken[a] || actions[a].label != truth[i]) continue;
+                    const double overlap =
+                        std::min(times[j - 1], actions[a].end_s) - std::max(times[i], actions[a].start_s);
+                    const double joined =
+                        std::max(times[j - 1], actions[a].end_s) - std::min(times[i], actions[a].start_s);
+                    if (overlap > 0 && joined > 0 && overlap / joined >= 0.5) {
+                        taken[a] = true;
+                        ++iou_matched;
+                        break;
+                    }
+                }
+            i = j;
         }
         // True actions: runs of one label.
         for (std::size_t i = begin; i < end;) {
@@ -196,6 +217,11 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
     r.event_f1 = r.event_precision + r.event_recall > 0
                      ? 2 * r.event_precision * r.event_recall / (r.event_precision + r.event_recall)
                      : 0.0;
+    r.iou_matched_events = iou_matched;
+    // F1 = 2·matched / (reported + true), the same as 2PR / (P + R).
+    r.event_segment_f1 = reported + true_actions > 0
+                             ? 2.0 * static_cast<double>(iou_matched) / static_cast<double>(reported + true_actions)
+                             : 0.0;
     if (matched > 0) {
         r.detection_latency_s = latency / static_cast<double>(matched);
         r.start_error_s = start_error / static_cast<double>(matched);

@@ -195,10 +195,12 @@ void write_report(const std::string& dir, const std::string& title, const std::v
         if (settled.has_events)
             md << "\nAction events (each action once when it starts and once when it ends): " << settled.events
                << " reported, " << settled.matched_events << " matched to a true action (event F1 " << settled.event_f1
-               << "), detection latency " << settled.detection_latency_s << " s, start error " << settled.start_error_s
-               << " s (mean bias " << std::showpos << settled.start_bias_s << std::noshowpos << " s), end error "
-               << settled.end_error_s << " s (mean bias " << std::showpos << settled.end_bias_s << std::noshowpos
-               << " s), " << settled.false_events_per_min << " false events per "
+               << "; judged as segments, one-to-one at temporal IoU ≥ 0.5, " << settled.iou_matched_events
+               << " matched, F1 " << settled.event_segment_f1 << "), detection latency " << settled.detection_latency_s
+               << " s, start error " << settled.start_error_s << " s (mean bias " << std::showpos
+               << settled.start_bias_s << std::noshowpos << " s), end error " << settled.end_error_s << " s (mean bias "
+               << std::showpos << settled.end_bias_s << std::noshowpos << " s), " << settled.false_events_per_min
+               << " false events per "
                << (settled.false_events_per_stream_min ? "minute of stream" : "minute of no action") << ".\n";
         md << "\n";
         for (std::size_t s = 0; s < online->streams.size(); ++s) {
