@@ -67,11 +67,11 @@ run() {
     online_rows+=("$(jq -r -n --arg title "$title" --slurpfile e "$out/${name}_eval.json" '
         $e[0].online as $o | $o.settled as $s |
         [$title, $o.streams, $s.unknown_everywhere_accuracy, $s.frame_accuracy, $s.action_frame_accuracy,
-         $s.no_action_accuracy, $s.frame_f1, $s.segment_f1, $s.events.f1, $s.events.detection_latency_s,
+         $s.no_action_accuracy, $s.frame_f1, $s.segment_f1, $s.events.f1, $s.events.segment_f1, $s.events.detection_latency_s,
          $s.events.start_error_s, $s.events.end_error_s, $s.events.false_events_per_min, $s.events.false_events_per,
          $o.live.frame_accuracy, $o.latest_window.frame_accuracy] | @tsv' |
-        awk -F'\t' '{ printf "| %s | %s | %.3f | %.3f (%.3f / %.3f) | %.3f | %.3f | %.3f | %.2f | %.2f / %.2f | %.2f per %s | %.3f | %.3f |", \
-                       $1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16 }')")
+        awk -F'\t' '{ printf "| %s | %s | %.3f | %.3f (%.3f / %.3f) | %.3f | %.3f | %.3f (%.3f) | %.2f | %.2f / %.2f | %.2f per %s | %.3f | %.3f |", \
+                       $1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, $17 }')")
     echo
 }
 
@@ -110,7 +110,7 @@ printf '%s\n' "${rows[@]}"
 echo
 echo "Online (streamed frame by frame; settled labels and action events; no-action accuracy is meaningless on concatenated clips, which have none):"
 echo
-echo "| evaluation | streams | unknown everywhere | settled frame accuracy (in action / no action) | frame F1 | segment F1 | event F1 | detection latency (s) | start / end error (s) | false events | live labels | paper's window rule |"
+echo "| evaluation | streams | unknown everywhere | settled frame accuracy (in action / no action) | frame F1 | segment F1 | event F1 (as segments, IoU ≥ 0.5) | detection latency (s) | start / end error (s) | false events | live labels | paper's window rule |"
 echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"
 printf '%s\n' "${online_rows[@]}"
 echo
