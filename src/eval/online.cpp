@@ -140,7 +140,8 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
     struct Action {
         int label;
         double start_s, end_s, reported_s;
-        bool used = false;
+        bool used = false;   // matched to a true action it overlaps
+        bool taken = false;  // matched to a true action as a segment of it (IoU ≥ 0.5)
     };
     std::size_t true_actions = 0, matched = 0, reported = 0, iou_matched = 0;
     double latency = 0, start_error = 0, end_error = 0, start_bias = 0, end_bias = 0, no_action_s = 0, stream_s = 0;
@@ -167,27 +168,6 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
             stream_s += step;
             if (truth[i] == unknown_frame) no_action_s += step;
         }
-        // The reported actions as segments (IoU ≥ 0.5, one-to-one), before the
-        // overlap matching below marks them used.
-        std::vector<bool> taken(actions.size(), false);
-        for (std::size_t i = begin; i < end;) {
-            std::size_t j = i;
-            while (j < end && truth[j] == truth[i]) ++j;
-            if (truth[i] >= 0)
-                for (std::size_t a = 0; a < actions.size(); ++a) {
-                    if (taken[a] || actions[a].label != truth[i]) continue;
-                    const double overlap =
-                        std::min(times[j - 1], actions[a].end_s) - std::max(times[i], actions[a].start_s);
-                    const double joined =
-                        std::max(times[j - 1], actions[a].end_s) - std::min(times[i], actions[a].start_s);
-                    if (overlap > 0 && joined > 0 && overlap / joined >= 0.5) {
-                        taken[a] = true;
-                        ++iou_matched;
-                        break;
-                    }
-                }
-            i = j;
-        }
         // True actions: runs of one label.
         for (std::size_t i = begin; i < end;) {
             std::size_t j = i;
@@ -205,6 +185,17 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
                     start_bias += a.start_s - t_begin;
                     end_bias += a.end_s - t_end;
                     break;
+                }
+                // Judged as a segment: one-to-one, at temporal IoU ≥ 0.5 (segment_f1's rule).
+                for (Action& a : actions) {
+                    if (a.taken || a.label != truth[i]) continue;
+                    const double overlap = std::min(t_end, a.end_s) - std::max(t_begin, a.start_s);
+                    const double joined = std::max(t_end, a.end_s) - std::min(t_begin, a.start_s);
+                    if (overlap > 0 && overlap / joined >= 0.5) {
+                        a.taken = true;
+                        ++iou_matched;
+                        break;
+                    }
                 }
             }
             i = j;
