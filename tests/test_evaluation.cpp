@@ -40,8 +40,9 @@ TEST_CASE("accuracy, unknown rate, confusion, precision and recall") {
     CHECK(std::count(json.begin(), json.end(), '[') == std::count(json.begin(), json.end(), ']'));
 }
 
-TEST_CASE("the 95% Wilson interval of an accuracy, against published values") {
-    // 0 of 10: the upper end is z² / (n + z²); 5 of 10 and 42 of 44 (HDM05 val's size).
+TEST_CASE("the 95% Wilson interval of an accuracy, against values worked by hand") {
+    // 0 of 10: the upper end is z² / (n + z²); 5 of 10 and 42 of 44 (HDM05 val's size)
+    // from the score formula, centre (p + z²/2n) / (1 + z²/n) ± its half-width.
     const Interval none = wilson_interval(0, 10);
     CHECK(none.low == 0.0);
     CHECK(none.high == doctest::Approx(0.27753).epsilon(1e-4));

@@ -129,9 +129,9 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     REQUIRE(folds.size() == 3);
     double f1 = 0, frames = 0;
     for (const auto& held : folds) {
+        REQUIRE(held.size() == 1);  // one subject per fold
         std::vector<LabelledClip> train, test;
         for (const LabelledClip& c : clips) (c.subject == held.front() ? test : train).push_back(c);
-        REQUIRE(held.size() == 1);
         const ModelData model = train_model(train, options);
         actionstring::AnnotatorConfig config = actionstring::annotator_config(model.view());
         config.segmenter = a.steps[0].config;

@@ -42,9 +42,9 @@ struct OnlineResults {
     std::size_t events = 0;          ///< Actions reported (started events).
     std::size_t matched_events = 0;  ///< Matched one-to-one to a true action of the same label that they overlap.
     double event_precision = 0, event_recall = 0, event_f1 = 0;
-    /// The reported actions judged as segments are: each matched one-to-one to
-    /// a true action of its label with temporal IoU ≥ 0.5 (segment_f1's rule,
-    /// on the events' own start and end instead of the settled labels' runs).
+    /// The reported actions judged as segments: each matched one-to-one to a
+    /// true action of its label with temporal IoU ≥ 0.5 (segment_f1's rule, on
+    /// the events' own start and end instead of the settled labels' runs).
     std::size_t iou_matched_events = 0;
     double event_segment_f1 = 0;
     double detection_latency_s = 0;  ///< Mean, true start → the matched action's `started` report.

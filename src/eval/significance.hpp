@@ -26,7 +26,7 @@ Interval wilson_interval(std::size_t successes, std::size_t trials);
 
 /// The two-sided exact McNemar p-value of a paired comparison: `only_first`
 /// items the first method gets right and the second wrong, `only_second`
-/// the reverse. 1 when they never disagree or disagree evenly.
+/// the reverse. 1 when the two counts differ by at most one.
 double mcnemar_exact_p(std::size_t only_first, std::size_t only_second);
 
 }  // namespace host

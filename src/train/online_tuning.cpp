@@ -62,7 +62,10 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
                     steps.push_back(step);
                 }
 
-    // One model per fold, every setting streamed through it.
+    // One model per fold, every setting streamed through it: recordings as they
+    // are, joined clips in several orders; every fold and order weighs the same.
+    const int orders = recordings != nullptr ? 1 : online_tuning_orders;
+    const double share = 1.0 / static_cast<double>(folds.size() * static_cast<std::size_t>(orders));
     for (const std::vector<std::string>& held : folds) {
         auto held_out = [&held](const std::string& subject) {
             return std::find(held.begin(), held.end(), subject) != held.end();
@@ -76,9 +79,6 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
         const std::vector<LabelledClip> no_action = unlabelled_stretches(train_recordings, min_no_action_seconds);
         const ModelData model = train_model(train, options, nullptr, &no_action);
         const ModelView view = model.view();
-        // Recordings are streamed as they are; joined clips in several orders.
-        const int orders = recordings != nullptr ? 1 : online_tuning_orders;
-        const double share = 1.0 / static_cast<double>(folds.size() * static_cast<std::size_t>(orders));
         for (OnlineTuningStep& step : steps) {
             AnnotatorConfig config = annotator_config(view);
             config.segmenter = step.config;
