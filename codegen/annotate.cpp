@@ -20,7 +20,6 @@ int run_annotate(int argc, char** argv) {
     std::string model_path, file, skeleton;
     bool json = false, events = false, live = false;
     LiveSource live_source;
-    double min_action_s = 0.25;
     host::ReadOptions read;
     SegmenterOverrides overrides;
     ArgumentReader args("annotate", argc, argv);
@@ -41,8 +40,8 @@ int run_annotate(int argc, char** argv) {
                 "(decided without the settle delay) already said so; as TSV (default) or JSON.\n"
                 "--events prints the action events instead, one JSON object per line: each\n"
                 "action once when it starts and once when it ends (label, start and end time,\n"
-                "confidence); an action shorter than --min-action seconds [0.25] is flicker and\n"
-                "is not reported, and the end of the file ends a running action.\n"
+                "confidence); an action shorter than --min-action seconds [the model's own] is\n"
+                "flicker and is not reported, and the end of the file ends a running action.\n"
                 "--live reads frames as they arrive, from standard input or (--udp PORT) from\n"
                 "UDP datagrams on 127.0.0.1: a joint CSV header line, then one frame per line\n"
                 "(the CSV spellings of 'info'; joints matched to the model's by name), and\n"
@@ -60,7 +59,6 @@ int run_annotate(int argc, char** argv) {
         else if (arg == "--live") live = true;
         else if (arg == "--udp") live_source.udp_port = static_cast<int>(args.number(arg, 1, 65535));
         else if (arg == "--idle-timeout") live_source.idle_timeout_s = args.number(arg, 0.01, 3600);
-        else if (arg == "--min-action") min_action_s = args.number(arg, 0, 60);
         else if (parse_segmenter_option(args, arg, overrides)) continue;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;
@@ -72,8 +70,7 @@ int run_annotate(int argc, char** argv) {
             return args.error("usage: actionstring annotate --model MODEL --live [--udp PORT] (see --help)");
         return run_reporting_errors("annotate", [&] {
             const host::ModelData model = host::load_model(model_path);
-            AnnotatorConfig config = overrides.over(model.view(), args);
-            config.min_action_us = static_cast<std::int64_t>(std::llround(min_action_s * 1e6));
+            const AnnotatorConfig config = overrides.over(model.view(), args);
             return run_live(model, config, read, live_source);
         });
     }
@@ -88,8 +85,7 @@ int run_annotate(int argc, char** argv) {
             std::fprintf(stderr, "actionstring annotate: %s: %s\n", file.c_str(), note.c_str());
         host::conform_to_model(view, clip);
         if (events) {
-            AnnotatorConfig config = overrides.over(view, args);
-            config.min_action_us = static_cast<std::int64_t>(std::llround(min_action_s * 1e6));
+            const AnnotatorConfig config = overrides.over(view, args);
             for (const ActionEvent& e : host::stream_events(view, clip, config)) {
                 host::JsonWriter out;
                 out.begin_object()

@@ -50,12 +50,11 @@ void print_eval_usage(std::FILE* out) {
                  "paper's latest-window rule. A list with 'start' and 'end' columns names labelled\n"
                  "intervals of continuous recordings: clips are the intervals, and --online\n"
                  "streams each recording whole (frames outside every interval: no action).\n"
-                 "The segmenter options are AnnotatorConfig's\n"
-                 "(defaults in segmenter.hpp; --unknown-cost inf turns 'no action' off;\n"
-                 "--segment-votes X weighs the characters' label votes in the explanation,\n"
-                 "--segment-exemplars X the exemplars). --min-action S: a settled run of one\n"
-                 "label shorter than S seconds [0.25] is flicker, never reported as an action\n"
-                 "event (as annotate --min-action).\n"
+                 "The online options override the settings the model carries (chosen at\n"
+                 "training): --unknown-cost inf turns 'no action' off; --segment-votes X weighs\n"
+                 "the characters' label votes in the explanation, --segment-exemplars X the\n"
+                 "exemplars; --min-action S: a settled run of one label shorter than S seconds\n"
+                 "is flicker, never reported as an action event (as annotate --min-action).\n"
                  "--report DIR writes SVG pictures (confusion matrix, true vs predicted timelines)\n"
                  "and a Markdown summary linking them.\n"
                  "--perturb SPEC changes the evaluated clips and recordings (never the training\n"
@@ -164,7 +163,6 @@ int run_eval(int argc, char** argv) {
     std::uint32_t seed = 1;
     SegmenterOverrides overrides;
     std::string report_dir, perturb_spec;
-    double min_action_s = -1.0;  // negative: AnnotatorConfig's default
     ArgumentReader args("eval", argc, argv);
     while (args.more()) {
         const std::string arg = args.next();
@@ -182,7 +180,6 @@ int run_eval(int argc, char** argv) {
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
         else if (arg == "--report") report_dir = args.value(arg);
         else if (arg == "--perturb") perturb_spec = args.value(arg);
-        else if (arg == "--min-action") min_action_s = args.number(arg, 0, 60);
         else if (!parse_segmenter_option(args, arg, overrides)) return args.unknown(arg);
     }
     if (!args.ok()) return 2;
@@ -193,8 +190,7 @@ int run_eval(int argc, char** argv) {
     return run_reporting_errors("eval", [&] {
         const host::ModelData model = host::load_model(model_path);
         const ModelView view = model.view();
-        AnnotatorConfig config = overrides.over(view, args);
-        if (min_action_s >= 0) config.min_action_us = static_cast<std::int64_t>(std::llround(min_action_s * 1e6));
+        const AnnotatorConfig config = overrides.over(view, args);
         const host::Perturbation perturbation =
             perturb_spec.empty() ? host::Perturbation{} : host::parse_perturbation(perturb_spec);
         const Evaluation e = evaluate(view, clips_path, train_path, read, online, seed, config, perturbation);

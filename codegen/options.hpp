@@ -109,41 +109,43 @@ inline bool parse_read_option(ArgumentReader& args, const std::string& option, h
     return true;
 }
 
-/// Applies one of the segmenter's settings by name (host::apply_segmenter_setting),
+/// Applies one of a model's online settings by name (host::apply_online_setting),
 /// a bad value reported through `args`. Returns false when `name` is not one of them.
-inline bool apply_segmenter_setting(ArgumentReader& args, const std::string& name, const std::string& value,
-                                    SegmenterConfig& config) {
+inline bool apply_online_setting(ArgumentReader& args, const std::string& name, const std::string& value,
+                                 AnnotatorConfig& config) {
     try {
-        return host::apply_segmenter_setting(name, value, config);
+        return host::apply_online_setting(name, value, config);
     } catch (const std::invalid_argument& error) {
         args.error(error.what());
         return true;
     }
 }
 
-/// The segmenter's settings given to eval or annotate: they override the
-/// model's own (annotator_config()) once the model is loaded.
+/// The online settings given to eval or annotate (the segmenter's and the
+/// events' shortest action): they override the model's own
+/// (annotator_config()) once the model is loaded.
 struct SegmenterOverrides {
     std::vector<std::pair<std::string, std::string>> settings;  // name, value
     /// The model's settings with these applied (the values were checked when read).
     AnnotatorConfig over(const ModelView& model, ArgumentReader& args) const {
         AnnotatorConfig config = annotator_config(model);
-        for (const auto& [name, value] : settings) apply_segmenter_setting(args, name, value, config.segmenter);
+        for (const auto& [name, value] : settings) apply_online_setting(args, name, value, config);
         return config;
     }
 };
 
-/// Reads a segmenter option (--settle S and the like) of eval or annotate into
-/// `overrides`, checking its value now. Returns false when `option` is not one.
+/// Reads an online option (--settle S, --min-action S and the like) of eval or
+/// annotate into `overrides`, checking its value now. Returns false when
+/// `option` is not one.
 inline bool parse_segmenter_option(ArgumentReader& args, const std::string& option, SegmenterOverrides& overrides) {
     if (option.rfind("--", 0) != 0) return false;
     const std::string name = option.substr(2);
-    SegmenterConfig check;
+    AnnotatorConfig check;
     if (name != "settle" && name != "segment-penalty" && name != "stay-penalty" && name != "skip-penalty" &&
-        name != "unknown-cost" && name != "segment-votes" && name != "segment-exemplars")
+        name != "unknown-cost" && name != "segment-votes" && name != "segment-exemplars" && name != "min-action")
         return false;
     const std::string value = args.value(option);
-    if (args.ok() && apply_segmenter_setting(args, name, value, check)) overrides.settings.emplace_back(name, value);
+    if (args.ok() && apply_online_setting(args, name, value, check)) overrides.settings.emplace_back(name, value);
     return true;
 }
 

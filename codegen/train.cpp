@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "common/json.hpp"
+#include "common/time.hpp"
 #include "io/clip_list.hpp"
 #include "io/recordings.hpp"
 #include "io/text.hpp"
@@ -77,6 +78,8 @@ void print_train_usage(std::FILE* out) {
                  "  --settle S, --segment-penalty X, --stay-penalty X, --skip-penalty X, --unknown-cost X\n"
                  "                          the segmenter's online settings, stored in the model for\n"
                  "                          devices, eval and annotate [2, 3, 0.3, 0.3, inf]\n"
+                 "  --min-action S          the events' shortest action, stored in the model: a\n"
+                 "                          shorter settled run is flicker, never reported [0.25]\n"
                  "  --seed N                [%u]\n"
                  "  --rate HZ               frame rate of files without timing (AMC 120, MSR 15)\n"
                  "  --roles R,L,R           root, left hip, right hip joint names\n"
@@ -187,25 +190,34 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
     return tuned;
 }
 
-// With no settings given, after the clip settings: the segmenter's online
-// settings by leave-one-subject-out streaming (the held-out subject's clips
-// joined, or its whole recordings), shown as a table.
-SegmenterConfig tune_online_settings(const std::vector<host::LabelledClip>& clips, const host::TrainingOptions& options,
-                                     const std::vector<host::LabelledRecording>* recordings) {
+// With no settings given, after the clip settings: the online settings (the
+// segmenter's, then the events' shortest action) by leave-one-subject-out
+// streaming (the held-out subject's clips joined, or its whole recordings),
+// shown as tables, and set in `options`.
+void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::TrainingOptions& options,
+                          const std::vector<host::LabelledRecording>* recordings) {
     std::fprintf(stderr, "train: choosing the online settings by streaming each held-out subject's %s\n",
                  recordings != nullptr ? "recordings" : "clips joined");
     const host::OnlineTuningResult tuned = host::tune_online(clips, options, recordings);
-    if (tuned.steps.empty()) return tuned.chosen;
+    options.online = tuned.chosen;
+    options.min_action_us = tuned.chosen_min_action_us;
+    if (tuned.steps.empty()) return;
     std::printf("online tuning:    %zu settings in %.0f s; mean over the held-out subjects' streams:\n",
                 tuned.steps.size(), tuned.seconds);
     for (const host::OnlineTuningStep& step : tuned.steps)
         std::printf("  %-60s segment F1 %.3f  settled frames %.3f%s\n", step.settings.c_str(), step.segment_f1,
                     step.frame_accuracy, step.kept ? "  <- chosen" : "");
-    std::printf("the chosen online settings (with those above, keep them with --config):\n"
-                "segment-votes %g\nsegment-penalty %g\nunknown-cost %g\nsegment-exemplars %g\n",
-                static_cast<double>(tuned.chosen.vote_weight), static_cast<double>(tuned.chosen.segment_penalty),
-                static_cast<double>(tuned.chosen.unknown_cost), static_cast<double>(tuned.chosen.exemplar_weight));
-    return tuned.chosen;
+    std::printf("the events' shortest action with them (the shortest within one standard error of the best):\n");
+    for (const host::MinActionStep& step : tuned.min_action_steps)
+        std::printf("  min-action %-6g events' segment F1 %.3f (standard error %.3f)  detection latency %.2f s%s\n",
+                    host::us_to_seconds(step.min_action_us), step.event_segment_f1, step.standard_error,
+                    step.detection_latency_s, step.kept ? "  <- chosen" : "");
+    std::printf(
+        "the chosen online settings (with those above, keep them with --config):\n"
+        "segment-votes %g\nsegment-penalty %g\nunknown-cost %g\nsegment-exemplars %g\nmin-action %g\n",
+        static_cast<double>(tuned.chosen.vote_weight), static_cast<double>(tuned.chosen.segment_penalty),
+        static_cast<double>(tuned.chosen.unknown_cost), static_cast<double>(tuned.chosen.exemplar_weight),
+        host::us_to_seconds(tuned.chosen_min_action_us));
 }
 
 // Leave-one-subject-out over the list's subjects: a fold table, then the mean.
@@ -338,7 +350,7 @@ int run_train(int argc, char** argv) {
             const double reject_keep = options.reject_keep;
             options = tune(train, options).options;
             options.reject = reject, options.reject_keep = reject_keep;
-            options.online = tune_online_settings(train, options, recordings.empty() ? nullptr : &recordings);
+            tune_online_settings(train, options, recordings.empty() ? nullptr : &recordings);
         }
         auto stage_start = std::chrono::steady_clock::now();
         options.progress = [&](const char* stage) {

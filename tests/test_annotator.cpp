@@ -211,13 +211,16 @@ TEST_CASE("the online settings travel in the model: training stores them, init()
     options.online.settle_delay_us = 1000000;
     options.online.segment_penalty = 1.5f;
     options.online.unknown_cost = 0.25f;
+    options.min_action_us = 750000;
     const host::ModelData model = host::train_model(host::toy_clips(world, 2, 8), options);
     const ModelView view = model.view();
     CHECK(view.settle_delay_us == 1000000u);
     CHECK(view.segment_penalty == 1.5f);
     CHECK(view.unknown_cost == 0.25f);
+    CHECK(view.min_action_us == 750000u);
     const AnnotatorConfig config = annotator_config(view);
     CHECK(config.segmenter.unknown_cost == 0.25f);
+    CHECK(config.min_action_us == 750000);
     host::Stateful<Annotator> annotator;
     REQUIRE(annotator.init(view, config) == Status::ok);
     CHECK(annotator->settle_chars() == 10u);  // 1 s at the toy's 10 Hz string
@@ -228,6 +231,8 @@ TEST_CASE("the online settings travel in the model: training stores them, init()
     // The artifact and the header carry them.
     const host::ModelData loaded = host::parse_model("online.model", host::serialize_model(model));
     CHECK(loaded.unknown_cost == 0.25f);
+    CHECK(loaded.min_action_us == 750000u);
     const std::string header = host::generate_header(model, "0", "online", "online.model");
     CHECK(header.find("m.segment_penalty = 0x1.8p+0f;") != std::string::npos);
+    CHECK(header.find("m.min_action_us = 750000;") != std::string::npos);
 }

@@ -79,6 +79,7 @@ TEST_CASE("each kind of corruption is refused") {
         {"negative vote weight", [](host::ModelData& m) { m.vote_weight = -1.0f; }},
         {"NaN online vote weight", [](host::ModelData& m) { m.segment_vote_weight = kNaN; }},
         {"online vote weight beyond 1000", [](host::ModelData& m) { m.segment_vote_weight = 2000.0f; }},
+        {"shortest action over 10 minutes", [](host::ModelData& m) { m.min_action_us = 600000001u; }},
         {"votes missing", [](host::ModelData& m) { m.vote_weight = 1.0f; }},
         {"NaN vote",
          [](host::ModelData& m) {

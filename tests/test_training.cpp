@@ -664,7 +664,7 @@ namespace {
 
 // A model's artifact as an earlier version wrote it: the version line, and
 // none of the fields added since (version 6: the exemplars; 7: the
-// acceleration's weight).
+// acceleration's weight; 8: the events' shortest action).
 std::string older_artifact(const ModelData& model, int version) {
     std::string body;
     const std::string fields = serialize_fields(model);
@@ -672,7 +672,8 @@ std::string older_artifact(const ModelData& model, int version) {
         const std::size_t end = fields.find('\n', at) + 1;
         const std::string line = fields.substr(at, end - at);
         const bool added = (version < 6 && line.find("exemplar") != std::string::npos) ||
-                           (version < 7 && line.find("acceleration_weight") != std::string::npos);
+                           (version < 7 && line.find("acceleration_weight") != std::string::npos) ||
+                           (version < 8 && line.find("min_action_us") != std::string::npos);
         if (!added) body += line;
         at = end;
     }
@@ -683,22 +684,28 @@ std::string older_artifact(const ModelData& model, int version) {
 
 }  // namespace
 
-TEST_CASE("version-5 and 6 artifacts (before the exemplars, the acceleration) are read without them") {
+TEST_CASE("version-5 to 7 artifacts (before the exemplars, the acceleration, the shortest action) are read") {
     const ToyWorld world = make_toy_world();
     REQUIRE_FALSE(world.model.view().has_exemplars());
     REQUIRE_FALSE(world.model.view().has_acceleration());
-    for (const int version : {5, 6}) {
+    REQUIRE(world.model.min_action_us == 250000u);  // what a model without the field has
+    for (const int version : {5, 6, 7}) {
         CAPTURE(version);
         const std::string old = older_artifact(world.model, version);
         CHECK(serialize_model(parse_model("old.model", old)) == serialize_model(world.model));
         // The same lines under the current version lack fields: refused, with the
-        // line (the first field missing from both is the acceleration's weight).
+        // line (the first field missing from them).
         std::string current = old;
         current.replace(0, std::string("actionstring-model 5").size(),
                         "actionstring-model " + std::to_string(artifact_version));
-        CHECK_THROWS_WITH_AS(parse_model("new.model", current), doctest::Contains("expected 'acceleration_weight'"),
-                             ReadError);
+        const char* const missing = version < 7 ? "expected 'acceleration_weight'" : "expected 'min_action_us'";
+        CHECK_THROWS_WITH_AS(parse_model("new.model", current), doctest::Contains(missing), ReadError);
     }
+    // A version-7 model's events keep the runtime's default shortest action.
+    ModelData shorter = parse_model("copy.model", serialize_model(world.model));
+    shorter.min_action_us = 500000;
+    CHECK(parse_model("v7.model", older_artifact(shorter, 7)).min_action_us == 250000u);
+    CHECK(parse_model("v8.model", serialize_model(shorter)).min_action_us == 500000u);
 }
 
 TEST_CASE("a version-4 artifact (factors component by component) is read and reordered") {

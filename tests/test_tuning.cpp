@@ -2,6 +2,8 @@
 // every step a cross-validation over the list's subjects.
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -125,9 +127,15 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     CHECK(kept == 1);
     // Each setting's figure is the mean over the folds and over the orders the
     // held-out clips are joined in: the first setting, recomputed by hand.
+    // The events' shortest action is tried with the chosen settings: the
+    // longest candidate's figures, recomputed by hand the same way.
     const auto folds = subject_folds(clips, tuning_max_folds);
     REQUIRE(folds.size() == 3);
-    double f1 = 0, frames = 0;
+    REQUIRE(a.min_action_steps.size() == std::size(min_action_candidates_us));
+    const MinActionStep& longest = a.min_action_steps.back();
+    CHECK(longest.min_action_us == 1500000);
+    double f1 = 0, frames = 0, latency = 0;
+    std::vector<double> event_f1;  // per fold
     for (const auto& held : folds) {
         REQUIRE(held.size() == 1);  // one subject per fold
         std::vector<LabelledClip> train, test;
@@ -135,21 +143,68 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
         const ModelData model = train_model(train, options);
         actionstring::AnnotatorConfig config = actionstring::annotator_config(model.view());
         config.segmenter = a.steps[0].config;
+        actionstring::AnnotatorConfig events = actionstring::annotator_config(model.view());
+        events.segmenter = a.chosen;
+        events.min_action_us = longest.min_action_us;
+        event_f1.push_back(0.0);
         for (int order = 1; order <= online_tuning_orders; ++order) {
             const OnlineReport report = evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), config);
             f1 += report.settled.segment_f1;
             frames += report.settled.frame_accuracy;
+            const OnlineReport reported =
+                evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), events);
+            event_f1.back() += reported.settled.event_segment_f1 / online_tuning_orders;
+            latency += reported.settled.detection_latency_s;
         }
     }
     const double n = static_cast<double>(folds.size()) * online_tuning_orders;
     CHECK(a.steps[0].segment_f1 == doctest::Approx(f1 / n).epsilon(1e-12));
     CHECK(a.steps[0].frame_accuracy == doctest::Approx(frames / n).epsilon(1e-12));
+    const double mean = (event_f1[0] + event_f1[1] + event_f1[2]) / 3.0;
+    double squares = 0;
+    for (const double v : event_f1) squares += (v - mean) * (v - mean);
+    CHECK(longest.event_segment_f1 == doctest::Approx(mean).epsilon(1e-12));
+    CHECK(longest.standard_error == doctest::Approx(std::sqrt(squares / 2.0 / 3.0)).epsilon(1e-12));
+    CHECK(longest.detection_latency_s == doctest::Approx(latency / n).epsilon(1e-12));
+    // One kept, by the one-standard-error rule, and it is the model's.
+    std::size_t kept_actions = 0;
+    for (std::size_t i = 0; i < a.min_action_steps.size(); ++i) {
+        CHECK(a.min_action_steps[i].event_segment_f1 == b.min_action_steps[i].event_segment_f1);
+        if (a.min_action_steps[i].kept) ++kept_actions;
+    }
+    CHECK(kept_actions == 1);
+    CHECK(a.min_action_steps[one_standard_error_choice(a.min_action_steps)].kept);
+    CHECK(a.chosen_min_action_us == a.min_action_steps[one_standard_error_choice(a.min_action_steps)].min_action_us);
     // One subject: nothing to hold out, the given settings come back.
     std::vector<LabelledClip> one = clips;
     for (LabelledClip& c : one) c.subject = "s";
+    options.min_action_us = 400000;
     const OnlineTuningResult single = tune_online(one, options);
     CHECK(single.steps.empty());
+    CHECK(single.min_action_steps.empty());
     CHECK(single.chosen.segment_penalty == options.online.segment_penalty);
+    CHECK(single.chosen_min_action_us == 400000);
+}
+
+TEST_CASE("the events' shortest action: the shortest within one standard error of the best") {
+    auto step = [](std::int64_t us, double f1, double se) {
+        MinActionStep s;
+        s.min_action_us = us;
+        s.event_segment_f1 = f1;
+        s.standard_error = se;
+        return s;
+    };
+    CHECK(one_standard_error_choice({}) == 0);
+    // Best 0.72 ± 0.04: 0.70 is within, 0.61 is not; the shortest within wins.
+    CHECK(one_standard_error_choice({step(250000, 0.60, 0.02), step(500000, 0.61, 0.03), step(750000, 0.70, 0.05),
+                                     step(1000000, 0.72, 0.04)}) == 2);
+    // A gain the folds cannot tell from noise does not buy latency.
+    CHECK(one_standard_error_choice({step(250000, 0.80, 0.01), step(500000, 0.83, 0.05)}) == 0);
+    // A clear gain does.
+    CHECK(one_standard_error_choice({step(250000, 0.60, 0.01), step(500000, 0.83, 0.01)}) == 1);
+    // The best first: kept. With no spread (one fold), only the best's equals.
+    CHECK(one_standard_error_choice({step(250000, 0.90, 0.0), step(500000, 0.80, 0.0)}) == 0);
+    CHECK(one_standard_error_choice({step(250000, 0.70, 0.0), step(500000, 0.80, 0.0), step(750000, 0.80, 0.0)}) == 1);
 }
 
 TEST_CASE("yes/no settings take true/false (or on/off, yes/no, 1/0) and refuse anything else") {

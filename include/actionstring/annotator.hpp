@@ -46,14 +46,18 @@ struct AnnotatorConfig {
     /// Settings of the segmenter (settle delay, penalties, unknown cost).
     SegmenterConfig segmenter;
     /// Action events (events.hpp): a settled run of one label shorter than
-    /// this is flicker and is never reported.
+    /// this is flicker and is never reported. Longer filters more flicker
+    /// but reports each action later; a model carries its own (chosen at
+    /// training, ModelView::min_action_us).
     std::int64_t min_action_us = 250000;
 };
 
-/// The default timing with the model's own online settings.
+/// The default timing with the model's own online settings (the segmenter's
+/// and the events' shortest action).
 constexpr AnnotatorConfig annotator_config(const ModelView& model) noexcept {
     AnnotatorConfig c;
     c.segmenter = segmenter_config(model);
+    c.min_action_us = model.min_action_us;
     return c;
 }
 

@@ -112,5 +112,7 @@
     SCALAR(float, skip_penalty, 0.3f, 0, 0)                /* skipping a representative character */      \
     SCALAR(float, unknown_cost, detail::infinity(), 0, 0)  /* per character of "no action"; inf: none */ \
     SCALAR(float, segment_vote_weight, 0.0f, 0, 0)         /* the characters' votes in the explanation */ \
-    SCALAR(float, segment_exemplar_weight, 0.0f, 0, 0)     /* the exemplars in the explanation */
+    SCALAR(float, segment_exemplar_weight, 0.0f, 0, 0)     /* the exemplars in the explanation */         \
+    /* an action event needs a settled run this long (events.hpp): a shorter one is flicker */            \
+    SCALAR(std::uint32_t, min_action_us, 250000, 0, 600000000)
 // clang-format on

@@ -165,7 +165,8 @@ class Model:
 
     @property
     def online_settings(self) -> Dict[str, float]:
-        """The segmenter's settings the model carries (settle in seconds)."""
+        """The online settings the model carries: the segmenter's and the events'
+        shortest action (``settle`` and ``min_action`` in seconds)."""
         return dict(self._native.online_settings)
 
     def state_bytes(self, **online: Any) -> int:
@@ -243,8 +244,8 @@ class Annotator:
     character distances: its confidence; ``inf`` when nothing else can explain the stream) and
     ``events``: each action once when it starts and once when it ends (dicts
     with ``event``, ``label``, ``start``, ``end`` in seconds and ``confidence``;
-    an action shorter than ``min_action`` seconds, 0.25 by default, is flicker
-    and never reported). ``flush()`` ends the stream and returns the last events.
+    an action shorter than ``min_action`` seconds, the model's own by default, is
+    flicker and never reported). ``flush()`` ends the stream and returns the last events.
     Online settings (``settle``, ``segment_penalty``, ``unknown_cost``, ...)
     override the model's own; ``window_rule=True`` also runs the paper's rule
     (``label``, ``confidence``).

@@ -209,8 +209,7 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
         if (key == "window_rule") config.window_rule = item.second.cast<bool>();
         else if (key == "max_gap") config.max_gap_us = std::llround(item.second.cast<double>() * 1e6);
         else if (key == "max_backward") config.max_backward_us = std::llround(item.second.cast<double>() * 1e6);
-        else if (key == "min_action") config.min_action_us = std::llround(item.second.cast<double>() * 1e6);
-        else if (!host::apply_segmenter_setting(setting_name(key), setting_value(item.second), config.segmenter))
+        else if (!host::apply_online_setting(setting_name(key), setting_value(item.second), config))
             throw py::value_error("unknown online setting '" + key +
                                   "' (settle, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, segment_exemplars, "
                                   "window_rule, max_gap, max_backward, min_action)");
@@ -447,6 +446,7 @@ PYBIND11_MODULE(_actionstring, m) {
                                    d["unknown_cost"] = model.unknown_cost;
                                    d["segment_votes"] = model.segment_vote_weight;
                                    d["segment_exemplars"] = model.segment_exemplar_weight;
+                                   d["min_action"] = static_cast<double>(model.min_action_us) * 1e-6;
                                    return d;
                                })
         .def("state_bytes",

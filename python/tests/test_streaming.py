@@ -66,6 +66,8 @@ def test_online_settings_are_checked(toy_model):
         actionstring.Annotator(toy_model, settel=1.0)
     with pytest.raises(ValueError, match="option --segment-penalty expects"):
         actionstring.Annotator(toy_model, segment_penalty=-1)
+    with pytest.raises(ValueError, match="option --min-action expects"):
+        actionstring.Annotator(toy_model, min_action=-0.5)
     assert actionstring.Annotator(toy_model, settle=8.0).state_bytes > actionstring.Annotator(toy_model).state_bytes
 
 

@@ -162,6 +162,7 @@ std::string write_fields(const ModelData& m) {
 // A file of an earlier version lacks the field, which keeps its initial value.
 int field_since(std::string_view name) {
     if (name == "acceleration_weight") return 7;
+    if (name == "min_action_us") return 8;
     return name.find("exemplar") != std::string_view::npos ? 6 : 0;
 }
 

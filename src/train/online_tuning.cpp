@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 
@@ -21,7 +22,25 @@ std::string number(double v) { return setting_value_text(v); }
 // Stretches of no action shorter than this are not learned from (as `train` does).
 constexpr double min_no_action_seconds = 1.0;
 
+// A held-out subject: the model trained without it, and its streams.
+struct Fold {
+    ModelData model;
+    std::vector<LabelledClip> test;
+    std::vector<LabelledRecording> test_recordings;
+};
+
 }  // namespace
+
+std::size_t one_standard_error_choice(const std::vector<MinActionStep>& steps) {
+    if (steps.empty()) return 0;
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < steps.size(); ++i)
+        if (steps[i].event_segment_f1 > steps[best].event_segment_f1) best = i;
+    const double bar = steps[best].event_segment_f1 - steps[best].standard_error;
+    for (std::size_t i = 0; i < best; ++i)
+        if (steps[i].event_segment_f1 >= bar) return i;
+    return best;
+}
 
 OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const TrainingOptions& options,
                                const std::vector<LabelledRecording>* recordings,
@@ -29,6 +48,7 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     const auto began = std::chrono::steady_clock::now();
     OnlineTuningResult result;
     result.chosen = options.online;
+    result.chosen_min_action_us = options.min_action_us;
     // The folds of self-tuning (at most tuning_max_folds, subjects dealt round-robin).
     const std::vector<std::vector<std::string>> folds = subject_folds(clips, tuning_max_folds);
     if (folds.size() < 2) return result;
@@ -66,31 +86,38 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     // are, joined clips in several orders; every fold and order weighs the same.
     const int orders = recordings != nullptr ? 1 : online_tuning_orders;
     const double share = 1.0 / static_cast<double>(folds.size() * static_cast<std::size_t>(orders));
+    std::vector<Fold> trained;
     for (const std::vector<std::string>& held : folds) {
         auto held_out = [&held](const std::string& subject) {
             return std::find(held.begin(), held.end(), subject) != held.end();
         };
-        std::vector<LabelledClip> train, test;
-        for (const LabelledClip& c : clips) (held_out(c.subject) ? test : train).push_back(c);
-        std::vector<LabelledRecording> train_recordings, test_recordings;
+        Fold fold;
+        std::vector<LabelledClip> train;
+        for (const LabelledClip& c : clips) (held_out(c.subject) ? fold.test : train).push_back(c);
+        std::vector<LabelledRecording> train_recordings;
         if (recordings != nullptr)
             for (const LabelledRecording& r : *recordings)
-                (held_out(r.subject) ? test_recordings : train_recordings).push_back(r);
+                (held_out(r.subject) ? fold.test_recordings : train_recordings).push_back(r);
         const std::vector<LabelledClip> no_action = unlabelled_stretches(train_recordings, min_no_action_seconds);
-        const ModelData model = train_model(train, options, nullptr, &no_action);
-        const ModelView view = model.view();
+        fold.model = train_model(train, options, nullptr, &no_action);
+        trained.push_back(std::move(fold));
+    }
+    // One held-out stream set's report under `config`, in order `order`.
+    auto stream = [&](const Fold& fold, const AnnotatorConfig& config, int order) {
+        return recordings != nullptr
+                   ? evaluate_recordings(fold.model.view(), fold.test_recordings, config)
+                   : evaluate_online(fold.model.view(), fold.test, static_cast<std::uint32_t>(order), config);
+    };
+    for (const Fold& fold : trained)
         for (OnlineTuningStep& step : steps) {
-            AnnotatorConfig config = annotator_config(view);
+            AnnotatorConfig config = annotator_config(fold.model.view());
             config.segmenter = step.config;
             for (int order = 1; order <= orders; ++order) {
-                const OnlineReport report =
-                    recordings != nullptr ? evaluate_recordings(view, test_recordings, config)
-                                          : evaluate_online(view, test, static_cast<std::uint32_t>(order), config);
+                const OnlineReport report = stream(fold, config, order);
                 step.segment_f1 += report.settled.segment_f1 * share;
                 step.frame_accuracy += report.settled.frame_accuracy * share;
             }
         }
-    }
     std::size_t best = 0;
     for (std::size_t i = 1; i < steps.size(); ++i)
         if (steps[i].segment_f1 > steps[best].segment_f1 ||
@@ -101,6 +128,35 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     for (const OnlineTuningStep& step : steps)
         if (progress) progress(step);
     result.steps = std::move(steps);
+
+    // The events' shortest action, with the settings chosen: the settled
+    // labels do not depend on it, only which of their runs are reported.
+    for (const std::int64_t min_action_us : min_action_candidates_us) {
+        MinActionStep step;
+        step.min_action_us = min_action_us;
+        std::vector<double> per_fold;
+        for (const Fold& fold : trained) {
+            AnnotatorConfig config = annotator_config(fold.model.view());
+            config.segmenter = result.chosen;
+            config.min_action_us = min_action_us;
+            double f1 = 0;
+            for (int order = 1; order <= orders; ++order) {
+                const OnlineReport report = stream(fold, config, order);
+                f1 += report.settled.event_segment_f1 / orders;
+                step.detection_latency_s += report.settled.detection_latency_s * share;
+            }
+            per_fold.push_back(f1);
+        }
+        const double n = static_cast<double>(per_fold.size());
+        for (const double f1 : per_fold) step.event_segment_f1 += f1 / n;
+        double squares = 0;
+        for (const double f1 : per_fold) squares += (f1 - step.event_segment_f1) * (f1 - step.event_segment_f1);
+        step.standard_error = per_fold.size() > 1 ? std::sqrt(squares / (n - 1.0) / n) : 0.0;
+        result.min_action_steps.push_back(step);
+    }
+    const std::size_t kept = one_standard_error_choice(result.min_action_steps);
+    result.min_action_steps[kept].kept = true;
+    result.chosen_min_action_us = result.min_action_steps[kept].min_action_us;
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
     return result;
 }

@@ -24,11 +24,33 @@ struct OnlineTuningStep {
     bool kept = false;
 };
 
+/// One shortest action of the events tried (AnnotatorConfig::min_action_us),
+/// with the chosen segmenter settings, and what the held-out streams gave.
+struct MinActionStep {
+    std::int64_t min_action_us = 0;
+    double event_segment_f1 = 0;     ///< Mean over the folds of the events' segment F1 (IoU ≥ 0.5).
+    double standard_error = 0;       ///< Of that mean, over the folds (0 with one fold).
+    double detection_latency_s = 0;  ///< Mean over the folds (true start → `started` report).
+    bool kept = false;
+};
+
 struct OnlineTuningResult {
     SegmenterConfig chosen;
+    std::int64_t chosen_min_action_us = 250000;
     std::vector<OnlineTuningStep> steps;
+    std::vector<MinActionStep> min_action_steps;
     double seconds = 0;
 };
+
+/// The events' shortest actions tried, shortest first. A longer one filters
+/// more flicker but reports every action that much later.
+constexpr std::int64_t min_action_candidates_us[] = {250000, 500000, 750000, 1000000, 1500000};
+
+/// The one-standard-error rule over `steps` (in min_action_candidates_us's
+/// order): the shortest action whose mean events' segment F1 lies within one
+/// standard error of the best mean, so a device pays latency only for a gain
+/// the folds can tell from noise. Returns its index (0 when `steps` is empty).
+std::size_t one_standard_error_choice(const std::vector<MinActionStep>& steps);
 
 /// Orders in which a held-out subject's clips are joined (evaluate_online()'s
 /// seeds 1, 2, …): which actions end up side by side moves a stream's segment
@@ -47,8 +69,11 @@ constexpr int online_tuning_orders = 3;
 /// explanation (segment-exemplars 0, 0.1, and 0.2 with recordings) and, with
 /// recordings, the flat unknown cost (0, 0.2; with exemplars 0, 0.05, 0.2), the
 /// rest as in `options.online`; keeps the best mean segment F1 (ties: frame
-/// accuracy, then the earlier, simpler settings). Deterministic.
-/// Needs two subjects or more (otherwise returns options.online, no steps).
+/// accuracy, then the earlier, simpler settings). Then, with those settings on
+/// the same folds and streams, tries each of min_action_candidates_us for the
+/// events and keeps one_standard_error_choice(). Deterministic.
+/// Needs two subjects or more (otherwise returns options.online and
+/// options.min_action_us, no steps).
 OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const TrainingOptions& options,
                                const std::vector<LabelledRecording>* recordings = nullptr,
                                const std::function<void(const OnlineTuningStep&)>& progress = {});

@@ -96,6 +96,8 @@ struct TrainingOptions {
     double reject_keep = 0.95;
     /// The segmenter's settings, stored in the model: a device uses them unless told otherwise.
     SegmenterConfig online;
+    /// The events' shortest action, stored in the model (AnnotatorConfig::min_action_us).
+    std::int64_t min_action_us = 250000;
     std::uint32_t seed = 1;
     /// Called with the name of each stage as it starts (progress reports); may be empty.
     std::function<void(const char*)> progress;

@@ -79,6 +79,7 @@ void check_options(const TrainingOptions& o) {
     require(o.exemplar_weight >= 0 && o.exemplar_weight <= 1000, "the exemplar weight must be between 0 and 1000");
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
             "the settle delay must be 0 to 60 s");
+    require(o.min_action_us >= 0 && o.min_action_us <= 60000000, "the shortest action must be 0 to 60 s");
 }
 
 // Distance between joints a and b of one frame, in double.
@@ -540,6 +541,7 @@ void set_matching(ModelData& m, const TrainingOptions& options, int representati
     m.unknown_cost = online.unknown_cost;
     m.segment_vote_weight = online.vote_weight;
     m.segment_exemplar_weight = online.exemplar_weight;
+    m.min_action_us = static_cast<std::uint32_t>(options.min_action_us);
     // The model stores representative indices in 16 bits (0xFFFF means "no action").
     if (representatives >= 0xFFFF)
         throw std::invalid_argument(std::to_string(representatives) +

@@ -68,6 +68,12 @@ bool apply_segmenter_setting(const std::string& name, const std::string& value, 
     return true;
 }
 
+bool apply_online_setting(const std::string& name, const std::string& value, AnnotatorConfig& config) {
+    if (name == "min-action") config.min_action_us = std::llround(number(name, value, 0, 60) * 1e6);
+    else return apply_segmenter_setting(name, value, config.segmenter);
+    return true;
+}
+
 std::string setting_value_text(double value) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%g", value);
@@ -146,6 +152,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "step") o.step_seconds = num(0.01, 3600);
     else if (name == "unknown-distance") o.unknown_distance = num(0, 1e30);
     else if (name == "seed") o.seed = static_cast<std::uint32_t>(num(0, 4294967295.0));
+    else if (name == "min-action") o.min_action_us = std::llround(num(0, 60) * 1e6);
     else if (apply_segmenter_setting(name, value, o.online)) return true;
     else if (name == "rate") read.frame_rate_hz = num(0.001, 1e6);
     else if (name == "time-unit") read.time_unit_s = parse_time_unit(value);
@@ -215,6 +222,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "unknown-cost",
                                                 "segment-votes",
                                                 "segment-exemplars",
+                                                "min-action",
                                                 "rate",
                                                 "roles",
                                                 "time-unit",

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "actionstring/annotator.hpp"
 #include "actionstring/segmenter.hpp"
 #include "io/clip.hpp"
 #include "train/options.hpp"
@@ -26,6 +27,12 @@ std::string range_text(double low, double high);
 /// a minute is a mistake in a labelling tool. Returns false when `name` is not
 /// one; throws std::invalid_argument ("option --NAME expects …") for a bad value.
 bool apply_segmenter_setting(const std::string& name, const std::string& value, SegmenterConfig& config);
+
+/// Applies one of the online settings a model carries to a runtime config:
+/// the segmenter's (apply_segmenter_setting()) or the events' shortest action
+/// (min-action, in seconds, up to a minute). Returns false when `name` is not
+/// one; throws std::invalid_argument for a bad value.
+bool apply_online_setting(const std::string& name, const std::string& value, AnnotatorConfig& config);
 
 /// Applies one training setting (components, pca, velocity, sigma, …, the
 /// segmenter's, and the reading settings rate and roles). Returns false when
