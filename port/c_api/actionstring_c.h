@@ -84,7 +84,7 @@ typedef struct actionstring_config {
     int64_t max_gap_us;      /**< a longer gap between accepted frames restarts the stream (default 1 s) */
     int64_t max_backward_us; /**< a frame this much earlier than the last is rejected as jitter (100 ms) */
     int32_t window_rule;     /**< nonzero: also run the paper's window rule (actionstring_label()); default 0 */
-    int64_t min_action_us;   /**< events: a shorter action is flicker and not reported (250 ms) */
+    int64_t min_action_us;   /**< events: a shorter action is flicker and not reported (the model's own) */
 } actionstring_config;
 
 /** What one actionstring_push_frame() did. */
