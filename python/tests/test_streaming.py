@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 import actionstring
+from conftest import TOY_SETTINGS
 
 
 def test_streaming_a_clip_settles_its_label(toy_model, toy_clips):
@@ -84,3 +85,21 @@ def test_events_once_per_action_and_the_flush(toy_model, toy_clips):
     assert events[1]["end"] > events[1]["start"]
     assert annotator.characters == 0
     assert annotator.flush() == []  # nothing left
+
+
+def test_the_model_carries_its_shortest_action(toy_clips):
+    """min_action is trained into the model, used by default, and overridable."""
+    assert actionstring.train(toy_clips, **TOY_SETTINGS).online_settings["min_action"] == pytest.approx(0.25)
+    patient = actionstring.train(toy_clips, **TOY_SETTINGS, min_action=60)
+    assert patient.online_settings["min_action"] == pytest.approx(60)
+    clip = toy_clips[1]
+
+    def events(annotator):
+        found = []
+        for time_s, frame in zip(clip.times, clip.positions):
+            found += annotator.push_frame(time_s, frame)["events"]
+        return found + annotator.flush()
+
+    assert events(actionstring.Annotator(patient, settle=0.5)) == []  # no action lasts a minute
+    assert [e["event"] for e in events(actionstring.Annotator(patient, settle=0.5, min_action=0.25))] == [
+        "started", "ended"]
