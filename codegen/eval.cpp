@@ -68,20 +68,24 @@ void print_eval_usage(std::FILE* out) {
 }
 
 void print_online(const char* rule, const host::OnlineResults& r) {
-    std::printf("  %-28s frame accuracy %.3f", rule, r.frame_accuracy);
+    std::printf("  %-28s frame accuracy %.3f (95%% %.3f-%.3f)", rule, r.frame_accuracy, r.frame_accuracy_interval.low,
+                r.frame_accuracy_interval.high);
     if (r.no_action_frames > 0)
         std::printf(" (in actions %.3f, no action %.3f)", r.action_frame_accuracy, r.no_action_accuracy);
-    std::printf(", frame F1 %.3f, segment F1 %.3f (P %.3f, R %.3f), mean delay %.2f s, %d missed, flicker %.1f/min\n",
-                r.frame_f1, r.segment_f1, r.segment_precision, r.segment_recall, r.mean_delay_s, r.missed_segments,
-                r.flicker_per_min);
+    std::printf(
+        ", frame F1 %.3f, segment F1 %.3f (95%% %.3f-%.3f; P %.3f, R %.3f), mean delay %.2f s, %d missed, flicker "
+        "%.1f/min\n",
+        r.frame_f1, r.segment_f1, r.segment_f1_interval.low, r.segment_f1_interval.high, r.segment_precision,
+        r.segment_recall, r.mean_delay_s, r.missed_segments, r.flicker_per_min);
     if (r.has_events)
         std::printf(
-            "  %-28s %zu actions reported, %zu matched (event F1 %.3f; as segments, IoU >= 0.5: %zu, F1 %.3f),\n"
-            "  %-28s detection latency %.2f s, start error %.2f s (bias %+.2f), end error %.2f s (bias %+.2f),\n"
-            "  %-28s %.2f false events per %s\n",
+            "  %-28s %zu actions reported, %zu matched (event F1 %.3f; as segments, IoU >= 0.5: %zu, F1 %.3f,\n"
+            "  %-28s 95%% %.3f-%.3f), detection latency %.2f s, start error %.2f s (bias %+.2f),\n"
+            "  %-28s end error %.2f s (bias %+.2f), %.2f false events per %s\n",
             "  events (once per action)", r.events, r.matched_events, r.event_f1, r.iou_matched_events,
-            r.event_segment_f1, "", r.detection_latency_s, r.start_error_s, r.start_bias_s, r.end_error_s, r.end_bias_s,
-            "", r.false_events_per_min, r.false_events_per_stream_min ? "minute of stream" : "minute of no action");
+            r.event_segment_f1, "", r.event_segment_f1_interval.low, r.event_segment_f1_interval.high,
+            r.detection_latency_s, r.start_error_s, r.start_bias_s, "", r.end_error_s, r.end_bias_s,
+            r.false_events_per_min, r.false_events_per_stream_min ? "minute of stream" : "minute of no action");
 }
 
 void print_results(const host::ClipResults& r) {

@@ -174,6 +174,25 @@ TEST_CASE("online evaluation streams concatenated toy clips deterministically") 
     CHECK(a.live.frame_accuracy > 0.3);
     CHECK(a.settled.segment_f1 >= 0.0);
     CHECK(a.settled.segment_f1 <= 1.0);
+    // The intervals' units add up to the figures, and the intervals hold them.
+    std::size_t frames = 0, right = 0, matched = 0, segments = 0, events_matched = 0, events = 0;
+    for (const OnlineResults::Unit& unit : a.settled.units) {
+        frames += unit.frames, right += unit.right, matched += unit.matched;
+        segments += unit.predicted + unit.true_segments;
+        events_matched += unit.iou_matched_events, events += unit.reported + unit.true_actions;
+    }
+    CHECK(frames == a.settled.frames);
+    CHECK(static_cast<double>(right) / static_cast<double>(frames) == doctest::Approx(a.settled.frame_accuracy));
+    CHECK(2.0 * static_cast<double>(matched) / static_cast<double>(segments) == doctest::Approx(a.settled.segment_f1));
+    CHECK(events_matched == a.settled.iou_matched_events);
+    CHECK(2.0 * static_cast<double>(events_matched) / static_cast<double>(events) ==
+          doctest::Approx(a.settled.event_segment_f1));
+    CHECK(a.settled.frame_accuracy_interval.low <= a.settled.frame_accuracy);
+    CHECK(a.settled.frame_accuracy_interval.high >= a.settled.frame_accuracy);
+    CHECK(a.settled.segment_f1_interval.low <= a.settled.segment_f1);
+    CHECK(a.settled.segment_f1_interval.high >= a.settled.segment_f1);
+    CHECK(a.settled.frame_accuracy_interval.high - a.settled.frame_accuracy_interval.low < 0.5);
+    CHECK(a.settled.frame_accuracy_interval.low == b.settled.frame_accuracy_interval.low);
     REQUIRE(a.streams.size() == 4);  // one per subject
     for (const StreamTimeline& s : a.streams) {
         CHECK(s.truth.size() == s.times_s.size());
@@ -321,4 +340,56 @@ TEST_CASE("frame F1, the trivial baseline and the event metrics on a timeline sc
     // One false event in 9 s of no action (frame steps whose first frame is no action).
     CHECK_FALSE(r.false_events_per_stream_min);
     CHECK(r.false_events_per_min == doctest::Approx(60.0 / 9.0));
+
+    // The intervals' units: the five true runs, each predicted run and reported
+    // action with the run its middle falls in (scored again: the first
+    // scoring's events are forgotten).
+    host::score_events(r, truth, times, starts, events);
+    REQUIRE(r.units.size() == 5);  // no action 0-3, action 0 4-9, no action 10-13, action 1 14-17, no action 18-19
+    const std::size_t frames[] = {4, 6, 4, 4, 2}, right[] = {4, 5, 3, 0, 2};
+    const std::size_t predicted_runs[] = {0, 1, 1, 0, 0};  // 5-9 in action 0; the false alarm at 12 in no action
+    const std::size_t reported[] = {0, 1, 1, 0, 0};        // 5-9 s and 11-12 s, by their middles
+    for (std::size_t u = 0; u < 5; ++u) {
+        CAPTURE(u);
+        CHECK(r.units[u].frames == frames[u]);
+        CHECK(r.units[u].right == right[u]);
+        CHECK(r.units[u].true_segments == (u % 2 == 1 ? 1u : 0u));
+        CHECK(r.units[u].true_actions == (u % 2 == 1 ? 1u : 0u));
+        CHECK(r.units[u].matched == (u == 1 ? 1u : 0u));
+        CHECK(r.units[u].iou_matched_events == (u == 1 ? 1u : 0u));
+        CHECK(r.units[u].predicted == predicted_runs[u]);
+        CHECK(r.units[u].reported == reported[u]);
+    }
+    // Their sums are the figures: 14 of 20 frames; 2·1 / (2 predicted + 2 true).
+    CHECK(r.frame_accuracy == doctest::Approx(14.0 / 20.0));
+    CHECK(r.segment_f1 == doctest::Approx(2.0 / 4.0));
+    host::add_intervals(r);
+    CHECK(r.frame_accuracy_interval.low <= r.frame_accuracy);
+    CHECK(r.frame_accuracy_interval.high >= r.frame_accuracy);
+    CHECK(r.event_segment_f1_interval.low <= r.event_segment_f1_interval.high);
+}
+
+TEST_CASE("the bootstrap interval of a ratio of sums") {
+    // No items: nothing known.
+    CHECK(host::bootstrap_ratio_interval({}, {}).low == 0.0);
+    CHECK(host::bootstrap_ratio_interval({}, {}).high == 1.0);
+    // Every item at one ratio: every resample has it.
+    const host::Interval same = host::bootstrap_ratio_interval({1, 2, 3, 4}, {2, 4, 6, 8});
+    CHECK(same.low == doctest::Approx(0.5));
+    CHECK(same.high == doctest::Approx(0.5));
+    // Two items, 1/1 and 0/1: resamples give 0, 1/2 and 1 a quarter, half and quarter of the time.
+    const host::Interval two = host::bootstrap_ratio_interval({1, 0}, {1, 1});
+    CHECK(two.low == 0.0);
+    CHECK(two.high == 1.0);
+    // Independent trials (80 of 100 right, one each): close to the Wilson interval (0.711-0.867).
+    std::vector<double> successes(100, 0.0), trials(100, 1.0);
+    for (std::size_t i = 0; i < 80; ++i) successes[i] = 1.0;
+    const host::Interval wide = host::bootstrap_ratio_interval(successes, trials);
+    const host::Interval wilson = host::wilson_interval(80, 100);
+    CHECK(wide.low == doctest::Approx(wilson.low).epsilon(0.04));
+    CHECK(wide.high == doctest::Approx(wilson.high).epsilon(0.04));
+    // Deterministic: the same seed, the same interval.
+    const host::Interval again = host::bootstrap_ratio_interval(successes, trials);
+    CHECK(again.low == wide.low);
+    CHECK(again.high == wide.high);
 }

@@ -94,10 +94,16 @@ def test_evaluate_on_toy_clips(toy_model, toy_clips):
         paired = baseline["paired_with_model"]
         assert paired["model_only"] + paired["baseline_only"] <= len(toy_clips)
         assert 0.0 < paired["mcnemar_p"] <= 1.0
-    assert 0.0 <= report["online"]["settled"]["frame_accuracy"] <= 1.0
-    events = report["online"]["settled"]["events"]  # the reported actions, also judged as segments
+    settled = report["online"]["settled"]
+    assert 0.0 <= settled["frame_accuracy"] <= 1.0
+    for figure in ("frame_accuracy", "segment_f1"):  # 95% intervals resampling the true runs
+        low, high = settled[figure + "_ci95"]
+        assert 0.0 <= low <= high <= 1.0
+    events = settled["events"]  # the reported actions, also judged as segments
     assert 0 <= events["iou_matched"] <= events["reported"]
     assert 0.0 <= events["segment_f1"] <= 1.0
+    low, high = events["segment_f1_ci95"]
+    assert 0.0 <= low <= high <= 1.0
     assert report["perturbation"] == "none"
 
 

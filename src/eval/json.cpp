@@ -56,6 +56,11 @@ void write_json(JsonWriter& out, const OnlineResults& r) {
         .field("true_changes_per_min", r.true_changes_per_min)
         .field("frame_f1", r.frame_f1)
         .field("unknown_everywhere_accuracy", r.unknown_everywhere_accuracy);
+    // 95% intervals resampling the true runs (OnlineResults::units).
+    out.key("frame_accuracy_ci95")
+        .array(std::vector<double>{r.frame_accuracy_interval.low, r.frame_accuracy_interval.high})
+        .key("segment_f1_ci95")
+        .array(std::vector<double>{r.segment_f1_interval.low, r.segment_f1_interval.high});
     if (r.has_events) {
         out.key("events")
             .begin_object()
@@ -66,6 +71,8 @@ void write_json(JsonWriter& out, const OnlineResults& r) {
             .field("f1", r.event_f1)
             .field("iou_matched", r.iou_matched_events)
             .field("segment_f1", r.event_segment_f1)
+            .key("segment_f1_ci95")
+            .array(std::vector<double>{r.event_segment_f1_interval.low, r.event_segment_f1_interval.high})
             .field("detection_latency_s", r.detection_latency_s)
             .field("start_error_s", r.start_error_s)
             .field("end_error_s", r.end_error_s)

@@ -67,7 +67,24 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
         predicted_changes += static_cast<int>(predicted_runs.size()) - 1;
         std::vector<bool> used(predicted_runs.size(), false);
         for (const Segment& segment : predicted_runs) predicted_segments += segment.label >= 0;
+        // The stream's units: its true runs, each predicted action run with the one its middle falls in.
+        const std::size_t first_unit = r.units.size();
         for (const Segment& segment : true_runs) {
+            OnlineResults::Unit unit;
+            unit.frames = segment.end - segment.begin;
+            for (std::size_t i = segment.begin; i < segment.end; ++i) unit.right += p[i] == segment.label;
+            unit.true_segments = segment.label != unknown_frame;
+            r.units.push_back(unit);
+        }
+        for (const Segment& guess : predicted_runs) {
+            if (guess.label < 0) continue;
+            const std::size_t middle = guess.begin + (guess.end - guess.begin - 1) / 2;
+            const auto holder = std::upper_bound(true_runs.begin(), true_runs.end(), middle,
+                                                 [](std::size_t i, const Segment& run) { return i < run.begin; });
+            ++r.units[first_unit + static_cast<std::size_t>(holder - true_runs.begin()) - 1].predicted;
+        }
+        for (std::size_t u = 0; u < true_runs.size(); ++u) {
+            const Segment& segment = true_runs[u];
             if (segment.label == unknown_frame) continue;  // "no action": judged frame by frame only
             ++true_segments;
             for (std::size_t q = 0; q < predicted_runs.size(); ++q) {
@@ -82,6 +99,7 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
                 if (overlap / joined >= 0.5) {
                     used[q] = true;
                     ++matched;
+                    r.units[first_unit + u].matched = 1;
                     break;
                 }
             }
@@ -137,6 +155,7 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
                   const std::vector<std::size_t>& stream_starts,
                   const std::vector<std::vector<ReportedEvent>>& stream_events) {
     r.has_events = true;
+    for (OnlineResults::Unit& unit : r.units) unit.true_actions = unit.iou_matched_events = unit.reported = 0;
     struct Action {
         int label;
         double start_s, end_s, reported_s;
@@ -144,6 +163,7 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
         bool taken = false;  // matched to a true action as a segment of it (IoU ≥ 0.5)
     };
     std::size_t true_actions = 0, matched = 0, reported = 0, iou_matched = 0;
+    std::size_t unit = 0;  // the first of this stream's units
     double latency = 0, start_error = 0, end_error = 0, start_bias = 0, end_bias = 0, no_action_s = 0, stream_s = 0;
     for (std::size_t s = 0; s + 1 < stream_starts.size() && s < stream_events.size(); ++s) {
         const std::size_t begin = stream_starts[s], end = stream_starts[s + 1];
@@ -163,6 +183,18 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
             }
         }
         reported += actions.size();
+        // This stream's units (score_timeline()'s true runs, in the same order).
+        std::vector<std::size_t> run_begins;
+        for (std::size_t i = begin; i < end; ++i)
+            if (i == begin || truth[i] != truth[i - 1]) run_begins.push_back(i);
+        const bool units = unit + run_begins.size() <= r.units.size();
+        if (units)
+            for (const Action& a : actions) {
+                const double middle = 0.5 * (a.start_s + a.end_s);
+                std::size_t k = 0;
+                while (k + 1 < run_begins.size() && times[run_begins[k + 1]] <= middle) ++k;
+                ++r.units[unit + k].reported;
+            }
         for (std::size_t i = begin; i + 1 < end; ++i) {
             const double step = times[i + 1] - times[i];
             stream_s += step;
@@ -172,8 +204,10 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
         for (std::size_t i = begin; i < end;) {
             std::size_t j = i;
             while (j < end && truth[j] == truth[i]) ++j;
+            OnlineResults::Unit* const held = units ? &r.units[unit++] : nullptr;
             if (truth[i] >= 0) {
                 ++true_actions;
+                if (held != nullptr) held->true_actions = 1;
                 const double t_begin = times[i], t_end = times[j - 1];
                 for (Action& a : actions) {
                     if (a.used || a.label != truth[i] || a.start_s > t_end || a.end_s < t_begin) continue;
@@ -194,6 +228,7 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
                     if (overlap > 0 && overlap / joined >= 0.5) {
                         a.taken = true;
                         ++iou_matched;
+                        if (held != nullptr) held->iou_matched_events = 1;
                         break;
                     }
                 }
@@ -226,6 +261,24 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
     r.false_events_per_min = minutes > 0 ? static_cast<double>(false_events) / minutes : 0.0;
 }
 
+void add_intervals(OnlineResults& r) {
+    const std::size_t n = r.units.size();
+    std::vector<double> right(n), frames(n), matched(n), segments(n), events_matched(n), events(n);
+    for (std::size_t u = 0; u < n; ++u) {
+        const OnlineResults::Unit& unit = r.units[u];
+        right[u] = static_cast<double>(unit.right);
+        frames[u] = static_cast<double>(unit.frames);
+        // F1 = 2·matched / (predicted + true): a ratio of sums like accuracy.
+        matched[u] = 2.0 * static_cast<double>(unit.matched);
+        segments[u] = static_cast<double>(unit.predicted + unit.true_segments);
+        events_matched[u] = 2.0 * static_cast<double>(unit.iou_matched_events);
+        events[u] = static_cast<double>(unit.reported + unit.true_actions);
+    }
+    r.frame_accuracy_interval = bootstrap_ratio_interval(right, frames);
+    r.segment_f1_interval = bootstrap_ratio_interval(matched, segments);
+    if (r.has_events) r.event_segment_f1_interval = bootstrap_ratio_interval(events_matched, events);
+}
+
 namespace {
 
 // Appends one stream's timeline to the pooled per-frame vectors.
@@ -251,6 +304,7 @@ struct PooledTimelines {
         score_events(report.settled, truth, times, stream_starts, events);
         report.live = score_timeline(truth, live, times, stream_starts);
         report.window = score_timeline(truth, window, times, stream_starts);
+        for (OnlineResults* results : {&report.settled, &report.live, &report.window}) add_intervals(*results);
     }
 };
 

@@ -9,6 +9,7 @@
 
 #include "actionstring/annotator.hpp"
 #include "actionstring/model.hpp"
+#include "eval/significance.hpp"
 #include "io/clip_list.hpp"
 #include "io/recordings.hpp"
 #include "run/stream_labels.hpp"
@@ -57,7 +58,29 @@ struct OnlineResults {
     /// the streams have no no-action frames (concatenated clips).
     double false_events_per_min = 0;
     bool false_events_per_stream_min = false;  ///< Which of the two minutes divides.
+
+    /// One true run of the streams (an action, or a stretch of no action), in
+    /// stream order, with what was scored on it: the units the intervals
+    /// below resample. A predicted run or a reported action belongs to the
+    /// true run its middle falls in.
+    struct Unit {
+        std::size_t frames = 0, right = 0;   ///< Its frames, and those labelled right.
+        std::size_t true_segments = 0;       ///< 1 for an action (segment F1 counts it), 0 for no action.
+        std::size_t matched = 0;             ///< 1 when a predicted run matched it (IoU ≥ 0.5).
+        std::size_t predicted = 0;           ///< Predicted action runs centred in it.
+        std::size_t true_actions = 0;        ///< 1 for an action the model knows (the events count it).
+        std::size_t iou_matched_events = 0;  ///< 1 when a reported action matched it as a segment.
+        std::size_t reported = 0;            ///< Reported actions centred in it.
+    };
+    std::vector<Unit> units;
+    /// 95% intervals, resampling the units (bootstrap_ratio_interval(),
+    /// significance.hpp; add_intervals()): frame accuracy, segment F1 and the
+    /// events' segment F1.
+    Interval frame_accuracy_interval, segment_f1_interval, event_segment_f1_interval;
 };
+
+/// Fills the intervals of `results` from its units.
+void add_intervals(OnlineResults& results);
 
 /// Scores a labelled timeline: per frame the true and predicted label (−1
 /// unknown or "no action", −2 a label the model does not know), its time in

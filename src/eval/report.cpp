@@ -180,6 +180,7 @@ void write_report(const std::string& dir, const std::string& title, const std::v
            << settled.frames << " frames; " << settled.no_action_frames
            << " of them outside every action, so saying unknown everywhere scores "
            << settled.unknown_everywhere_accuracy << ".\n\n"
+           << "Intervals are 95%, resampling the true actions and stretches of no action.\n\n"
            << "| rule | frame accuracy | in action | no action | frame F1 | segment F1 | mean delay (s) | missed "
               "segments | flicker (/min) |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n"
            << "| baseline: unknown everywhere | " << settled.unknown_everywhere_accuracy
@@ -188,19 +189,23 @@ void write_report(const std::string& dir, const std::string& title, const std::v
                                                                       {"segmenter, live labels", &online->live},
                                                                       {"paper: latest window wins", &online->window}};
         for (const auto& rule : rules)
-            md << "| " << rule.first << " | " << rule.second->frame_accuracy << " | "
+            md << "| " << rule.first << " | " << rule.second->frame_accuracy << " ("
+               << rule.second->frame_accuracy_interval.low << "–" << rule.second->frame_accuracy_interval.high << ") | "
                << rule.second->action_frame_accuracy << " | " << rule.second->no_action_accuracy << " | "
-               << rule.second->frame_f1 << " | " << rule.second->segment_f1 << " | " << rule.second->mean_delay_s
-               << " | " << rule.second->missed_segments << " | " << rule.second->flicker_per_min << " |\n";
+               << rule.second->frame_f1 << " | " << rule.second->segment_f1 << " ("
+               << rule.second->segment_f1_interval.low << "–" << rule.second->segment_f1_interval.high << ") | "
+               << rule.second->mean_delay_s << " | " << rule.second->missed_segments << " | "
+               << rule.second->flicker_per_min << " |\n";
         if (settled.has_events)
             md << "\nAction events (each action once when it starts and once when it ends): " << settled.events
                << " reported, " << settled.matched_events << " matched to a true action (event F1 " << settled.event_f1
                << "; judged as segments, one-to-one at temporal IoU ≥ 0.5, " << settled.iou_matched_events
-               << " matched, F1 " << settled.event_segment_f1 << "), detection latency " << settled.detection_latency_s
-               << " s, start error " << settled.start_error_s << " s (mean bias " << std::showpos
-               << settled.start_bias_s << std::noshowpos << " s), end error " << settled.end_error_s << " s (mean bias "
-               << std::showpos << settled.end_bias_s << std::noshowpos << " s), " << settled.false_events_per_min
-               << " false events per "
+               << " matched, F1 " << settled.event_segment_f1 << ", 95% interval "
+               << settled.event_segment_f1_interval.low << "–" << settled.event_segment_f1_interval.high
+               << "), detection latency " << settled.detection_latency_s << " s, start error " << settled.start_error_s
+               << " s (mean bias " << std::showpos << settled.start_bias_s << std::noshowpos << " s), end error "
+               << settled.end_error_s << " s (mean bias " << std::showpos << settled.end_bias_s << std::noshowpos
+               << " s), " << settled.false_events_per_min << " false events per "
                << (settled.false_events_per_stream_min ? "minute of stream" : "minute of no action") << ".\n";
         md << "\n";
         for (std::size_t s = 0; s < online->streams.size(); ++s) {

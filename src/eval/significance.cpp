@@ -1,8 +1,9 @@
-// The Wilson interval and the exact McNemar test.
+// The Wilson interval, the exact McNemar test and the bootstrap of a ratio.
 #include "eval/significance.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 namespace actionstring {
 namespace host {
@@ -40,6 +41,29 @@ double mcnemar_exact_p(std::size_t only_first, std::size_t only_second) {
         tail += std::exp(log_n_factorial - std::lgamma(static_cast<double>(i) + 1.0) -
                          std::lgamma(static_cast<double>(n - i) + 1.0) + log_half_n);
     return std::min(1.0, 2.0 * tail);
+}
+
+Interval bootstrap_ratio_interval(const std::vector<double>& numerator, const std::vector<double>& denominator,
+                                  std::size_t draws, std::uint32_t seed) {
+    const std::size_t n = std::min(numerator.size(), denominator.size());
+    if (n == 0 || draws == 0) return {};
+    // mt19937's outputs are fixed by the standard (its distributions are not),
+    // so the draws, and the interval, are the same on every platform.
+    std::mt19937 engine(seed);
+    std::vector<double> ratios(draws);
+    for (double& ratio : ratios) {
+        double top = 0.0, bottom = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto pick = static_cast<std::size_t>((static_cast<std::uint64_t>(engine()) * n) >> 32);
+            top += numerator[pick];
+            bottom += denominator[pick];
+        }
+        ratio = bottom > 0.0 ? top / bottom : 0.0;
+    }
+    std::sort(ratios.begin(), ratios.end());
+    const double last = static_cast<double>(draws - 1);
+    return {ratios[static_cast<std::size_t>(std::lround(0.025 * last))],
+            ratios[static_cast<std::size_t>(std::lround(0.975 * last))]};
 }
 
 }  // namespace host

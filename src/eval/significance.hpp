@@ -11,6 +11,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 namespace actionstring {
 namespace host {
@@ -28,6 +30,18 @@ Interval wilson_interval(std::size_t successes, std::size_t trials);
 /// items the first method gets right and the second wrong, `only_second`
 /// the reverse. 1 when the two counts differ by at most one.
 double mcnemar_exact_p(std::size_t only_first, std::size_t only_second);
+
+/// A 95% percentile bootstrap interval of a ratio of sums, Σ numerator ÷
+/// Σ denominator, over items drawn with replacement. For figures whose
+/// trials are not independent (a stream's frames within one action, its
+/// segments matched against each other) the items are the units that are
+/// closer to it: each true action or stretch of no action, with what was
+/// scored on it. `draws` resamples from `seed`, so the interval is
+/// deterministic; a resample with a zero denominator scores 0. The two
+/// vectors have one entry per item; [0, 1] when there is none. It speaks for
+/// other actions of the same people: it cannot say how other people differ.
+Interval bootstrap_ratio_interval(const std::vector<double>& numerator, const std::vector<double>& denominator,
+                                  std::size_t draws = 2000, std::uint32_t seed = 1);
 
 }  // namespace host
 }  // namespace actionstring
