@@ -71,7 +71,9 @@ void print_online(const char* rule, const host::OnlineResults& r) {
     std::printf("  %-28s frame accuracy %.3f (95%% %.3f-%.3f)", rule, r.frame_accuracy, r.frame_accuracy_interval.low,
                 r.frame_accuracy_interval.high);
     if (r.no_action_frames > 0)
-        std::printf(" (in actions %.3f, no action %.3f)", r.action_frame_accuracy, r.no_action_accuracy);
+        std::printf(" (in actions %.3f, no action %.3f; %+.3f over unknown everywhere, 95%% %+.3f to %+.3f)",
+                    r.action_frame_accuracy, r.no_action_accuracy, r.frame_accuracy - r.unknown_everywhere_accuracy,
+                    r.gain_over_unknown_interval.low, r.gain_over_unknown_interval.high);
     std::printf(
         ", frame F1 %.3f, segment F1 %.3f (95%% %.3f-%.3f; P %.3f, R %.3f), mean delay %.2f s, %d missed, flicker "
         "%.1f/min\n",

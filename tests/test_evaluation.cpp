@@ -367,6 +367,16 @@ TEST_CASE("frame F1, the trivial baseline and the event metrics on a timeline sc
     CHECK(r.frame_accuracy_interval.low <= r.frame_accuracy);
     CHECK(r.frame_accuracy_interval.high >= r.frame_accuracy);
     CHECK(r.event_segment_f1_interval.low <= r.event_segment_f1_interval.high);
+    // Paired with "unknown everywhere" (0.5 here): 0.2 better, within its interval.
+    CHECK(r.gain_over_unknown_interval.low <= 0.2);
+    CHECK(r.gain_over_unknown_interval.high >= 0.2);
+    // Labels that are "unknown everywhere" gain exactly nothing on every resample,
+    // though their own accuracy's interval is wide.
+    host::OnlineResults silent = host::score_timeline(truth, std::vector<int>(20, unknown_frame), times, starts);
+    host::add_intervals(silent);
+    CHECK(silent.gain_over_unknown_interval.low == 0.0);
+    CHECK(silent.gain_over_unknown_interval.high == 0.0);
+    CHECK(silent.frame_accuracy_interval.high - silent.frame_accuracy_interval.low > 0.2);
 }
 
 TEST_CASE("the bootstrap interval of a ratio of sums") {

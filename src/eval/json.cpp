@@ -60,7 +60,9 @@ void write_json(JsonWriter& out, const OnlineResults& r) {
     out.key("frame_accuracy_ci95")
         .array(std::vector<double>{r.frame_accuracy_interval.low, r.frame_accuracy_interval.high})
         .key("segment_f1_ci95")
-        .array(std::vector<double>{r.segment_f1_interval.low, r.segment_f1_interval.high});
+        .array(std::vector<double>{r.segment_f1_interval.low, r.segment_f1_interval.high})
+        .key("gain_over_unknown_everywhere_ci95")
+        .array(std::vector<double>{r.gain_over_unknown_interval.low, r.gain_over_unknown_interval.high});
     if (r.has_events) {
         out.key("events")
             .begin_object()

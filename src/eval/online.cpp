@@ -263,10 +263,12 @@ void score_events(OnlineResults& r, const std::vector<int>& truth, const std::ve
 
 void add_intervals(OnlineResults& r) {
     const std::size_t n = r.units.size();
-    std::vector<double> right(n), frames(n), matched(n), segments(n), events_matched(n), events(n);
+    std::vector<double> right(n), gain(n), frames(n), matched(n), segments(n), events_matched(n), events(n);
     for (std::size_t u = 0; u < n; ++u) {
         const OnlineResults::Unit& unit = r.units[u];
         right[u] = static_cast<double>(unit.right);
+        // "Unknown everywhere" gets every frame of a stretch of no action right, and nothing else.
+        gain[u] = right[u] - (unit.true_segments == 0 ? static_cast<double>(unit.frames) : 0.0);
         frames[u] = static_cast<double>(unit.frames);
         // F1 = 2·matched / (predicted + true): a ratio of sums like accuracy.
         matched[u] = 2.0 * static_cast<double>(unit.matched);
@@ -275,6 +277,7 @@ void add_intervals(OnlineResults& r) {
         events[u] = static_cast<double>(unit.reported + unit.true_actions);
     }
     r.frame_accuracy_interval = bootstrap_ratio_interval(right, frames);
+    r.gain_over_unknown_interval = bootstrap_ratio_interval(gain, frames);
     r.segment_f1_interval = bootstrap_ratio_interval(matched, segments);
     if (r.has_events) r.event_segment_f1_interval = bootstrap_ratio_interval(events_matched, events);
 }

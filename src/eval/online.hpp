@@ -77,6 +77,11 @@ struct OnlineResults {
     /// significance.hpp; add_intervals()): frame accuracy, segment F1 and the
     /// events' segment F1.
     Interval frame_accuracy_interval, segment_f1_interval, event_segment_f1_interval;
+    /// Frame accuracy minus "unknown everywhere"'s, 95%, resampling the same
+    /// units: the two are scored on the same frames, so whether the labels
+    /// beat saying nothing is read here, not from two intervals side by side.
+    /// Where there is no "no action" it is the frame accuracy's.
+    Interval gain_over_unknown_interval;
 };
 
 /// Fills the intervals of `results` from its units.
