@@ -212,9 +212,11 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Opt
     (``pca=24, velocity=1.0, string_rate=15, scale="bones"``; see
     ``training_settings()``); ``config`` is a settings file as ``train --config``
     reads it (``models/*.config``), applied first. With neither given and
-    ``tune`` left None, training tunes itself: the settings that matter most are
-    chosen by leave-one-subject-out cross-validation over the clips' subjects
-    (as ``actionstring train`` does).
+    ``tune`` left None, training tunes itself as ``actionstring train`` does: the
+    clip settings that matter most by leave-one-subject-out cross-validation over
+    the clips' subjects, then the online ones (the segmenter's and the events'
+    shortest action) by streaming each held-out subject's clips joined. The
+    model's ``training_report["online_tuning"]`` then holds that search's table.
     """
     clips = list(clips)
     if not clips:

@@ -27,6 +27,7 @@
 #include "run/state.hpp"
 #include "run/stream_labels.hpp"
 #include "toy/toy.hpp"
+#include "train/online_tuning.hpp"
 #include "train/pipeline.hpp"
 #include "train/settings.hpp"
 #include "train/tuning.hpp"
@@ -234,11 +235,16 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
     if (clips.empty()) throw py::value_error("no clips to train on");
     py::dict report;
     std::shared_ptr<ModelData> model;
+    host::OnlineTuningResult online;
     {
         py::gil_scoped_release release;
         if (tune) {
+            // As `actionstring train` with no settings: the clip settings, then the online ones.
             const host::TuningResult tuned = host::tune_training(clips, options);
             options = tuned.options;
+            online = host::tune_online(clips, options);
+            options.online = online.chosen;
+            options.min_action_us = online.chosen_min_action_us;
         }
         host::TrainingReport training;
         model = std::make_shared<ModelData>(host::train_model(clips, options, &training));
@@ -250,6 +256,32 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
         report["frames_rejected"] = training.frames_rejected;
     }
     report["settings"] = host::options_as_config(options);
+    if (!online.steps.empty()) {
+        // The online search's table (means over the held-out subjects' streams), as `train` prints it.
+        py::list settings_tried, min_actions;
+        for (const host::OnlineTuningStep& step : online.steps) {
+            py::dict row;
+            row["settings"] = step.settings;
+            row["segment_f1"] = step.segment_f1;
+            row["frame_accuracy"] = step.frame_accuracy;
+            row["kept"] = step.kept;
+            settings_tried.append(row);
+        }
+        for (const host::MinActionStep& step : online.min_action_steps) {
+            py::dict row;
+            row["min_action"] = static_cast<double>(step.min_action_us) * 1e-6;
+            row["event_segment_f1"] = step.event_segment_f1;
+            row["standard_error"] = step.standard_error;
+            row["detection_latency"] = step.detection_latency_s;
+            row["kept"] = step.kept;
+            min_actions.append(row);
+        }
+        py::dict tuning;
+        tuning["settings"] = settings_tried;
+        tuning["min_action"] = min_actions;
+        tuning["seconds"] = online.seconds;
+        report["online_tuning"] = tuning;
+    }
     return py::make_tuple(ModelPtr(model), report);
 }
 

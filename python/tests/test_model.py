@@ -55,6 +55,23 @@ def test_motion_settings_reach_the_model(toy_clips):
         actionstring.train(toy_clips, **dict(TOY_SETTINGS, acceleration=-1.0))
 
 
+def test_self_tuning_chooses_the_online_settings_too(toy_clips):
+    """With no settings, train() tunes as `actionstring train` does: clip settings, then online ones."""
+    model = actionstring.train(toy_clips)
+    tuning = model.training_report["online_tuning"]
+    kept = [row for row in tuning["settings"] if row["kept"]]
+    assert len(kept) == 1
+    assert all(row["segment_f1"] <= kept[0]["segment_f1"] for row in tuning["settings"])
+    assert "segment-penalty %g" % model.online_settings["segment_penalty"] in kept[0]["settings"]
+    shortest = [row for row in tuning["min_action"] if row["kept"]]
+    assert [row["min_action"] for row in tuning["min_action"]] == [0.25, 0.5, 0.75, 1.0, 1.5]
+    assert len(shortest) == 1
+    assert model.online_settings["min_action"] == pytest.approx(shortest[0]["min_action"])
+    assert "min-action %g" % shortest[0]["min_action"] in model.training_report["settings"]
+    # Given settings, nothing is tuned.
+    assert "online_tuning" not in actionstring.train(toy_clips, **TOY_SETTINGS).training_report
+
+
 def test_settings_are_checked(toy_clips):
     with pytest.raises(ValueError, match="unknown training setting 'pcaa'"):
         actionstring.train(toy_clips, pcaa=3)
