@@ -279,12 +279,25 @@ actionstring_online_settings actionstring_model_online_settings(const actionstri
                                         c.unknown_cost, c.vote_weight, c.exemplar_weight};
 }
 
+namespace {
+
+// Restarts a state's stream with another config of its model, checked first,
+// so a refused config leaves the state as it was.
+actionstring_status reconfigure(State& state, const AnnotatorConfig& config) {
+    const ModelView& model = state.model->view;
+    if (!config_ok(model, config)) return ACTIONSTRING_INVALID_ARGUMENT;
+    const std::size_t room = state.total - kHeaderBytes - kGuardBytes;
+    if (Annotator::required_bytes(model, config) > room) return ACTIONSTRING_STORAGE_TOO_SMALL;
+    return code(state.annotator.init(model, config, reinterpret_cast<unsigned char*>(&state) + kHeaderBytes, room));
+}
+
+}  // namespace
+
 actionstring_status actionstring_set_online_settings(actionstring_state* handle,
                                                      const actionstring_online_settings* settings) {
     State* state = live(handle);
     if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
     if (settings == nullptr) return ACTIONSTRING_INVALID_ARGUMENT;
-    const ModelView& model = state->model->view;
     AnnotatorConfig config = state->annotator.config();
     config.segmenter.settle_delay_us = settings->settle_delay_us;
     config.segmenter.segment_penalty = settings->segment_penalty;
@@ -293,11 +306,15 @@ actionstring_status actionstring_set_online_settings(actionstring_state* handle,
     config.segmenter.unknown_cost = settings->unknown_cost;
     config.segmenter.vote_weight = settings->vote_weight;
     config.segmenter.exemplar_weight = settings->exemplar_weight;
-    // Checked first, so a refused setting leaves the state as it was.
-    if (!config_ok(model, config)) return ACTIONSTRING_INVALID_ARGUMENT;
-    const std::size_t room = state->total - kHeaderBytes - kGuardBytes;
-    if (Annotator::required_bytes(model, config) > room) return ACTIONSTRING_STORAGE_TOO_SMALL;
-    return code(state->annotator.init(model, config, reinterpret_cast<unsigned char*>(state) + kHeaderBytes, room));
+    return reconfigure(*state, config);
+}
+
+actionstring_status actionstring_set_min_action(actionstring_state* handle, int64_t min_action_us) {
+    State* state = live(handle);
+    if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    AnnotatorConfig config = state->annotator.config();
+    config.min_action_us = min_action_us;
+    return reconfigure(*state, config);
 }
 
 int32_t actionstring_label(const actionstring_state* handle) {

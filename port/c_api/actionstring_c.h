@@ -176,6 +176,11 @@ ACTIONSTRING_C_API actionstring_online_settings actionstring_model_online_settin
  *  state is unchanged. */
 ACTIONSTRING_C_API actionstring_status actionstring_set_online_settings(actionstring_state* state,
                                                                         const actionstring_online_settings* settings);
+/** Replaces a state's shortest action for events (config.min_action_us; a
+ *  model carries its own, which actionstring_default_config() gives) and
+ *  restarts its stream. INVALID_ARGUMENT for a negative one or one over 10
+ *  minutes; NOT_INITIALIZED for a bad state. On failure the state is unchanged. */
+ACTIONSTRING_C_API actionstring_status actionstring_set_min_action(actionstring_state* state, int64_t min_action_us);
 
 /** The paper's window rule (needs config.window_rule): the current label index, or -1. */
 ACTIONSTRING_C_API int32_t actionstring_label(const actionstring_state* state);

@@ -147,6 +147,13 @@ static void contract_checks(const actionstring_model* model) {
     eager.exemplar_weight = 0.1f; /* no exemplars in this model: accepted, no effect */
     CHECK(actionstring_set_online_settings(state, &eager) == ACTIONSTRING_OK);
     CHECK(actionstring_set_online_settings(state, &own) == ACTIONSTRING_OK);
+    /* The events' shortest action: the model's own by default, replaceable, checked. */
+    CHECK(config.min_action_us >= 0 && config.min_action_us <= (int64_t)600 * 1000000);
+    CHECK(actionstring_set_min_action(state, -1) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_set_min_action(state, (int64_t)3600 * 1000000) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_set_min_action(NULL, 500000) == ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_set_min_action(state, 1000000) == ACTIONSTRING_OK);
+    CHECK(actionstring_set_min_action(state, config.min_action_us) == ACTIONSTRING_OK);
 
     /* Wrong element count or a null frame: rejected before the runtime sees it. */
     CHECK(actionstring_push_frame(state, 0, frame, 3 * joints - 1, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
