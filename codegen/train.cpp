@@ -164,6 +164,7 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
     start.pose_joints = given.pose_joints;
     start.max_representative_chars = given.max_representative_chars;
     start.reject = given.reject;  // the folds learn their bounds too, so the choice is made with them
+    start.latency_budget_s = given.latency_budget_s;  // a constraint on the online search
     std::set<std::string> subjects;
     for (const host::LabelledClip& c : clips) subjects.insert(c.subject);
     if (subjects.size() < 2) {
@@ -205,8 +206,13 @@ void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::Tr
     std::printf("online tuning:    %zu settings in %.0f s; mean over the held-out subjects' streams:\n",
                 tuned.steps.size(), tuned.seconds);
     for (const host::OnlineTuningStep& step : tuned.steps)
-        std::printf("  %-60s segment F1 %.3f  settled frames %.3f%s\n", step.settings.c_str(), step.segment_f1,
-                    step.frame_accuracy, step.kept ? "  <- chosen" : "");
+        std::printf("  %-60s segment F1 %.3f  settled frames %.3f  latency %.2f s%s\n", step.settings.c_str(),
+                    step.segment_f1, step.frame_accuracy, step.detection_latency_s, step.kept ? "  <- chosen" : "");
+    if (options.latency_budget_s > 0)
+        std::printf(tuned.latency_budget_met
+                        ? "(only settings whose latency is within the budget of %g s were chosen from)\n"
+                        : "NO setting met the latency budget of %g s on the folds: the fastest was kept\n",
+                    options.latency_budget_s);
     std::printf("the events' shortest action with them (the shortest within one standard error of the best):\n");
     for (const host::MinActionStep& step : tuned.min_action_steps)
         std::printf("  min-action %-6g events' segment F1 %.3f (standard error %.3f)  detection latency %.2f s%s\n",
@@ -214,10 +220,10 @@ void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::Tr
                     step.detection_latency_s, step.kept ? "  <- chosen" : "");
     std::printf(
         "the chosen online settings (with those above, keep them with --config):\n"
-        "segment-votes %g\nsegment-penalty %g\nunknown-cost %g\nsegment-exemplars %g\nmin-action %g\n",
-        static_cast<double>(tuned.chosen.vote_weight), static_cast<double>(tuned.chosen.segment_penalty),
-        static_cast<double>(tuned.chosen.unknown_cost), static_cast<double>(tuned.chosen.exemplar_weight),
-        host::us_to_seconds(tuned.chosen_min_action_us));
+        "settle %g\nsegment-votes %g\nsegment-penalty %g\nunknown-cost %g\nsegment-exemplars %g\nmin-action %g\n",
+        host::us_to_seconds(tuned.chosen.settle_delay_us), static_cast<double>(tuned.chosen.vote_weight),
+        static_cast<double>(tuned.chosen.segment_penalty), static_cast<double>(tuned.chosen.unknown_cost),
+        static_cast<double>(tuned.chosen.exemplar_weight), host::us_to_seconds(tuned.chosen_min_action_us));
 }
 
 // Leave-one-subject-out over the list's subjects: a fold table, then the mean.
@@ -320,7 +326,7 @@ int run_train(int argc, char** argv) {
             if (args.ok() && !apply(args, name, value, options, read)) return args.unknown(arg);
             // Reading, skeleton and cost choices are not tuned settings: self-tuning still runs.
             if (name != "rate" && name != "roles" && name != "pose-joints" && name != "max-representative-chars" &&
-                name != "reject" && name != "reject-keep")
+                name != "reject" && name != "reject-keep" && name != "latency-budget")
                 settings_given = true;
         } else {
             return args.unknown(arg);

@@ -2,6 +2,7 @@
 // every step a cross-validation over the list's subjects.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <string>
@@ -184,6 +185,55 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     CHECK(single.min_action_steps.empty());
     CHECK(single.chosen.segment_penalty == options.online.segment_penalty);
     CHECK(single.chosen_min_action_us == 400000);
+}
+
+TEST_CASE("a latency budget: shorter settle delays tried, only what meets it kept, the fastest when nothing does") {
+    ToyWorld world = make_toy_world();
+    const std::vector<LabelledClip> clips = noisy_clips(world, 3);
+    TrainingOptions options = tuning_start();
+    options.pca_dim = 6;
+    const OnlineTuningResult free = tune_online(clips, options);
+    // A budget every setting meets: three settle delays, the same choice of those at 2 s.
+    options.latency_budget_s = 60;
+    const OnlineTuningResult loose = tune_online(clips, options);
+    REQUIRE(loose.steps.size() == 3 * free.steps.size());  // settle 2, 1.5 and 1 s
+    CHECK(loose.latency_budget_met);
+    for (std::size_t i = 0; i < free.steps.size(); ++i) {
+        CHECK(loose.steps[i].segment_f1 == free.steps[i].segment_f1);
+        CHECK(loose.steps[i].detection_latency_s == free.steps[i].detection_latency_s);
+    }
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < loose.steps.size(); ++i)
+        if (loose.steps[i].segment_f1 > loose.steps[best].segment_f1) best = i;
+    CHECK(loose.steps[best].kept);
+    // A budget between the fastest and the slowest settings: what is kept meets
+    // it, and is the best segment F1 of what does.
+    double fastest = loose.steps[0].detection_latency_s, slowest = fastest;
+    for (const OnlineTuningStep& step : loose.steps) {
+        fastest = std::min(fastest, step.detection_latency_s);
+        slowest = std::max(slowest, step.detection_latency_s);
+    }
+    REQUIRE(fastest < slowest);  // the settle delay moves the latency
+    options.latency_budget_s = 0.5 * (fastest + slowest);
+    const OnlineTuningResult tight = tune_online(clips, options);
+    CHECK(tight.latency_budget_met);
+    for (const OnlineTuningStep& step : tight.steps) {
+        if (!step.kept) continue;
+        CHECK(step.detection_latency_s <= options.latency_budget_s);
+        CHECK(tight.chosen.settle_delay_us == step.config.settle_delay_us);
+        for (const OnlineTuningStep& other : tight.steps)
+            if (other.detection_latency_s <= options.latency_budget_s) CHECK(other.segment_f1 <= step.segment_f1);
+    }
+    for (const MinActionStep& step : tight.min_action_steps)
+        if (step.kept) CHECK(step.detection_latency_s <= options.latency_budget_s);
+    // A budget nothing meets: the fastest setting and the shortest action, and it says so.
+    options.latency_budget_s = 0.01;
+    const OnlineTuningResult impossible = tune_online(clips, options);
+    CHECK_FALSE(impossible.latency_budget_met);
+    for (const OnlineTuningStep& step : impossible.steps)
+        if (step.kept) CHECK(step.detection_latency_s == doctest::Approx(fastest));
+    CHECK(impossible.min_action_steps.front().kept);
+    CHECK(impossible.chosen_min_action_us == min_action_candidates_us[0]);
 }
 
 TEST_CASE("the events' shortest action: the shortest within one standard error of the best") {

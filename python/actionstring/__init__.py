@@ -217,6 +217,9 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Opt
     the clips' subjects, then the online ones (the segmenter's and the events'
     shortest action) by streaming each held-out subject's clips joined. The
     model's ``training_report["online_tuning"]`` then holds that search's table.
+    ``latency_budget=S`` (seconds) makes that search keep only online settings
+    whose mean detection latency on the folds is at most S, trying shorter
+    settle delays too.
     """
     clips = list(clips)
     if not clips:
@@ -226,8 +229,8 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Opt
             raise ValueError(f"train expects Clip objects, got {type(clip).__name__}")
         if not clip.label:
             raise ValueError(f"{clip.source}: no label")
-    if tune is None:
-        tune = not settings and config is None
+    if tune is None:  # a latency budget constrains self-tuning: it does not replace it
+        tune = not (settings.keys() - {"latency_budget"}) and config is None
     native, report = _native._train(clips, settings, bool(tune), "" if config is None else os.fspath(config))
     return Model(native, report)
 

@@ -264,6 +264,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
             row["settings"] = step.settings;
             row["segment_f1"] = step.segment_f1;
             row["frame_accuracy"] = step.frame_accuracy;
+            row["detection_latency"] = step.detection_latency_s;
             row["kept"] = step.kept;
             settings_tried.append(row);
         }
@@ -279,6 +280,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
         py::dict tuning;
         tuning["settings"] = settings_tried;
         tuning["min_action"] = min_actions;
+        tuning["latency_budget_met"] = online.latency_budget_met;
         tuning["seconds"] = online.seconds;
         report["online_tuning"] = tuning;
     }

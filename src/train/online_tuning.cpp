@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "common/time.hpp"
 #include "eval/online.hpp"
 #include "model/model_data.hpp"
 #include "train/cross_validation.hpp"
@@ -66,21 +67,31 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     const std::vector<float> exemplar_weights =
         !exemplars ? std::vector<float>{0.0f}
                    : (recordings != nullptr ? std::vector<float>{0.0f, 0.1f, 0.2f} : std::vector<float>{0.0f, 0.1f});
-    for (const float unknown : unknowns)
-        for (const float votes : {0.0f, 0.1f, 0.25f})
-            for (const float penalty : {1.0f, 3.0f})
-                for (const float exemplar : exemplar_weights) {
-                    OnlineTuningStep step;
-                    step.config = options.online;
-                    step.config.vote_weight = votes;
-                    step.config.segment_penalty = penalty;
-                    step.config.unknown_cost = unknown;
-                    step.config.exemplar_weight = exemplar;
-                    step.settings = "segment-votes " + number(votes) + ", segment-penalty " + number(penalty) +
-                                    ", unknown-cost " + number(static_cast<double>(unknown));
-                    if (exemplars) step.settings += ", segment-exemplars " + number(static_cast<double>(exemplar));
-                    steps.push_back(step);
-                }
+    // A latency budget also tries shorter settle delays: an event waits for
+    // its characters to settle, so the delay is most of its latency.
+    const double budget = options.latency_budget_s;
+    std::vector<std::int64_t> settles{options.online.settle_delay_us};
+    if (budget > 0)
+        for (const std::int64_t shorter : {1500000, 1000000})
+            if (shorter < options.online.settle_delay_us) settles.push_back(shorter);
+    for (const std::int64_t settle : settles)
+        for (const float unknown : unknowns)
+            for (const float votes : {0.0f, 0.1f, 0.25f})
+                for (const float penalty : {1.0f, 3.0f})
+                    for (const float exemplar : exemplar_weights) {
+                        OnlineTuningStep step;
+                        step.config = options.online;
+                        step.config.settle_delay_us = settle;
+                        step.config.vote_weight = votes;
+                        step.config.segment_penalty = penalty;
+                        step.config.unknown_cost = unknown;
+                        step.config.exemplar_weight = exemplar;
+                        step.settings = "segment-votes " + number(votes) + ", segment-penalty " + number(penalty) +
+                                        ", unknown-cost " + number(static_cast<double>(unknown));
+                        if (exemplars) step.settings += ", segment-exemplars " + number(static_cast<double>(exemplar));
+                        if (settles.size() > 1) step.settings += ", settle " + number(us_to_seconds(settle));
+                        steps.push_back(step);
+                    }
 
     // One model per fold, every setting streamed through it: recordings as they
     // are, joined clips in several orders; every fold and order weighs the same.
@@ -116,13 +127,24 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
                 const OnlineReport report = stream(fold, config, order);
                 step.segment_f1 += report.settled.segment_f1 * share;
                 step.frame_accuracy += report.settled.frame_accuracy * share;
+                step.detection_latency_s += report.settled.detection_latency_s * share;
             }
         }
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < steps.size(); ++i)
-        if (steps[i].segment_f1 > steps[best].segment_f1 ||
+    // Within the budget (all, without one); when nothing meets it, the fastest.
+    auto within = [budget](double latency_s) { return budget <= 0 || latency_s <= budget; };
+    result.latency_budget_met = std::any_of(
+        steps.begin(), steps.end(), [&](const OnlineTuningStep& step) { return within(step.detection_latency_s); });
+    std::size_t best = steps.size();
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+        if (!result.latency_budget_met) {
+            if (best == steps.size() || steps[i].detection_latency_s < steps[best].detection_latency_s) best = i;
+            continue;
+        }
+        if (!within(steps[i].detection_latency_s)) continue;
+        if (best == steps.size() || steps[i].segment_f1 > steps[best].segment_f1 ||
             (steps[i].segment_f1 == steps[best].segment_f1 && steps[i].frame_accuracy > steps[best].frame_accuracy))
             best = i;
+    }
     steps[best].kept = true;
     result.chosen = steps[best].config;
     for (const OnlineTuningStep& step : steps)
@@ -154,7 +176,17 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
         step.standard_error = per_fold.size() > 1 ? std::sqrt(squares / (n - 1.0) / n) : 0.0;
         result.min_action_steps.push_back(step);
     }
-    const std::size_t kept = one_standard_error_choice(result.min_action_steps);
+    // The rule among the shortest actions within the budget; none within: the shortest.
+    std::vector<MinActionStep> allowed;
+    for (const MinActionStep& step : result.min_action_steps)
+        if (within(step.detection_latency_s)) allowed.push_back(step);
+    std::size_t kept = 0;
+    if (!allowed.empty()) {
+        const std::int64_t chosen = allowed[one_standard_error_choice(allowed)].min_action_us;
+        while (result.min_action_steps[kept].min_action_us != chosen) ++kept;
+    } else {
+        result.latency_budget_met = false;
+    }
     result.min_action_steps[kept].kept = true;
     result.chosen_min_action_us = result.min_action_steps[kept].min_action_us;
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();

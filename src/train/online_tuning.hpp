@@ -21,6 +21,9 @@ struct OnlineTuningStep {
     SegmenterConfig config;
     double segment_f1 = 0;      ///< Mean over the folds of the settled labels' segment F1 (IoU ≥ 0.5).
     double frame_accuracy = 0;  ///< Mean over the folds of settled frame accuracy.
+    /// Mean over the folds of the events' detection latency, at the options'
+    /// shortest action (what a latency budget is held against).
+    double detection_latency_s = 0;
     bool kept = false;
 };
 
@@ -39,6 +42,10 @@ struct OnlineTuningResult {
     std::int64_t chosen_min_action_us = 250000;
     std::vector<OnlineTuningStep> steps;
     std::vector<MinActionStep> min_action_steps;
+    /// With a latency budget (TrainingOptions::latency_budget_s): whether any
+    /// setting met it. When none did, the fastest setting and the shortest
+    /// action were kept.
+    bool latency_budget_met = true;
     double seconds = 0;
 };
 
@@ -72,6 +79,9 @@ constexpr int online_tuning_orders = 3;
 /// accuracy, then the earlier, simpler settings). Then, with those settings on
 /// the same folds and streams, tries each of min_action_candidates_us for the
 /// events and keeps one_standard_error_choice(). Deterministic.
+/// With options.latency_budget_s, the grid also tries settle delays of 1 and
+/// 1.5 s beside options.online's, and both choices consider only what meets
+/// the budget on the folds (the fastest when nothing does).
 /// Needs two subjects or more (otherwise returns options.online and
 /// options.min_action_us, no steps).
 OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const TrainingOptions& options,

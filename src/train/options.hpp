@@ -98,6 +98,11 @@ struct TrainingOptions {
     SegmenterConfig online;
     /// The events' shortest action, stored in the model (AnnotatorConfig::min_action_us).
     std::int64_t min_action_us = 250000;
+    /// Self-tuning's online search keeps only settings whose mean detection
+    /// latency on the folds (true start → `started` report) is at most this
+    /// many seconds, and then also tries shorter settle delays (1 and 1.5 s);
+    /// 0 = no budget. A tuning directive: the model stores what it chose.
+    double latency_budget_s = 0.0;
     std::uint32_t seed = 1;
     /// Called with the name of each stage as it starts (progress reports); may be empty.
     std::function<void(const char*)> progress;

@@ -153,6 +153,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "unknown-distance") o.unknown_distance = num(0, 1e30);
     else if (name == "seed") o.seed = static_cast<std::uint32_t>(num(0, 4294967295.0));
     else if (name == "min-action") o.min_action_us = std::llround(num(0, 60) * 1e6);
+    else if (name == "latency-budget") o.latency_budget_s = num(0, 60);
     else if (apply_segmenter_setting(name, value, o.online)) return true;
     else if (name == "rate") read.frame_rate_hz = num(0.001, 1e6);
     else if (name == "time-unit") read.time_unit_s = parse_time_unit(value);
@@ -223,6 +224,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "segment-votes",
                                                 "segment-exemplars",
                                                 "min-action",
+                                                "latency-budget",
                                                 "rate",
                                                 "roles",
                                                 "time-unit",
