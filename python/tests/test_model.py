@@ -70,6 +70,11 @@ def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     assert "min-action %g" % shortest[0]["min_action"] in model.training_report["settings"]
     # Given settings, nothing is tuned.
     assert "online_tuning" not in actionstring.train(toy_clips, **TOY_SETTINGS).training_report
+    # A latency budget constrains self-tuning (it still runs) and tries shorter settle delays.
+    budgeted = actionstring.train(toy_clips, latency_budget=60).training_report["online_tuning"]
+    assert budgeted["latency_budget_met"]
+    assert len(budgeted["settings"]) == 3 * len(tuning["settings"])
+    assert all(row["detection_latency"] > 0 for row in budgeted["settings"])
 
 
 def test_settings_are_checked(toy_clips):
