@@ -186,8 +186,7 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
         tuned.steps.size(), tuned.seconds);
     for (const host::FoldResult& f : tuned.folds)
         std::printf("  held out %-12s %4zu clips  accuracy %.3f\n", f.subject.c_str(), f.clips, f.clip_accuracy);
-    std::printf("  mean %.3f\nthe chosen settings (keep them with --config):\n%s", host::mean_accuracy(tuned.folds),
-                host::options_as_config(tuned.options).c_str());
+    std::printf("  mean %.3f\n", host::mean_accuracy(tuned.folds));
     return tuned;
 }
 
@@ -218,12 +217,6 @@ void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::Tr
         std::printf("  min-action %-6g events' segment F1 %.3f (standard error %.3f)  detection latency %.2f s%s\n",
                     host::us_to_seconds(step.min_action_us), step.event_segment_f1, step.standard_error,
                     step.detection_latency_s, step.kept ? "  <- chosen" : "");
-    std::printf(
-        "the chosen online settings (with those above, keep them with --config):\n"
-        "settle %g\nsegment-votes %g\nsegment-penalty %g\nunknown-cost %g\nsegment-exemplars %g\nmin-action %g\n",
-        host::us_to_seconds(tuned.chosen.settle_delay_us), static_cast<double>(tuned.chosen.vote_weight),
-        static_cast<double>(tuned.chosen.segment_penalty), static_cast<double>(tuned.chosen.unknown_cost),
-        static_cast<double>(tuned.chosen.exemplar_weight), host::us_to_seconds(tuned.chosen_min_action_us));
 }
 
 // Leave-one-subject-out over the list's subjects: a fold table, then the mean.
@@ -357,6 +350,9 @@ int run_train(int argc, char** argv) {
             options = tune(train, options).options;
             options.reject = reject, options.reject_keep = reject_keep;
             tune_online_settings(train, options, recordings.empty() ? nullptr : &recordings);
+            // Once, after both searches: what a config needs to train this model again.
+            std::printf("the chosen settings, clip and online (keep them with --config):\n%s",
+                        host::options_as_config(options).c_str());
         }
         auto stage_start = std::chrono::steady_clock::now();
         options.progress = [&](const char* stage) {
