@@ -1,5 +1,4 @@
 // `actionstring annotate MODEL FILE`: the label timeline of a recording.
-#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -21,7 +20,7 @@ int run_annotate(int argc, char** argv) {
     bool json = false, events = false, live = false;
     LiveSource live_source;
     host::ReadOptions read;
-    SegmenterOverrides overrides;
+    OnlineOverrides overrides;
     ArgumentReader args("annotate", argc, argv);
     while (args.more()) {
         const std::string arg = args.next();
@@ -59,7 +58,7 @@ int run_annotate(int argc, char** argv) {
         else if (arg == "--live") live = true;
         else if (arg == "--udp") live_source.udp_port = static_cast<int>(args.number(arg, 1, 65535));
         else if (arg == "--idle-timeout") live_source.idle_timeout_s = args.number(arg, 0.01, 3600);
-        else if (parse_segmenter_option(args, arg, overrides)) continue;
+        else if (parse_online_option(args, arg, overrides)) continue;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;
         else return args.error("more than one FILE given");

@@ -1,5 +1,4 @@
 // `actionstring eval`: clip recognition on a list, beside baselines.
-#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -167,7 +166,7 @@ int run_eval(int argc, char** argv) {
     host::ReadOptions read;
     bool online = false;
     std::uint32_t seed = 1;
-    SegmenterOverrides overrides;
+    OnlineOverrides overrides;
     std::string report_dir, perturb_spec;
     ArgumentReader args("eval", argc, argv);
     while (args.more()) {
@@ -186,7 +185,7 @@ int run_eval(int argc, char** argv) {
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
         else if (arg == "--report") report_dir = args.value(arg);
         else if (arg == "--perturb") perturb_spec = args.value(arg);
-        else if (!parse_segmenter_option(args, arg, overrides)) return args.unknown(arg);
+        else if (!parse_online_option(args, arg, overrides)) return args.unknown(arg);
     }
     if (!args.ok()) return 2;
     if (model_path.empty() || clips_path.empty()) {

@@ -124,7 +124,7 @@ inline bool apply_online_setting(ArgumentReader& args, const std::string& name, 
 /// The online settings given to eval or annotate (the segmenter's and the
 /// events' shortest action): they override the model's own
 /// (annotator_config()) once the model is loaded.
-struct SegmenterOverrides {
+struct OnlineOverrides {
     std::vector<std::pair<std::string, std::string>> settings;  // name, value
     /// The model's settings with these applied (the values were checked when read).
     AnnotatorConfig over(const ModelView& model, ArgumentReader& args) const {
@@ -137,7 +137,7 @@ struct SegmenterOverrides {
 /// Reads an online option (--settle S, --min-action S and the like) of eval or
 /// annotate into `overrides`, checking its value now. Returns false when
 /// `option` is not one.
-inline bool parse_segmenter_option(ArgumentReader& args, const std::string& option, SegmenterOverrides& overrides) {
+inline bool parse_online_option(ArgumentReader& args, const std::string& option, OnlineOverrides& overrides) {
     if (option.rfind("--", 0) != 0) return false;
     const std::string name = option.substr(2);
     AnnotatorConfig check;

@@ -21,7 +21,7 @@ namespace cli {
 int run_view(int argc, char** argv) {
     std::string model_path, file, out_path, skeleton, label, title;
     host::ReadOptions read;
-    SegmenterOverrides overrides;
+    OnlineOverrides overrides;
     ArgumentReader args("view", argc, argv);
     while (args.more()) {
         const std::string arg = args.next();
@@ -44,7 +44,7 @@ int run_view(int argc, char** argv) {
         else if (arg == "--label") label = args.value(arg);
         else if (arg == "--title") title = args.value(arg);
         else if (parse_read_option(args, arg, read, skeleton)) continue;
-        else if (parse_segmenter_option(args, arg, overrides)) continue;
+        else if (parse_online_option(args, arg, overrides)) continue;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;
         else return args.error("more than one FILE given");
