@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <random>
@@ -258,6 +259,81 @@ TEST_CASE("settled labels equal a full-table reference of the same recurrence") 
             CHECK(got[i] == expected[i]);
             if (stream.size() - 1 - i < segmenter->settled_history()) CHECK(segmenter->settled_label(i) == got[i]);
         }
+    }
+}
+
+TEST_CASE("a character's work in slices (begin, advance) gives push()'s state bit for bit") {
+    const auto same_bits = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    std::mt19937 rng(77);
+    host::Stateful<ActionSegmenter> whole, sliced;
+    for (int trial = 0; trial < 150; ++trial) {
+        Tables t = random_tables(rng);
+        SegmenterConfig config;
+        config.settle_delay_us = std::uniform_int_distribution<int>(0, 20)(rng) * 100000;
+        config.segment_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
+        if (trial % 2 == 0) config.unknown_cost = 1.5f;
+        if (trial % 3 == 0) config.vote_weight = 0.5f;
+        if (trial % 4 < 2) config.exemplar_weight = 0.75f;
+        REQUIRE(whole.init(t.view, config) == Status::ok);
+        REQUIRE(sliced.init(t.view, config) == Status::ok);
+        CHECK(sliced->advance(5) == ActionSegmenter::Progress::idle);
+        CHECK(sliced->work_left() == 0);
+        std::vector<Character> stream(static_cast<std::size_t>(std::uniform_int_distribution<int>(1, 80)(rng)));
+        for (auto& c : stream)
+            c = static_cast<Character>(std::uniform_int_distribution<int>(0, t.view.character_count - 1)(rng));
+        const std::size_t slice = static_cast<std::size_t>(std::uniform_int_distribution<int>(0, 40)(rng));
+        for (std::size_t i = 0; i < stream.size(); ++i) {
+            INFO("trial ", trial, " character ", i, " slice ", slice);
+            const float feature = static_cast<float>(std::uniform_int_distribution<int>(0, 3)(rng));
+            const LabelId live_before = sliced->live_label();
+            const float margin_before = sliced->live_margin();
+            const bool settled = whole->push(stream[i], &feature);
+            float copy = feature;
+            REQUIRE(sliced->begin(stream[i], &copy));
+            copy = -100.0f;  // begin() keeps its own copy of the feature
+            CHECK(sliced->in_progress());
+            ActionSegmenter::Progress progress = ActionSegmenter::Progress::working;
+            std::size_t left = sliced->work_left();
+            CHECK(left > 0);
+            while (progress == ActionSegmenter::Progress::working) {
+                // Until the character is in, the queries answer as before it.
+                CHECK(sliced->characters_pushed() == i);
+                CHECK(sliced->live_label() == live_before);
+                CHECK(same_bits(sliced->live_margin(), margin_before));
+                progress = sliced->advance(slice);
+                const std::size_t now_left = sliced->work_left();
+                CHECK(now_left < left);  // every call moves on
+                left = now_left;
+            }
+            CHECK(left == 0);
+            CHECK_FALSE(sliced->in_progress());
+            CHECK(progress == (settled ? ActionSegmenter::Progress::settled : ActionSegmenter::Progress::done));
+            CHECK(sliced->characters_pushed() == whole->characters_pushed());
+            CHECK(sliced->live_label() == whole->live_label());
+            CHECK(same_bits(sliced->live_margin(), whole->live_margin()));
+            if (settled) CHECK(sliced->settled_label() == whole->settled_label());
+            for (std::uint64_t c = i > 25 ? i - 25 : 0; c <= i; ++c) {
+                CHECK(sliced->provisional_label(c) == whole->provisional_label(c));
+                CHECK(sliced->settled_label(c) == whole->settled_label(c));
+            }
+        }
+        // begin() over a character in progress finishes it first.
+        const Character c = stream.front();
+        const float feature = 1.0f;
+        whole->push(c, &feature);
+        whole->push(c, &feature);
+        REQUIRE(sliced->begin(c, &feature));
+        REQUIRE(sliced->begin(c, &feature));
+        sliced->finish();
+        CHECK(sliced->characters_pushed() == whole->characters_pushed());
+        CHECK(same_bits(sliced->live_margin(), whole->live_margin()));
+        CHECK(sliced->provisional_label(stream.size()) == whole->provisional_label(stream.size()));
+        // reset() drops a character in progress.
+        REQUIRE(sliced->begin(c, &feature));
+        sliced->reset();
+        CHECK_FALSE(sliced->in_progress());
+        CHECK(sliced->characters_pushed() == 0);
+        CHECK_FALSE(sliced->begin(static_cast<Character>(t.view.character_count), &feature));
     }
 }
 

@@ -50,6 +50,18 @@ struct AnnotatorConfig {
     /// but reports each action later; a model carries its own (chosen at
     /// training, ModelView::min_action_us).
     std::int64_t min_action_us = 250000;
+    /// Spread each character's segmenter work (its pass over every
+    /// representative character, and over the exemplars when the settings
+    /// weigh them) over the frames until the next character is due, instead
+    /// of doing it all in the frame that emits the character. The frames'
+    /// cost becomes flat (a real-time budget is set by the costliest frame):
+    /// each frame does its share of what is left, judged from the last frame
+    /// interval and the next tick's time. The labels, their times and the
+    /// events are bit for bit the same; each is reported up to one string
+    /// period later (live_label(), settled labels, events), and a frame that
+    /// emits the next character first finishes the last. The encoder's work
+    /// (projection, GMM, tree) and the window rule stay in the character's frame.
+    bool spread_work = false;
 };
 
 /// The default timing with the model's own online settings (the segmenter's
@@ -157,6 +169,8 @@ public:
     std::uint32_t flush() noexcept {
         events_.begin_frame();
         if (model_ == nullptr) return 0;
+        FrameResult finished;
+        finish_character(finished);
         finish_stream(pushed_ > 0 ? encoder_.tick_time_us(0) : 0);
         clear_stream();
         return static_cast<std::uint32_t>(events_.event_count());
@@ -180,6 +194,8 @@ public:
         result.status = encoded.status;
         if (!encoded.accepted()) return result;
         if (encoded.status == Status::stream_restarted) {
+            FrameResult old_stream;  // its settled characters are not this stream's
+            report(segmenter_.finish(), old_stream, origin_us);  // the old stream's last character counts
             finish_stream(origin_us);  // the old stream ends: its tail settles, its action ends
             if (window_rule_) matcher_.reset();
             segmenter_.reset();
@@ -188,6 +204,9 @@ public:
         }
         emit(encoded.previous, encoded.from_previous, encoded.previous_feature, result);
         emit(encoded.current, encoded.from_current, encoded.current_feature, result);
+        if (config_.spread_work) continue_character(time_us, result);
+        last_time_us_ = time_us;
+        has_last_time_ = true;
         result.events = static_cast<std::uint32_t>(events_.event_count());
         return result;
     }
@@ -253,14 +272,10 @@ private:
             const std::uint64_t index = pushed_++;
             last_character_ = character;
             ++result.characters;
-            const bool settled = segmenter_.push(character, feature);
-            live_[index % live_ring_] = segmenter_.live_label();
-            if (settled) {
-                ++result.characters_settled;
-                const std::uint64_t s = segmenter_.settled_character();
-                const LabelId label = segmenter_.settled_label();
-                events_.settle(s, label, live_[s % live_ring_] == label, encoder_.tick_time_us(s));
-            }
+            // The character before is finished first (when spread, it usually is).
+            finish_character(result);
+            segmenter_.begin(character, feature);
+            if (!config_.spread_work) finish_character(result);
             if (!window_rule_ || !matcher_.push(character)) continue;
             ++result.windows_completed;
             has_window_ = true;
@@ -271,18 +286,58 @@ private:
         }
     }
 
+    // With spread_work: this frame's share of the character in progress,
+    // what is left divided by the frames left before the next tick (judged
+    // from the interval since the last accepted frame; all of it when the
+    // tick is due or the interval is unknown).
+    void continue_character(std::int64_t time_us, FrameResult& result) noexcept {
+        if (!segmenter_.in_progress()) return;
+        const std::int64_t next_tick = encoder_.tick_time_us(segmenter_.characters_pushed() + 1);
+        const std::int64_t interval = time_us - last_time_us_;
+        std::size_t frames_left = 1;
+        if (has_last_time_ && interval > 0 && next_tick > time_us) {
+            const std::int64_t ahead = (next_tick - time_us + interval - 1) / interval;
+            frames_left = ahead > 1 ? static_cast<std::size_t>(ahead < 1000000 ? ahead : 1000000) : 1u;
+        }
+        const std::size_t left = segmenter_.work_left();
+        const std::size_t share = left / frames_left + (left % frames_left != 0 ? 1u : 0u);
+        report(segmenter_.advance(share), result, encoder_.tick_time_us(0));
+    }
+
+    // Finishes the character in progress, if any, and reports what it settled.
+    void finish_character(FrameResult& result) noexcept {
+        report(segmenter_.finish(), result, encoder_.tick_time_us(0));
+    }
+
+    // A character the segmenter has just finished: its live label, and the
+    // label it settled with its events (the stream's character 0 ticked at origin_us).
+    void report(ActionSegmenter::Progress progress, FrameResult& result, std::int64_t origin_us) noexcept {
+        if (progress != ActionSegmenter::Progress::done && progress != ActionSegmenter::Progress::settled) return;
+        const std::uint64_t index = segmenter_.characters_pushed() - 1;
+        live_[index % live_ring_] = segmenter_.live_label();
+        if (progress != ActionSegmenter::Progress::settled) return;
+        ++result.characters_settled;
+        const std::uint64_t s = segmenter_.settled_character();
+        const LabelId label = segmenter_.settled_label();
+        events_.settle(s, label, live_[s % live_ring_] == label, tick_time(origin_us, s));
+    }
+
     // The unsettled tail of a stream (whose character 0 ticked at origin_us)
     // takes its provisional labels, and a running action ends.
     void finish_stream(std::int64_t origin_us) noexcept {
         const std::uint64_t first = segmenter_.has_settled() ? segmenter_.settled_character() + 1 : 0;
-        const std::int64_t period = model_->string_period_us;
         for (std::uint64_t c = first; c < pushed_; ++c) {
             const LabelId label = segmenter_.provisional_label(c);
-            events_.settle(c, label, live_[c % live_ring_] == label,
-                           static_cast<std::int64_t>(static_cast<std::uint64_t>(origin_us) +
-                                                     c * static_cast<std::uint64_t>(period)));
+            events_.settle(c, label, live_[c % live_ring_] == label, tick_time(origin_us, c));
         }
         events_.close();
+    }
+
+    // Character c's tick in a stream whose character 0 ticked at origin_us
+    // (StringSampler::tick_time_us(), which a restart has already moved on).
+    std::int64_t tick_time(std::int64_t origin_us, std::uint64_t c) const noexcept {
+        return static_cast<std::int64_t>(static_cast<std::uint64_t>(origin_us) +
+                                         c * static_cast<std::uint64_t>(model_->string_period_us));
     }
 
     // Forgets the stream but not the events just produced.
@@ -291,6 +346,7 @@ private:
         if (window_rule_) matcher_.reset();
         segmenter_.reset();
         has_window_ = false;
+        has_last_time_ = false;
         window_ = WindowResult{};
         last_character_ = 0;
         pushed_ = 0;
@@ -335,6 +391,8 @@ private:
     bool has_window_ = false;
     WindowResult window_;
     Character last_character_ = 0;
+    std::int64_t last_time_us_ = 0;  // the last accepted frame's time (spread_work's frame interval)
+    bool has_last_time_ = false;
 };
 
 }  // namespace actionstring

@@ -72,24 +72,20 @@ inline void keep_nearest(const ModelView& model, std::size_t e, float distance, 
 
 }  // namespace detail
 
-/// Per label, the squared Euclidean distance from one feature to the label's
-/// nearest exemplar (+inf for a label without exemplars). Each centre's sum
-/// is detail::exemplar_distance()'s, in its order, on every target.
-/// @param feature   feature_dim floats (the projected pose the character was
-///                  made from, EncodedFrame's previous_feature / current_feature); read only during the call
-/// @param distances receives label_count floats (caller-owned)
-/// @param no_action when not null, receives the distance to the nearest centre
-///                  of "no action" (ModelView::has_no_action_exemplars(); +inf without)
-inline void exemplar_distances(const ModelView& model, const float* feature, float* distances,
-                               float* no_action = nullptr) noexcept {
-    if (distances == nullptr) return;
-    const std::size_t L = model.label_count, d = model.feature_dim;
-    for (std::size_t l = 0; l < L; ++l) distances[l] = detail::infinity();
-    if (no_action != nullptr) *no_action = detail::infinity();
-    if (feature == nullptr || model.exemplars == nullptr || model.exemplar_labels == nullptr) return;
-    const float* centre = model.exemplars;
-    const std::size_t n = model.exemplar_count;
-    std::size_t e = 0;
+/// The nearest-so-far update of exemplar_distances() for centres
+/// [first, last) only: `distances` (and `no_action`, when not null) already
+/// hold the nearest distances of the centres before, or +inf. Taking the
+/// centres in several calls gives the same bits as one call (each centre's sum
+/// is fixed, and a minimum does not depend on the order), so a device can
+/// spread the work over frames (AnnotatorConfig::spread_work).
+inline void nearest_exemplars(const ModelView& model, const float* feature, std::size_t first, std::size_t last,
+                              float* distances, float* no_action = nullptr) noexcept {
+    if (distances == nullptr || feature == nullptr || model.exemplars == nullptr || model.exemplar_labels == nullptr)
+        return;
+    const std::size_t d = model.feature_dim;
+    const std::size_t n = last < model.exemplar_count ? last : model.exemplar_count;
+    std::size_t e = first;
+    const float* centre = model.exemplars + e * d;
 #if ACTIONSTRING_DETAIL_LANES == 4
     // Four centres at a time, each in its own register of four partial sums
     // (lane k: the coordinates j ≡ k mod 4), so the four chains of additions are
@@ -127,6 +123,22 @@ inline void exemplar_distances(const ModelView& model, const float* feature, flo
 #endif
     for (; e < n; ++e, centre += d)
         detail::keep_nearest(model, e, detail::exemplar_distance(feature, centre, d), distances, no_action);
+}
+
+/// Per label, the squared Euclidean distance from one feature to the label's
+/// nearest exemplar (+inf for a label without exemplars). Each centre's sum
+/// is detail::exemplar_distance()'s, in its order, on every target.
+/// @param feature   feature_dim floats (the projected pose the character was
+///                  made from, EncodedFrame's previous_feature / current_feature); read only during the call
+/// @param distances receives label_count floats (caller-owned)
+/// @param no_action when not null, receives the distance to the nearest centre
+///                  of "no action" (ModelView::has_no_action_exemplars(); +inf without)
+inline void exemplar_distances(const ModelView& model, const float* feature, float* distances,
+                               float* no_action = nullptr) noexcept {
+    if (distances == nullptr) return;
+    for (std::size_t l = 0; l < model.label_count; ++l) distances[l] = detail::infinity();
+    if (no_action != nullptr) *no_action = detail::infinity();
+    nearest_exemplars(model, feature, 0, model.exemplar_count, distances, no_action);
 }
 
 /// What the exemplars add to the distance of each label's representatives,

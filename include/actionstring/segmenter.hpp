@@ -114,6 +114,7 @@ public:
         settled_ = detail::storage_at<LabelId>(storage, p.settled);
         vote_costs_ = p.votes_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.votes);
         exemplar_distances_ = p.exemplars_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.exemplars);
+        feature_ = p.exemplars_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.feature);
         use_votes_ = uses_votes(model, config);
         config_ = config;
         model_ = &model;
@@ -148,6 +149,7 @@ public:
         last_end_ = 0.0f;
         margin_ = 0.0f;
         best_ = Hypothesis{};
+        update_ = Update{};
         const std::size_t cells = model_->total_representative_chars();
         for (std::size_t i = 0; i < cells; ++i) {
             cells_.cost(i) = detail::infinity();
@@ -161,27 +163,53 @@ public:
 
     bool initialized() const noexcept { return model_ != nullptr; }
 
-    /// Feeds the next character. Returns true when it settled a character
-    /// (the one settle_chars() back): its label is then in settled_label().
+    /// Feeds the next character and updates every representative at once.
+    /// Returns true when it settled a character (the one settle_chars() back):
+    /// its label is then in settled_label(). The same as begin() then finish().
     /// @param feature null, or the feature the character was made from
     ///                (feature_dim floats, EncodedFrame's previous_feature /
     ///                current_feature; read only during the call), for the
     ///                exemplars' costs when the settings weigh them
     bool push(Character character, const float* feature = nullptr) noexcept {
+        if (!begin(character, feature)) return false;
+        return finish() == Progress::settled;
+    }
+
+    /// How far a character begun with begin() has come.
+    enum class Progress : std::uint8_t {
+        idle,     ///< no character in progress
+        working,  ///< some of its work is left: call advance() again
+        done,     ///< it is in: the live label is its, nothing settled
+        settled,  ///< it is in and settled the character settle_chars() back
+    };
+
+    /// Starts the next character without updating anything yet: the work is
+    /// then done by advance() in slices, so a device can spread it over the
+    /// frames until the next character (AnnotatorConfig::spread_work). Until
+    /// the character is done every query answers as before it (live_label(),
+    /// characters_pushed(), …); the result is bit for bit push()'s. A character
+    /// still in progress is finished first, and what it settled is then in
+    /// settled_label() without being reported: finish() it before, to know.
+    /// The feature is copied. Returns false (nothing begun) when not
+    /// initialised or the character is not the model's.
+    bool begin(Character character, const float* feature = nullptr) noexcept {
         if (model_ == nullptr || character >= model_->character_count) return false;
+        if (update_.active) finish();
         const ModelView& m = *model_;
-        const std::uint32_t now = static_cast<std::uint32_t>(pushed_);
+        Update& u = update_;
+        u = Update{};
+        u.active = true;
+        u.now = static_cast<std::uint32_t>(pushed_);
         // W(·, character) as one contiguous array, so each cell reads it from
         // the cache: W's own row when W is symmetric (every trained model's), else a copy.
         const std::size_t K = m.character_count;
-        const float* column = m.character_distances + std::size_t{character} * K;
+        u.column = m.character_distances + std::size_t{character} * K;
         if (!w_symmetric_) {
             for (std::size_t a = 0; a < K; ++a) column_[a] = m.character_distances[a * K + character];
-            column = column_;
+            u.column = column_;
         }
         // What this character costs each label's explanations, and "no action"
         // when the model learned its votes (0 without votes).
-        float no_action_vote = 0.0f;
         if (use_votes_) {
             const bool no_action = m.has_no_action_votes != 0;
             float best_vote = no_action ? m.no_action_votes[character] : -detail::infinity();
@@ -189,40 +217,183 @@ public:
                 if (m.character_votes[l * K + character] > best_vote) best_vote = m.character_votes[l * K + character];
             for (std::size_t l = 0; l < m.label_count; ++l)
                 vote_costs_[l] = config_.vote_weight * (best_vote - m.character_votes[l * K + character]);
-            if (no_action) no_action_vote = config_.vote_weight * (best_vote - m.no_action_votes[character]);
+            if (no_action) u.no_action_vote = config_.vote_weight * (best_vote - m.no_action_votes[character]);
         } else if (vote_costs_ != nullptr) {
             for (std::size_t l = 0; l < m.label_count; ++l) vote_costs_[l] = 0.0f;
         }
-        // And what its pose costs them: the exemplars' distances, relative to
-        // the nearest label's, or to "no action"'s when the model has centres
-        // of it (learned from unlabelled stretches), which then pays the same
-        // way; without them "no action" pays nothing here.
-        if (exemplar_distances_ != nullptr && feature != nullptr) {
-            float none = detail::infinity();
-            exemplar_distances(m, feature, exemplar_distances_, &none);
-            float nearest = none;
-            for (std::size_t l = 0; l < m.label_count; ++l)
-                if (exemplar_distances_[l] < nearest) nearest = exemplar_distances_[l];
-            const float scale = config_.exemplar_weight / m.exemplar_scale;
-            if (detail::is_finite(nearest)) {
-                for (std::size_t l = 0; l < m.label_count; ++l)
-                    vote_costs_[l] += (exemplar_distances_[l] - nearest) * scale;
-                if (detail::is_finite(none)) no_action_vote += (none - nearest) * scale;
-            }
+        // And what its pose costs them (the exemplars' distances), once
+        // advance() has measured them: the feature is kept until then.
+        u.exemplars = exemplar_distances_ != nullptr && feature != nullptr;
+        if (u.exemplars) {
+            for (std::size_t j = 0; j < m.feature_dim; ++j) feature_[j] = feature[j];
+            for (std::size_t l = 0; l < m.label_count; ++l) exemplar_distances_[l] = detail::infinity();
+            u.none = detail::infinity();
         }
         // Costs are stored relative to the previous step's best so they stay small on endless streams.
-        const float shift = best_.cost;
-        const float previous_end = pushed_ == 0 ? 0.0f : last_end_ - shift;
-        const float entry = previous_end + config_.segment_penalty;
+        u.shift = best_.cost;
+        u.previous_end = pushed_ == 0 ? 0.0f : last_end_ - u.shift;
+        u.entry = u.previous_end + config_.segment_penalty;
+        return true;
+    }
 
-        // "No action" for this one character is the first candidate for both.
-        SegmentEnd end{unknown_rep, now};
-        float end_cost = previous_end + (config_.unknown_cost + no_action_vote);
-        Hypothesis best{end_cost, unknown_rep, now};
-        // The best explanation whose newest character has another label than
-        // best's (for live_margin()): kept beside best as each candidate comes.
-        float runner_up = detail::infinity();
-        for (std::size_t r = 0; r < m.representative_count; ++r) {
+    /// The work left of the character in progress (0 when idle), in units of
+    /// about one representative character's update: what advance() takes.
+    std::size_t work_left() const noexcept {
+        if (!update_.active) return 0;
+        const ModelView& m = *model_;
+        std::size_t work = (m.representative_count - update_.next_rep) * rep_overhead +
+                           (m.total_representative_chars() - cells_before(update_.next_rep));
+        if (update_.exemplars) work += (m.exemplar_count - update_.next_centre) * centre_work(m);
+        return work;
+    }
+
+    /// Does about `work` units (work_left()) of the character in progress, and
+    /// at least one representative's or four exemplars' worth, so every call
+    /// moves on. Returns idle, working, or (when it finished the character)
+    /// done or settled, as finish().
+    Progress advance(std::size_t work) noexcept {
+        if (!update_.active) return Progress::idle;
+        const ModelView& m = *model_;
+        Update& u = update_;
+        std::size_t budget = work == 0 ? 1 : work;
+        if (u.exemplars) {
+            // The exemplars first: every representative's cost reads them.
+            const std::size_t per = centre_work(m);
+            std::size_t take = budget / per + (budget % per != 0 ? 1u : 0u);
+            take = take > m.exemplar_count ? m.exemplar_count : (take + 3) & ~static_cast<std::size_t>(3);
+            const std::size_t last =
+                m.exemplar_count - u.next_centre < take ? m.exemplar_count : u.next_centre + take;
+            nearest_exemplars(m, feature_, u.next_centre, last, exemplar_distances_, &u.none);
+            const std::size_t spent = (last - u.next_centre) * per;
+            u.next_centre = last;
+            if (u.next_centre < m.exemplar_count) return Progress::working;
+            fold_exemplars();
+            u.exemplars = false;
+            if (spent >= budget) return Progress::working;
+            budget -= spent;
+        }
+        if (!u.candidates) {
+            // "No action" for this one character is the first candidate for both.
+            u.end = SegmentEnd{unknown_rep, u.now};
+            u.end_cost = u.previous_end + (config_.unknown_cost + u.no_action_vote);
+            u.best = Hypothesis{u.end_cost, unknown_rep, u.now};
+            u.runner_up = detail::infinity();
+            u.candidates = true;
+        }
+        // The representatives from next_rep on, until the budget is spent.
+        std::size_t last = u.next_rep;
+        std::size_t spent = 0;
+        while (last < m.representative_count && spent < budget)
+            spent += m.representative_length(last++) + rep_overhead;
+        update_representatives(u.next_rep, last);
+        u.next_rep = last;
+        if (last < m.representative_count) return Progress::working;
+        return complete();
+    }
+
+    /// Finishes the character in progress (all its work left); idle when none.
+    Progress finish() noexcept { return advance(all_work); }
+
+    /// Whether a character is begun and not yet done.
+    bool in_progress() const noexcept { return update_.active; }
+
+    /// Label of the best explanation's newest character (no delay, may change).
+    LabelId live_label() const noexcept { return pushed_ == 0 ? unknown_label : label_of(best_.rep); }
+    /// How much better the live label's best explanation is than the best one
+    /// whose newest character has any other label ("no action" included), in
+    /// units of W: a confidence for the live label. 0 before the first
+    /// character or on a tie; infinity when no other label can explain the
+    /// stream (a model of one label with "no action" turned off).
+    float live_margin() const noexcept { return margin_; }
+    /// Whether any character is settled yet.
+    bool has_settled() const noexcept { return pushed_ > settle_chars_; }
+    /// Index of the last settled character (meaningful when has_settled()).
+    std::uint64_t settled_character() const noexcept { return pushed_ - 1 - settle_chars_; }
+    /// Final label of the last settled character.
+    LabelId settled_label() const noexcept { return settled_label(settled_character()); }
+    /// Final label of a settled character among the last settled_history();
+    /// unknown_label for any other index.
+    LabelId settled_label(std::uint64_t index) const noexcept {
+        if (!has_settled() || index > settled_character() || settled_character() - index >= ring_size_)
+            return unknown_label;
+        return settled_[slot(index)];
+    }
+    /// How many settled labels settled_label(index) remembers.
+    std::size_t settled_history() const noexcept { return ring_size_; }
+    /// settled_history() for a model and settings, before init() (0 for settings check() refuses).
+    static constexpr std::size_t settled_history(const ModelView& model, const SegmenterConfig& config) noexcept {
+        return plan(model, config).ring_size;
+    }
+    /// What the current best explanation says of a character that is not yet
+    /// settled (index within the last settle_chars() + 1): to flush the end of
+    /// a stream. Returns unknown_label for other indices.
+    LabelId provisional_label(std::uint64_t index) const noexcept {
+        if (pushed_ == 0 || index >= pushed_ || pushed_ - 1 - index > settle_chars_) return unknown_label;
+        return label_at(index);
+    }
+    std::uint32_t settle_chars() const noexcept { return settle_chars_; }
+    std::uint64_t characters_pushed() const noexcept { return pushed_; }
+
+private:
+    // Units of work_left(): a representative costs its characters and this
+    // much more (its setup and its best cell); an exemplar centre about a
+    // quarter of its coordinates (four lanes take four at a time).
+    static constexpr std::size_t rep_overhead = 4;
+    static constexpr std::size_t all_work = ~static_cast<std::size_t>(0);
+    static constexpr std::size_t centre_work(const ModelView& m) noexcept { return (std::size_t{m.feature_dim} + 3u) / 4u; }
+
+    // Cells of the representatives before r.
+    std::size_t cells_before(std::size_t r) const noexcept {
+        return r < model_->representative_count ? model_->representative_offsets[r]
+                                                 : model_->total_representative_chars();
+    }
+
+    // The exemplars' part of each label's cost, relative to the nearest
+    // label's, or to "no action"'s when the model has centres of it (learned
+    // from unlabelled stretches), which then pays the same way; without them
+    // "no action" pays nothing here.
+    void fold_exemplars() noexcept {
+        const ModelView& m = *model_;
+        Update& u = update_;
+        float nearest = u.none;
+        for (std::size_t l = 0; l < m.label_count; ++l)
+            if (exemplar_distances_[l] < nearest) nearest = exemplar_distances_[l];
+        const float scale = config_.exemplar_weight / m.exemplar_scale;
+        if (detail::is_finite(nearest)) {
+            for (std::size_t l = 0; l < m.label_count; ++l) vote_costs_[l] += (exemplar_distances_[l] - nearest) * scale;
+            if (detail::is_finite(u.none)) u.no_action_vote += (u.none - nearest) * scale;
+        }
+    }
+
+    // The character's update is in: the ring, the best explanation, the settled label.
+    Progress complete() noexcept {
+        Update& u = update_;
+        ends_[slot(u.now)] = u.end;
+        last_end_ = u.end_cost;
+        best_ = u.best;
+        margin_ = u.runner_up - u.best.cost;
+        u.active = false;
+        ++pushed_;
+        if (pushed_ <= settle_chars_) return Progress::done;
+        const std::uint64_t settled = pushed_ - 1 - settle_chars_;
+        settled_[slot(settled)] = label_at(settled);
+        return Progress::settled;
+    }
+
+    // Representatives [first, end_rep) of the character in progress: each one's
+    // cells, and the candidates for the best explanation and the best one
+    // ending here, taken in representative order whatever the slices.
+    void update_representatives(std::size_t first, std::size_t end_rep) noexcept {
+        const ModelView& m = *model_;
+        Update& u = update_;
+        const float* const column = u.column;
+        const float shift = u.shift, entry = u.entry;
+        const std::uint32_t now = u.now;
+        Hypothesis best = u.best;
+        float runner_up = u.runner_up;
+        SegmentEnd end = u.end;
+        float end_cost = u.end_cost;
+        for (std::size_t r = first; r < end_rep; ++r) {
             const Character* rep = m.representative_chars + m.representative_offsets[r];
             const std::size_t n = m.representative_length(r);
             const Cells cells = cells_ + m.representative_offsets[r];  // cell i is cells.cost(i − 1), cells.start(i − 1)
@@ -241,7 +412,7 @@ public:
                 value = take ? other : value;
                 from = take ? other_from : from;
             };
-            auto finish = [&](Cells cell, Character c, float value, std::uint32_t from) ACTIONSTRING_DETAIL_ALWAYS_INLINE {
+            auto finish_cell = [&](Cells cell, Character c, float value, std::uint32_t from) ACTIONSTRING_DETAIL_ALWAYS_INLINE {
                 value += column[c] + vote;
                 cell.cost(0) = value;
                 cell.start(0) = from;
@@ -294,7 +465,7 @@ public:
                     std::uint32_t from = below_from;
                     choose(value, from, here + stay_penalty, here_from);
                     choose(value, from, further + skip_penalty, further_from);
-                    finish(cell, *c, value, from);
+                    finish_cell(cell, *c, value, from);
                     here = below, here_from = below_from;
                     below = further, below_from = further_from;
                 }
@@ -305,14 +476,14 @@ public:
                     std::uint32_t from = below_from;
                     choose(value, from, here + stay_penalty, here_from);
                     choose(value, from, entry + skip_penalty, now);
-                    finish(cells + 1, rep[1], value, from);
+                    finish_cell(cells + 1, rep[1], value, from);
                     here = below, here_from = below_from;
                 }
                 {  // cell 1: enter the segment, or stay
                     float value = entry;
                     std::uint32_t from = now;
                     choose(value, from, here + stay_penalty, here_from);
-                    finish(cells, rep[0], value, from);
+                    finish_cell(cells, rep[0], value, from);
                 }
             }
 #if ACTIONSTRING_DETAIL_LANES == 4
@@ -344,55 +515,12 @@ public:
                 end = SegmentEnd{static_cast<std::uint16_t>(r), cells.start(n - 1)};
             }
         }
-        ends_[slot(now)] = end;
-        last_end_ = end_cost;
-        best_ = best;
-        margin_ = runner_up - best.cost;
-        ++pushed_;
-        if (pushed_ <= settle_chars_) return false;
-        const std::uint64_t settled = pushed_ - 1 - settle_chars_;
-        settled_[slot(settled)] = label_at(settled);
-        return true;
+        u.best = best;
+        u.runner_up = runner_up;
+        u.end = end;
+        u.end_cost = end_cost;
     }
 
-    /// Label of the best explanation's newest character (no delay, may change).
-    LabelId live_label() const noexcept { return pushed_ == 0 ? unknown_label : label_of(best_.rep); }
-    /// How much better the live label's best explanation is than the best one
-    /// whose newest character has any other label ("no action" included), in
-    /// units of W: a confidence for the live label. 0 before the first
-    /// character or on a tie; infinity when no other label can explain the
-    /// stream (a model of one label with "no action" turned off).
-    float live_margin() const noexcept { return margin_; }
-    /// Whether any character is settled yet.
-    bool has_settled() const noexcept { return pushed_ > settle_chars_; }
-    /// Index of the last settled character (meaningful when has_settled()).
-    std::uint64_t settled_character() const noexcept { return pushed_ - 1 - settle_chars_; }
-    /// Final label of the last settled character.
-    LabelId settled_label() const noexcept { return settled_label(settled_character()); }
-    /// Final label of a settled character among the last settled_history();
-    /// unknown_label for any other index.
-    LabelId settled_label(std::uint64_t index) const noexcept {
-        if (!has_settled() || index > settled_character() || settled_character() - index >= ring_size_)
-            return unknown_label;
-        return settled_[slot(index)];
-    }
-    /// How many settled labels settled_label(index) remembers.
-    std::size_t settled_history() const noexcept { return ring_size_; }
-    /// settled_history() for a model and settings, before init() (0 for settings check() refuses).
-    static constexpr std::size_t settled_history(const ModelView& model, const SegmenterConfig& config) noexcept {
-        return plan(model, config).ring_size;
-    }
-    /// What the current best explanation says of a character that is not yet
-    /// settled (index within the last settle_chars() + 1): to flush the end of
-    /// a stream. Returns unknown_label for other indices.
-    LabelId provisional_label(std::uint64_t index) const noexcept {
-        if (pushed_ == 0 || index >= pushed_ || pushed_ - 1 - index > settle_chars_) return unknown_label;
-        return label_at(index);
-    }
-    std::uint32_t settle_chars() const noexcept { return settle_chars_; }
-    std::uint64_t characters_pushed() const noexcept { return pushed_; }
-
-private:
     // The settle delay in characters, rounded (settings already checked).
     static constexpr std::uint32_t settle_chars_for(const ModelView& model, const SegmenterConfig& config) noexcept {
         const std::int64_t period = model.string_period_us;
@@ -403,7 +531,7 @@ private:
 
     struct Plan {
         std::size_t costs = 0, starts = 0, ends = 0, settled = 0, votes = 0, votes_bytes = 0, exemplars = 0,
-                    exemplars_bytes = 0, column = 0, ring_size = 0, bytes = unsatisfiable_bytes;
+                    exemplars_bytes = 0, feature = 0, column = 0, ring_size = 0, bytes = unsatisfiable_bytes;
     };
     static constexpr bool uses_votes(const ModelView& model, const SegmenterConfig& config) noexcept {
         return config.vote_weight > 0.0f && model.has_votes();
@@ -421,6 +549,22 @@ private:
     struct SegmentEnd {
         std::uint16_t rep = unknown_rep;
         std::uint32_t start = 0;
+    };
+    // The character in progress between begin() and its last advance().
+    struct Update {
+        bool active = false;
+        bool exemplars = false;   // its exemplars' distances are still being measured
+        bool candidates = false;  // best, runner_up, end and end_cost are set
+        std::uint32_t now = 0;    // its stream index (mod 2^32)
+        const float* column = nullptr;  // W(·, character)
+        float shift = 0.0f, previous_end = 0.0f, entry = 0.0f;
+        float no_action_vote = 0.0f;
+        float none = 0.0f;  // the nearest centre of "no action" so far
+        std::size_t next_centre = 0, next_rep = 0;
+        Hypothesis best;
+        float runner_up = 0.0f;
+        SegmentEnd end;
+        float end_cost = 0.0f;
     };
 
     // A representative's cells from a position on: each cell's cost (relative
@@ -579,6 +723,8 @@ private:
     bool use_votes_ = false;
     float* column_ = nullptr;          // K: W(·, newest character), when W is not symmetric
     bool w_symmetric_ = true;
+    float* feature_ = nullptr;         // feature_dim: the character's feature, kept for advance() (exemplars on only)
+    Update update_;
 };
 
 constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, const SegmenterConfig& config) noexcept {
@@ -605,6 +751,7 @@ constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, co
     if (ActionSegmenter::uses_exemplars(model, config)) {
         p.exemplars = layout.add<float>(model.label_count);
         p.exemplars_bytes = std::size_t{model.label_count} * sizeof(float);
+        p.feature = layout.add<float>(model.feature_dim);
     }
     p.bytes = layout.bytes();
     return p;
