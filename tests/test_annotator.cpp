@@ -1,6 +1,7 @@
 // The whole per-frame pipeline on the synthetic toy world.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -235,4 +236,124 @@ TEST_CASE("the online settings travel in the model: training stores them, init()
     const std::string header = host::generate_header(model, "0", "online", "online.model");
     CHECK(header.find("m.segment_penalty = 0x1.8p+0f;") != std::string::npos);
     CHECK(header.find("m.min_action_us = 750000;") != std::string::npos);
+}
+
+TEST_CASE("spread_work reports the same labels and events, at most one character later") {
+    host::ToyOptions toy;
+    const host::ToyWorld world = host::make_toy_world(toy);
+    const ModelView view = world.model.view();
+    struct Report {
+        std::vector<std::pair<std::uint64_t, LabelId>> settled;  // in the order reported
+        std::vector<std::int64_t> settled_at;                    // the frame time each was reported at
+        std::vector<ActionEvent> events;
+        std::vector<std::int64_t> events_at;
+        std::vector<std::uint64_t> restarts;  // frames that restarted the stream
+        std::size_t later_frames = 0;
+    };
+    const auto run = [&](const std::vector<host::ToyFrame>& frames, bool spread, const std::vector<bool>& lost) {
+        AnnotatorConfig config = test::every_rule(view);
+        config.spread_work = spread;
+        host::Stateful<Annotator> annotator;
+        REQUIRE(annotator.init(view, config) == Status::ok);
+        Report out;
+        const std::vector<float> zeros(frames.front().positions.size(), 0.0f);
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            const FrameResult r =
+                annotator->push_frame(frames[i].time_us, lost[i] ? zeros.data() : frames[i].positions.data());
+            if (r.status == Status::stream_restarted) out.restarts.push_back(i);
+            for (std::uint32_t k = 0; k < r.characters_settled; ++k) {
+                const std::uint64_t c = annotator->settled_character() - (r.characters_settled - 1 - k);
+                out.settled.emplace_back(c, annotator->settled_label(c));
+                out.settled_at.push_back(frames[i].time_us);
+            }
+            for (std::uint32_t e = 0; e < r.events; ++e) {
+                out.events.push_back(annotator->event(e));
+                out.events_at.push_back(frames[i].time_us);
+            }
+        }
+        // The work still in progress at the end, then the tail.
+        const FrameResult last = annotator->finish_work();
+        CHECK(last.status == Status::ok);
+        CHECK(last.characters_settled <= (spread ? 1u : 0u));
+        for (std::uint32_t k = 0; k < last.characters_settled; ++k) {
+            out.settled.emplace_back(annotator->settled_character(), annotator->settled_label());
+            out.settled_at.push_back(frames.back().time_us + 1);
+        }
+        for (std::uint32_t e = 0; e < last.events; ++e) {
+            out.events.push_back(annotator->event(e));
+            out.events_at.push_back(frames.back().time_us + 1);
+        }
+        const std::uint32_t flushed = annotator->flush();
+        for (std::uint32_t e = 0; e < flushed; ++e) {
+            out.events.push_back(annotator->event(e));
+            out.events_at.push_back(frames.back().time_us + 2);
+        }
+        return out;
+    };
+    for (const double rate : {30.0, 120.0, 200.0}) {
+        for (const int kind : {0, 1, 2}) {  // regular frames; jitter and drops; a loss long enough to restart
+            INFO("rate ", rate, " kind ", kind);
+            host::ToyStreamOptions options;
+            options.frame_rate_hz = rate;
+            options.seed = static_cast<std::uint32_t>(rate) + static_cast<std::uint32_t>(kind);
+            if (kind == 1) options.frame_time_jitter = 0.3, options.drop_probability = 0.2;
+            const auto frames = host::toy_stream(world, {0, 2, 1, 3, 0}, options);
+            std::vector<bool> lost(frames.size(), false);
+            if (kind == 2)
+                for (std::size_t i = frames.size() / 3; i < frames.size() / 2; ++i) lost[i] = true;
+            const Report plain = run(frames, false, lost);
+            const Report spread = run(frames, true, lost);
+            REQUIRE(plain.settled.size() > 20);
+            // A restart finishes the old stream's last character without
+            // counting what it settles (its events are reported): the one
+            // settled label just before the restart is missing then (when
+            // the work was still in progress).
+            std::vector<std::pair<std::uint64_t, LabelId>> expected = plain.settled;
+            std::vector<std::int64_t> expected_at = plain.settled_at;
+            if (kind == 2 && spread.settled.size() + 1 == plain.settled.size()) {
+                REQUIRE(plain.restarts.size() == 1);
+                const std::int64_t restart_us = frames[plain.restarts.front()].time_us;
+                const auto it = std::lower_bound(expected_at.begin(), expected_at.end(), restart_us);
+                REQUIRE(it != expected_at.begin());
+                const auto k = static_cast<std::size_t>(it - expected_at.begin()) - 1;
+                expected.erase(expected.begin() + static_cast<std::ptrdiff_t>(k));
+                expected_at.erase(expected_at.begin() + static_cast<std::ptrdiff_t>(k));
+            }
+            CHECK(spread.settled == expected);
+            CHECK(spread.restarts == plain.restarts);
+            const bool restarted = !plain.restarts.empty();
+            CHECK(restarted == (kind == 2));
+            REQUIRE(spread.events.size() == plain.events.size());
+            CHECK(!plain.events.empty());
+            for (std::size_t e = 0; e < plain.events.size(); ++e) {
+                const ActionEvent &a = plain.events[e], &b = spread.events[e];
+                CHECK(a.kind == b.kind);
+                CHECK(a.label == b.label);
+                CHECK(a.first_character == b.first_character);
+                CHECK(a.last_character == b.last_character);
+                CHECK(a.start_time_us == b.start_time_us);
+                CHECK(a.end_time_us == b.end_time_us);
+                CHECK(a.confidence == b.confidence);
+                CHECK(spread.events_at[e] >= plain.events_at[e]);
+            }
+            // Never earlier, and on a stream that does not restart at most
+            // one string period and a frame interval later (the next
+            // character's frame finishes the last one's work).
+            std::size_t later = 0;
+            std::int64_t longest_interval = 0;
+            for (std::size_t i = 1; i < frames.size(); ++i)
+                longest_interval = std::max(longest_interval, frames[i].time_us - frames[i - 1].time_us);
+            REQUIRE(spread.settled_at.size() == expected_at.size());
+            for (std::size_t k = 0; k < expected_at.size(); ++k) {
+                CHECK(spread.settled_at[k] >= expected_at[k]);
+                later += spread.settled_at[k] > expected_at[k];
+                if (kind != 2 && k + 1 < expected_at.size())
+                    CHECK(spread.settled_at[k] - expected_at[k] <= view.string_period_us + longest_interval);
+            }
+            // With several frames per character, most characters' work was
+            // spread (at 30 Hz a toy string period holds about one frame).
+            const double frames_per_char = static_cast<double>(view.string_period_us) * rate / 1e6;
+            if (frames_per_char >= 3.0) CHECK(later * 2 > plain.settled_at.size());
+        }
+    }
 }

@@ -59,8 +59,12 @@ struct AnnotatorConfig {
     /// interval and the next tick's time. The labels, their times and the
     /// events are bit for bit the same; each is reported up to one string
     /// period later (live_label(), settled labels, events), and a frame that
-    /// emits the next character first finishes the last. The encoder's work
-    /// (projection, GMM, tree) and the window rule stay in the character's frame.
+    /// emits the next character first finishes the last (finish_work() does
+    /// it at once). A frame that restarts the stream finishes the old
+    /// stream's last character too: its events are reported, but the label it
+    /// settles is not counted in FrameResult::characters_settled, as it is
+    /// not the new stream's. The encoder's work (projection, GMM, tree) and
+    /// the window rule stay in the character's frame.
     bool spread_work = false;
 };
 
@@ -174,6 +178,24 @@ public:
         finish_stream(pushed_ > 0 ? encoder_.tick_time_us(0) : 0);
         clear_stream();
         return static_cast<std::uint32_t>(events_.event_count());
+    }
+
+    /// With spread_work: finishes the work of the character in progress now,
+    /// rather than over the frames to come, and reports it as a frame would
+    /// (characters_settled, events; status ok, no characters). Call it before
+    /// reading provisional_label() at the end of a stream, or whenever the
+    /// next frames will not come soon; flush() does it itself. Without
+    /// spread_work, or with nothing in progress, it does nothing.
+    FrameResult finish_work() noexcept {
+        FrameResult result;
+        if (model_ == nullptr) {
+            result.status = Status::not_initialized;
+            return result;
+        }
+        events_.begin_frame();
+        finish_character(result);
+        result.events = static_cast<std::uint32_t>(events_.event_count());
+        return result;
     }
 
     /// Feeds one frame.

@@ -94,6 +94,17 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
         out.margin[f] = annotator->live_margin();
         if (annotator->characters() > 0) frame_char[f] = static_cast<long long>(epoch + annotator->characters() - 1);
     }
+    if (frames > 0) {
+        // A character whose work is still spread over frames (spread_work) is finished first.
+        const FrameResult r = annotator->finish_work();
+        const std::uint64_t last = annotator->settled_character();
+        for (std::uint64_t k = 0; k < r.characters_settled; ++k) {
+            const std::uint64_t c = last - (r.characters_settled - 1 - k);
+            char_label[epoch + c] = frame_label(annotator->settled_label(c));
+            char_emitted[epoch + c] = times_s.back();
+        }
+        for (std::size_t i = 0; i < r.events; ++i) out.events.push_back({annotator->event(i), times_s.back()});
+    }
     // At the end of the stream, the unsettled tail gets what the best explanation says of it then.
     for (std::uint64_t c = annotator->has_settled() ? annotator->settled_character() + 1 : 0;
          c < annotator->characters(); ++c) {
