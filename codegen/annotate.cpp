@@ -32,7 +32,7 @@ int run_annotate(int argc, char** argv) {
                 "                             [--columns time=COL,JOINT=X:Y:Z,...]\n"
                 "                             [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
                 "                             [--skip-penalty X] [--unknown-cost X] [--segment-votes X]\n"
-                "                             [--segment-exemplars X]\n\n"
+                "                             [--segment-exemplars X] [--spread-work]\n\n"
                 "Streams FILE frame by frame through the annotator, as a device would, and prints\n"
                 "the timeline of settled labels: start and end time in seconds, label (or\n"
                 "'unknown') and the confidence, the share of the span's frames whose live label\n"
@@ -48,6 +48,8 @@ int run_annotate(int argc, char** argv) {
                 "settled label ({\"settled\": …, \"time\": …}) and each action event. A malformed\n"
                 "line is skipped and counted, never fatal; the end of the input (or\n"
                 "--idle-timeout seconds without a datagram) ends the stream.\n"
+                "--spread-work spreads each character's segmenter work over the frames until\n"
+                "the next character: the same labels, each up to one string period later.\n"
                 "The segmenter options are those of 'actionstring eval'.\n");
             return 0;
         }

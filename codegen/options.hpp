@@ -126,19 +126,25 @@ inline bool apply_online_setting(ArgumentReader& args, const std::string& name, 
 /// (annotator_config()) once the model is loaded.
 struct OnlineOverrides {
     std::vector<std::pair<std::string, std::string>> settings;  // name, value
+    bool spread_work = false;  // --spread-work (AnnotatorConfig::spread_work; not a model setting)
     /// The model's settings with these applied (the values were checked when read).
     AnnotatorConfig over(const ModelView& model, ArgumentReader& args) const {
         AnnotatorConfig config = annotator_config(model);
         for (const auto& [name, value] : settings) apply_online_setting(args, name, value, config);
+        config.spread_work = spread_work;
         return config;
     }
 };
 
-/// Reads an online option (--settle S, --min-action S and the like) of eval or
+/// Reads an online option (--settle S, --min-action S, --spread-work and the like) of eval or
 /// annotate into `overrides`, checking its value now. Returns false when
 /// `option` is not one.
 inline bool parse_online_option(ArgumentReader& args, const std::string& option, OnlineOverrides& overrides) {
     if (option.rfind("--", 0) != 0) return false;
+    if (option == "--spread-work") {
+        overrides.spread_work = true;
+        return true;
+    }
     const std::string name = option.substr(2);
     AnnotatorConfig check;
     if (name != "settle" && name != "segment-penalty" && name != "stay-penalty" && name != "skip-penalty" &&
