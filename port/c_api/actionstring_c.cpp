@@ -87,6 +87,7 @@ AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) 
     config.max_backward_us = c->max_backward_us;
     config.window_rule = c->window_rule != 0;
     config.min_action_us = c->min_action_us;
+    config.spread_work = c->spread_work != 0;
     config.segmenter.settle_delay_us = c->online.settle_delay_us;
     config.segmenter.segment_penalty = c->online.segment_penalty;
     config.segmenter.stay_penalty = c->online.stay_penalty;
@@ -181,6 +182,7 @@ actionstring_status actionstring_default_config(const actionstring_model* handle
     config->max_backward_us = c.max_backward_us;
     config->window_rule = c.window_rule ? 1 : 0;
     config->min_action_us = c.min_action_us;
+    config->spread_work = c.spread_work ? 1 : 0;
     return ACTIONSTRING_OK;
 }
 
@@ -262,6 +264,20 @@ actionstring_status actionstring_flush(actionstring_state* handle, uint32_t* eve
     const std::uint32_t count = state->annotator.flush();
     if (events != nullptr) *events = count;
     return ACTIONSTRING_OK;
+}
+
+actionstring_status actionstring_finish_work(actionstring_state* handle, actionstring_frame_result* result) {
+    State* state = live(handle);
+    actionstring_frame_result out{};
+    if (state == nullptr) out.status = ACTIONSTRING_NOT_INITIALIZED;
+    else {
+        const actionstring::FrameResult frame = state->annotator.finish_work();
+        out.status = code(frame.status);
+        out.characters_settled = frame.characters_settled;
+        out.events = frame.events;
+    }
+    if (result != nullptr) *result = out;
+    return out.status;
 }
 
 actionstring_status actionstring_reset(actionstring_state* handle) {

@@ -225,6 +225,62 @@ static void contract_checks(const actionstring_model* model) {
     CHECK(strcmp(actionstring_model_label_name(model, (int32_t)actionstring_model_label_count(model)), "unknown") == 0);
 }
 
+/* config.spread_work: the same settled labels as without, each reported no
+ * earlier, some later; actionstring_finish_work() finishes the last. */
+static void spread_checks(const actionstring_model* model) {
+    enum { kFrames = 600, kMaxChars = 200 };
+    actionstring_config plain, spread;
+    CHECK(actionstring_default_config(model, &plain) == ACTIONSTRING_OK);
+    CHECK(plain.spread_work == 0);
+    spread = plain;
+    spread.spread_work = 1;
+    const size_t size = actionstring_state_size(model, &plain);
+    CHECK(size > 0 && actionstring_state_size(model, &spread) == size && 2 * size <= sizeof state_memory);
+    actionstring_state *a = NULL, *b = NULL;
+    CHECK(actionstring_init(model, &plain, state_memory, size, &a) == ACTIONSTRING_OK);
+    const size_t second = (size + 15u) & ~(size_t)15u;
+    CHECK(actionstring_init(model, &spread, state_memory + second, size, &b) == ACTIONSTRING_OK);
+    const uint32_t joints = actionstring_model_joint_count(model);
+    float frame[3 * kMaxJoints];
+    int32_t labels_a[kMaxChars], labels_b[kMaxChars];
+    int settled_at_a[kMaxChars], settled_at_b[kMaxChars];
+    for (int i = 0; i < kMaxChars; ++i) labels_a[i] = labels_b[i] = -2, settled_at_a[i] = settled_at_b[i] = -1;
+    actionstring_frame_result ra, rb;
+    for (int f = 0; f < kFrames; ++f) { /* ten seconds at 60 Hz */
+        synthetic_frame(joints, f, frame);
+        CHECK(actionstring_push_frame(a, (int64_t)f * 16667, frame, 3 * joints, &ra) == ACTIONSTRING_OK);
+        CHECK(actionstring_push_frame(b, (int64_t)f * 16667, frame, 3 * joints, &rb) == ACTIONSTRING_OK);
+        CHECK(ra.characters == rb.characters);
+        for (uint32_t k = 0; k < ra.characters_settled; ++k) {
+            const int64_t c = actionstring_settled_character(a) - (int64_t)(ra.characters_settled - 1 - k);
+            if (c >= 0 && c < kMaxChars) labels_a[c] = actionstring_settled_label(a, c), settled_at_a[c] = f;
+        }
+        for (uint32_t k = 0; k < rb.characters_settled; ++k) {
+            const int64_t c = actionstring_settled_character(b) - (int64_t)(rb.characters_settled - 1 - k);
+            if (c >= 0 && c < kMaxChars) labels_b[c] = actionstring_settled_label(b, c), settled_at_b[c] = f;
+        }
+    }
+    CHECK(actionstring_finish_work(a, &ra) == ACTIONSTRING_OK && ra.characters_settled == 0);
+    CHECK(actionstring_finish_work(b, &rb) == ACTIONSTRING_OK && rb.characters_settled <= 1);
+    if (rb.characters_settled == 1) {
+        const int64_t c = actionstring_settled_character(b);
+        if (c >= 0 && c < kMaxChars) labels_b[c] = actionstring_settled_label(b, c), settled_at_b[c] = kFrames;
+    }
+    CHECK(actionstring_settled_character(a) == actionstring_settled_character(b));
+    int settled = 0, later = 0;
+    for (int c = 0; c < kMaxChars; ++c) {
+        CHECK(labels_a[c] == labels_b[c]);
+        if (settled_at_a[c] < 0) continue;
+        ++settled;
+        CHECK(settled_at_b[c] >= settled_at_a[c]);
+        later += settled_at_b[c] > settled_at_a[c];
+    }
+    CHECK(settled > 50);
+    CHECK(later * 2 > settled); /* five frames per character: most were spread */
+    CHECK(actionstring_finish_work(NULL, &rb) == ACTIONSTRING_NOT_INITIALIZED &&
+          rb.status == ACTIONSTRING_NOT_INITIALIZED);
+}
+
 /* A blob file in memory aligned to 16 bytes (as the runtime reads it in place). */
 static unsigned char* read_blob(const char* path, size_t* size) {
     FILE* file = fopen(path, "rb");
@@ -380,8 +436,10 @@ int main(int argc, char** argv) {
         }
     }
     static actionstring_model builtin;
-    if (actionstring_model_builtin(&builtin) == ACTIONSTRING_OK) contract_checks(&builtin);
-    else CHECK(blob_count > 0); /* a library without a built-in model is tested through blobs */
+    if (actionstring_model_builtin(&builtin) == ACTIONSTRING_OK) {
+        contract_checks(&builtin);
+        spread_checks(&builtin);
+    } else CHECK(blob_count > 0); /* a library without a built-in model is tested through blobs */
     blob_checks(blobs, blob_count);
     if (stream != NULL && replay_file(stream) != 0) return 1;
     if (failures != 0) {
