@@ -208,12 +208,14 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
     for (const auto& item : settings) {
         const std::string key = item.first.cast<std::string>();
         if (key == "window_rule") config.window_rule = item.second.cast<bool>();
+        else if (key == "spread_work") config.spread_work = item.second.cast<bool>();
         else if (key == "max_gap") config.max_gap_us = std::llround(item.second.cast<double>() * 1e6);
         else if (key == "max_backward") config.max_backward_us = std::llround(item.second.cast<double>() * 1e6);
         else if (!host::apply_online_setting(setting_name(key), setting_value(item.second), config))
-            throw py::value_error("unknown online setting '" + key +
-                                  "' (settle, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, segment_exemplars, "
-                                  "window_rule, max_gap, max_backward, min_action)");
+            throw py::value_error(
+                "unknown online setting '" + key +
+                "' (settle, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, segment_exemplars, "
+                "window_rule, spread_work, max_gap, max_backward, min_action)");
     }
     return config;
 }
@@ -309,20 +311,24 @@ public:
                                   ", 3) for the model's skeleton, got " + std::to_string(positions.size()) + " values");
         const std::int64_t time_us = std::llround(time_s * 1e6);
         const FrameResult r = annotator_->push_frame(time_us, positions.data());
-        py::list settled;
-        if (r.characters_settled > 0) {
-            const std::uint64_t last = annotator_->settled_character();
-            for (std::uint64_t c = last + 1 - r.characters_settled; c <= last; ++c)
-                settled.append(py::make_tuple(c, static_cast<double>(annotator_->character_time_us(c)) * 1e-6,
-                                              label_object(*model_, annotator_->settled_label(c))));
-        }
         py::dict out;
         out["events"] = events();
         out["status"] = status_name(r.status);
         out["accepted"] = r.status == Status::ok || r.status == Status::stream_restarted;
         out["characters"] = r.characters;
         out["windows_completed"] = r.windows_completed;
-        out["settled"] = settled;
+        out["settled"] = settled(r);
+        out["live_label"] = label_object(*model_, annotator_->live_label());
+        out["live_margin"] = annotator_->live_margin();
+        return out;
+    }
+
+    /// With spread_work: the work of the character in progress, done now.
+    py::dict finish_work() {
+        const FrameResult r = annotator_->finish_work();
+        py::dict out;
+        out["events"] = events();
+        out["settled"] = settled(r);
         out["live_label"] = label_object(*model_, annotator_->live_label());
         out["live_margin"] = annotator_->live_margin();
         return out;
@@ -345,6 +351,17 @@ public:
     ModelPtr model() const { return model_; }
 
 private:
+    // The characters a frame settled: (index, tick time in seconds, label).
+    py::list settled(const FrameResult& r) const {
+        py::list out;
+        if (r.characters_settled == 0) return out;
+        const std::uint64_t last = annotator_->settled_character();
+        for (std::uint64_t c = last + 1 - r.characters_settled; c <= last; ++c)
+            out.append(py::make_tuple(c, static_cast<double>(annotator_->character_time_us(c)) * 1e-6,
+                                      label_object(*model_, annotator_->settled_label(c))));
+        return out;
+    }
+
     // The events of the last push_frame() or flush(), as dicts.
     py::list events() const {
         py::list out;
@@ -528,6 +545,9 @@ PYBIND11_MODULE(_actionstring, m) {
         .def("push_frame", &StreamAnnotator::push_frame, py::arg("time_s"), py::arg("positions"))
         .def("reset", &StreamAnnotator::reset)
         .def("flush", &StreamAnnotator::flush)
+        .def("finish_work", &StreamAnnotator::finish_work,
+             "With spread_work=True: finishes the character whose work is being spread, now; returns what a "
+             "frame returns (settled, events, live_label, live_margin)")
         .def_property_readonly("live_label", &StreamAnnotator::live_label)
         .def_property_readonly("live_margin", &StreamAnnotator::live_margin)
         .def_property_readonly("label", &StreamAnnotator::label)

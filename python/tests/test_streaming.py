@@ -103,3 +103,33 @@ def test_the_model_carries_its_shortest_action(toy_clips):
     assert events(actionstring.Annotator(patient, settle=0.5)) == []  # no action lasts a minute
     assert [e["event"] for e in events(actionstring.Annotator(patient, settle=0.5, min_action=0.25))] == [
         "started", "ended"]
+
+
+def test_spread_work_settles_the_same_labels_later(toy_model, toy_clips):
+    """spread_work=True: each character's segmenter work over the frames until
+    the next one; the same settled labels and events, none reported earlier."""
+    plain = actionstring.Annotator(toy_model, settle=0.5)
+    spread = actionstring.Annotator(toy_model, settle=0.5, spread_work=True)
+    clip = toy_clips[1]
+    got = {False: [], True: []}
+    events = {False: [], True: []}
+    reported_at = {False: {}, True: {}}
+    for f, (time_s, frame) in enumerate(zip(clip.times, clip.positions)):
+        for flag, annotator in ((False, plain), (True, spread)):
+            result = annotator.push_frame(time_s, frame)
+            got[flag] += result["settled"]
+            events[flag] += result["events"]
+            for c, _, _ in result["settled"]:
+                reported_at[flag][c] = f
+    tail = spread.finish_work()
+    assert len(tail["settled"]) <= 1
+    got[True] += tail["settled"]
+    events[True] += tail["events"]
+    assert plain.finish_work()["settled"] == []
+    assert got[True] == got[False] and len(got[False]) > 10
+    events[False] += plain.flush()
+    events[True] += spread.flush()
+    assert events[True] == events[False] and events[False]
+    later = [c for c, f in reported_at[False].items() if reported_at[True].get(c, len(clip.times)) > f]
+    assert all(reported_at[True].get(c, len(clip.times)) >= f for c, f in reported_at[False].items())
+    assert len(later) * 2 > len(reported_at[False])  # about six frames per character: most were spread
