@@ -197,17 +197,38 @@ void measure_model(const std::string& name, const ModelView& model, const host::
         std::fprintf(stderr, "%s: the annotator refused the model's own settings\n", name.c_str());
         std::exit(1);
     }
-    std::vector<std::int64_t> own_character_frames;
+    // And again with each character's segmenter work spread over the frames
+    // until the next one (AnnotatorConfig::spread_work): the same labels, a
+    // flatter frame cost.
+    AnnotatorConfig spread_config = annotator_config(model);
+    spread_config.spread_work = true;
+    host::Stateful<Annotator> spread;
+    if (spread.init(model, spread_config) != Status::ok) {
+        std::fprintf(stderr, "%s: the annotator refused the model's own settings, spread\n", name.c_str());
+        std::exit(1);
+    }
+    std::vector<std::int64_t> own_every, own_character_frames, spread_every, spread_character_frames;
     for (int pass = 0; pass <= passes; ++pass) {
         own->reset();
+        spread->reset();
         for (std::size_t f = 0; f < frames; ++f) {
-            FrameResult result;
+            FrameResult result, spread_result;
             const std::int64_t ns = timed([&] { result = own->push_frame(stream.times_us[f], stream.frame(f)); });
-            if (pass > 0 && result.characters > 0) own_character_frames.push_back(ns);
+            const std::int64_t spread_ns =
+                timed([&] { spread_result = spread->push_frame(stream.times_us[f], stream.frame(f)); });
+            if (pass == 0) continue;
+            own_every.push_back(ns);
+            spread_every.push_back(spread_ns);
+            if (result.characters > 0) own_character_frames.push_back(ns);
+            if (spread_result.characters > 0) spread_character_frames.push_back(spread_ns);
         }
     }
+    report.latency.push_back({name, "annotator, own settings (segmenter alone): every frame", summarize(own_every)});
     report.latency.push_back(
         {name, "annotator, own settings (segmenter alone): frames that emit a character", summarize(own_character_frames)});
+    report.latency.push_back({name, "annotator, own settings, work spread: every frame", summarize(spread_every)});
+    report.latency.push_back({name, "annotator, own settings, work spread: frames that emit a character",
+                              summarize(spread_character_frames)});
 
     // Stages, each called alone on every frame of the stream (the velocity,
     // GMM and projection stages only where the model has them).
@@ -408,6 +429,7 @@ struct ScalingPoint {
     bench::ModelSize size;
     Stats every, character;  // both rules (the window rule and the segmenter)
     Stats own_character;     // the model's own settings (the segmenter alone, as a device runs it)
+    Stats spread_every, spread_character;  // the same with the work spread (AnnotatorConfig::spread_work)
 };
 
 ScalingPoint measure_scaling(const std::string& varied, const bench::ModelSize& size) {
@@ -420,27 +442,40 @@ ScalingPoint measure_scaling(const std::string& varied, const bench::ModelSize& 
         std::fprintf(stderr, "scaling model rejected\n");
         std::exit(1);
     }
-    host::Stateful<Annotator> own;
-    if (own.init(model, annotator_config(model)) != Status::ok) {
+    host::Stateful<Annotator> own, spread;
+    AnnotatorConfig spread_config = annotator_config(model);
+    spread_config.spread_work = true;
+    if (own.init(model, annotator_config(model)) != Status::ok || spread.init(model, spread_config) != Status::ok) {
         std::fprintf(stderr, "scaling model rejected\n");
         std::exit(1);
     }
     const auto frames = bench::random_walk_frames(31, 120 * 30);
-    std::vector<std::int64_t> every, character, own_character;
+    std::vector<std::int64_t> every, character, own_character, spread_every, spread_character;
     for (int pass = 0; pass <= 3; ++pass) {
         annotator->reset();
         own->reset();
+        spread->reset();
         for (std::size_t f = 0; f < frames.size(); ++f) {
-            FrameResult result;
+            FrameResult result, spread_result;
             const std::int64_t time_us = static_cast<std::int64_t>(f) * 8333;
             const std::int64_t ns = timed([&] { result = annotator->push_frame(time_us, frames[f].data()); });
             const std::int64_t own_ns = timed([&] { result = own->push_frame(time_us, frames[f].data()); });
+            const std::int64_t spread_ns =
+                timed([&] { spread_result = spread->push_frame(time_us, frames[f].data()); });
             if (pass == 0) continue;
             every.push_back(ns);
+            spread_every.push_back(spread_ns);
             if (result.characters > 0) character.push_back(ns), own_character.push_back(own_ns);
+            if (spread_result.characters > 0) spread_character.push_back(spread_ns);
         }
     }
-    return {varied, size, summarize(every), summarize(character), summarize(own_character)};
+    return {varied,
+            size,
+            summarize(every),
+            summarize(character),
+            summarize(own_character),
+            summarize(spread_every),
+            summarize(spread_character)};
 }
 
 /// One pass of the committed model's annotator over the stream: the only code
@@ -564,7 +599,7 @@ int main(int argc, char** argv) {
        << " timed passes after one warm-up pass. Clock overhead "
        << "(an empty timed call, median): " << overhead << " ns, included in every figure.\n\n"
        << "| model | measured | n | median ns | p99 ns | p99.9 ns | max ns |\n|---|---|---:|---:|---:|---:|---:|\n";
-    char cell[256];
+    char cell[512];
     for (const auto& row : report.latency) {
         std::snprintf(cell, sizeof cell, "| %s | %s | %zu | %.0f | %.0f | %.0f | %.0f |\n", row.model.c_str(),
                       row.what.c_str(), row.stats.n, row.stats.median, row.stats.p99, row.stats.p999, row.stats.max);
@@ -583,14 +618,16 @@ int main(int argc, char** argv) {
     if (!points.empty()) {
         md << "\nScaling on random models (31 joints, full covariance; base J=40, d=24, K=64, 30 representatives of 30 "
               "characters, 2 s windows every 0.5 s at 12 characters/s), 3 passes over a 30 s 120 Hz stream:\n\n"
-              "| varied | J | d | K | representatives | window s | exemplars per label | median ns (all frames) | median ns (character frames) | p99.9 ns | segmenter alone: character frames median / p99 ns |\n"
-              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+              "| varied | J | d | K | representatives | window s | exemplars per label | median ns (all frames) | median ns (character frames) | p99.9 ns | segmenter alone: character frames median / p99 ns | work spread: character frames median / p99 ns, every frame p99 / max ns |\n"
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
         for (const auto& p : points) {
-            std::snprintf(cell, sizeof cell,
-                          "| %s | %d | %d | %d | %d | %.1f | %d | %.0f | %.0f | %.0f | %.0f / %.0f |\n",
-                          p.varied.c_str(), p.size.components, p.size.feature_dim, p.size.characters,
-                          p.size.representatives, p.size.window_seconds, p.size.exemplars_per_label, p.every.median,
-                          p.character.median, p.every.p999, p.own_character.median, p.own_character.p99);
+            std::snprintf(
+                cell, sizeof cell,
+                "| %s | %d | %d | %d | %d | %.1f | %d | %.0f | %.0f | %.0f | %.0f / %.0f | %.0f / %.0f, %.0f / %.0f |\n",
+                p.varied.c_str(), p.size.components, p.size.feature_dim, p.size.characters, p.size.representatives,
+                p.size.window_seconds, p.size.exemplars_per_label, p.every.median, p.character.median, p.every.p999,
+                p.own_character.median, p.own_character.p99, p.spread_character.median, p.spread_character.p99,
+                p.spread_every.p99, p.spread_every.max);
             md << cell;
         }
     }
@@ -619,7 +656,11 @@ int main(int argc, char** argv) {
                  << ", \"exemplars_per_label\": " << p.size.exemplars_per_label << ", \"median_ns\": " << p.every.median
                  << ", \"character_median_ns\": " << p.character.median << ", \"p99_9_ns\": " << p.every.p999
                  << ", \"own_character_median_ns\": " << p.own_character.median
-                 << ", \"own_character_p99_ns\": " << p.own_character.p99 << "}";
+                 << ", \"own_character_p99_ns\": " << p.own_character.p99
+                 << ", \"spread_character_median_ns\": " << p.spread_character.median
+                 << ", \"spread_character_p99_ns\": " << p.spread_character.p99
+                 << ", \"spread_every_p99_ns\": " << p.spread_every.p99
+                 << ", \"spread_every_max_ns\": " << p.spread_every.max << "}";
         }
         json << "\n  ]\n}\n";
     }
