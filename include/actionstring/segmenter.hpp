@@ -389,10 +389,13 @@ private:
         const float* const column = u.column;
         const float shift = u.shift, entry = u.entry;
         const std::uint32_t now = u.now;
-        Hypothesis best = u.best;
-        float runner_up = u.runner_up;
-        SegmentEnd end = u.end;
-        float end_cost = u.end_cost;
+        // The candidates stay in update_ (read and written once per
+        // representative): locals would be live across the cell loop and
+        // take the registers a Cortex-M4 needs there.
+        Hypothesis& best = u.best;
+        float& runner_up = u.runner_up;
+        SegmentEnd& end = u.end;
+        float& end_cost = u.end_cost;
         for (std::size_t r = first; r < end_rep; ++r) {
             const Character* rep = m.representative_chars + m.representative_offsets[r];
             const std::size_t n = m.representative_length(r);
@@ -515,10 +518,6 @@ private:
                 end = SegmentEnd{static_cast<std::uint16_t>(r), cells.start(n - 1)};
             }
         }
-        u.best = best;
-        u.runner_up = runner_up;
-        u.end = end;
-        u.end_cost = end_cost;
     }
 
     // The settle delay in characters, rounded (settings already checked).

@@ -124,6 +124,7 @@ int main() {
 #endif
 
     std::uint32_t hash = 2166136261u;
+    std::uint32_t settled_hash = 2166136261u;  // the settled labels alone, in character order
     std::uint32_t settled = 0, rejected = 0;
     std::uint32_t segment = 0;
     actionstring::LabelId shown = actionstring::unknown_label;
@@ -153,6 +154,7 @@ int main() {
             const actionstring::LabelId label = annotator.settled_label(character);
             ++settled;
             hash = fnv1a(hash, static_cast<std::uint32_t>(label));
+            settled_hash = fnv1a(settled_hash, static_cast<std::uint32_t>(label));
             if (label == shown) continue;
             shown = label;
             line.text("settled ").number(f).text(" char ").number(character).text(" ").text(name(label)).write();
@@ -170,6 +172,49 @@ int main() {
         .text(" labels fnv1a32 ")
         .hex(hash)
         .write();
+    // Again with each character's segmenter work spread over the frames until
+    // the next (AnnotatorConfig::spread_work), in the same storage: the same
+    // settled labels, a flatter cost per frame ('# spread cycles' lines).
+    actionstring::AnnotatorConfig spread_config = actionstring::annotator_config(model::kModel);
+    spread_config.spread_work = true;
+    if (annotator.init(model::kModel, spread_config, annotator_state.data(), annotator_state.size()) !=
+        actionstring::Status::ok) {
+        line.text("spread: model rejected").write();
+        return 1;
+    }
+    std::uint32_t spread_hash = 2166136261u, spread_settled = 0;
+    const auto take = [&](const actionstring::FrameResult& result) {
+        for (std::uint32_t k = 0; k < result.characters_settled; ++k) {
+            const std::uint64_t character = annotator.settled_character() - (result.characters_settled - 1u - k);
+            spread_hash = fnv1a(spread_hash, static_cast<std::uint32_t>(annotator.settled_label(character)));
+            ++spread_settled;
+        }
+    };
+    for (std::uint32_t f = 0; f < stream::kFrameCount; ++f) {
+        const float* positions = stream::kFramePositions + static_cast<std::size_t>(f) * stream::kJointCount * 3u;
+        const std::uint64_t begin = actionstring::port::cycle_count();
+        const actionstring::FrameResult result = annotator.push_frame(stream::kFrameTimeUs[f], positions);
+        const std::uint64_t cycles = actionstring::port::cycle_count() - begin;
+        line.text("# spread cycles ")
+            .number(f)
+            .text(" ")
+            .number(cycles)
+            .text(" ")
+            .number(result.characters)
+            .text(" ")
+            .number(result.characters_settled)
+            .write();
+        take(result);
+    }
+    take(annotator.finish_work());
+    const bool same = spread_settled == settled && spread_hash == settled_hash;
+    line.text("spread: settled ")
+        .number(spread_settled)
+        .text(" labels fnv1a32 ")
+        .hex(spread_hash)
+        .text(same ? " (the same settled labels)" : " (OTHER settled labels)")
+        .write();
+    if (!same) return 1;
 #if defined(__arm__)
     line.text("# stack bytes used ")
         .number(actionstring_board_stack_used())
