@@ -222,6 +222,7 @@ public:
             if (window_rule_) matcher_.reset();
             segmenter_.reset();
             has_window_ = false;
+            has_last_time_ = false;  // the gap is no frame interval
             pushed_ = 0;
         }
         emit(encoded.previous, encoded.from_previous, encoded.previous_feature, result);
@@ -311,13 +312,18 @@ private:
     // With spread_work: this frame's share of the character in progress,
     // what is left divided by the frames left before the next tick (judged
     // from the interval since the last accepted frame; all of it when the
-    // tick is due or the interval is unknown).
+    // tick is due). A stream's first frame has no interval to judge by: it
+    // takes the least step, and the next frame, which has one, goes on.
     void continue_character(std::int64_t time_us, FrameResult& result) noexcept {
         if (!segmenter_.in_progress()) return;
+        if (!has_last_time_) {
+            report(segmenter_.advance(1), result, encoder_.tick_time_us(0));
+            return;
+        }
         const std::int64_t next_tick = encoder_.tick_time_us(segmenter_.characters_pushed() + 1);
         const std::int64_t interval = time_us - last_time_us_;
         std::size_t frames_left = 1;
-        if (has_last_time_ && interval > 0 && next_tick > time_us) {
+        if (interval > 0 && next_tick > time_us) {
             const std::int64_t ahead = (next_tick - time_us + interval - 1) / interval;
             frames_left = ahead > 1 ? static_cast<std::size_t>(ahead < 1000000 ? ahead : 1000000) : 1u;
         }

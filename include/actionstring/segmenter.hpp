@@ -280,8 +280,9 @@ public:
             u.runner_up = detail::infinity();
             u.candidates = true;
         }
-        // The representatives from next_rep on, until the budget is spent.
-        std::size_t last = u.next_rep;
+        // The representatives from next_rep on, until the budget is spent
+        // (all of them for finish(), without counting).
+        std::size_t last = budget == all_work ? std::size_t{m.representative_count} : u.next_rep;
         std::size_t spent = 0;
         while (last < m.representative_count && spent < budget)
             spent += m.representative_length(last++) + rep_overhead;
