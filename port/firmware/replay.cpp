@@ -89,6 +89,24 @@ const char* name(actionstring::LabelId label) {
     return label == actionstring::unknown_label ? "unknown" : model::kModel.label_names[label];
 }
 
+// Feeds frame f of the stream and writes its cost: "<tag>f cycles characters settled".
+actionstring::FrameResult timed_frame(Annotator& annotator, Line& line, const char* tag, std::uint32_t f) {
+    const float* positions = stream::kFramePositions + static_cast<std::size_t>(f) * stream::kJointCount * 3u;
+    const std::uint64_t begin = actionstring::port::cycle_count();
+    const actionstring::FrameResult result = annotator.push_frame(stream::kFrameTimeUs[f], positions);
+    const std::uint64_t cycles = actionstring::port::cycle_count() - begin;
+    line.text(tag)
+        .number(f)
+        .text(" ")
+        .number(cycles)
+        .text(" ")
+        .number(result.characters)
+        .text(" ")
+        .number(result.characters_settled)
+        .write();
+    return result;
+}
+
 }  // namespace
 
 int main() {
@@ -131,19 +149,7 @@ int main() {
     for (std::uint32_t f = 0; f < stream::kFrameCount; ++f) {
         if (segment < stream::kSegmentCount && stream::kSegmentFirstFrame[segment] == f)
             line.text("truth ").number(f).text(" ").text(stream::kSegmentLabel[segment++]).write();
-        const float* positions = stream::kFramePositions + static_cast<std::size_t>(f) * stream::kJointCount * 3u;
-        const std::uint64_t begin = actionstring::port::cycle_count();
-        const actionstring::FrameResult result = annotator.push_frame(stream::kFrameTimeUs[f], positions);
-        const std::uint64_t cycles = actionstring::port::cycle_count() - begin;
-        line.text("# cycles ")
-            .number(f)
-            .text(" ")
-            .number(cycles)
-            .text(" ")
-            .number(result.characters)
-            .text(" ")
-            .number(result.characters_settled)
-            .write();
+        const actionstring::FrameResult result = timed_frame(annotator, line, "# cycles ", f);
         if (result.status != actionstring::Status::ok && result.status != actionstring::Status::stream_restarted) {
             ++rejected;
             line.text("rejected ").number(f).text(" ").text(actionstring::status_name(result.status)).write();
@@ -191,20 +197,7 @@ int main() {
         }
     };
     for (std::uint32_t f = 0; f < stream::kFrameCount; ++f) {
-        const float* positions = stream::kFramePositions + static_cast<std::size_t>(f) * stream::kJointCount * 3u;
-        const std::uint64_t begin = actionstring::port::cycle_count();
-        const actionstring::FrameResult result = annotator.push_frame(stream::kFrameTimeUs[f], positions);
-        const std::uint64_t cycles = actionstring::port::cycle_count() - begin;
-        line.text("# spread cycles ")
-            .number(f)
-            .text(" ")
-            .number(cycles)
-            .text(" ")
-            .number(result.characters)
-            .text(" ")
-            .number(result.characters_settled)
-            .write();
-        take(result);
+        take(timed_frame(annotator, line, "# spread cycles ", f));
     }
     take(annotator.finish_work());
     const bool same = spread_settled == settled && spread_hash == settled_hash;
