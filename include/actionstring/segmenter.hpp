@@ -561,9 +561,11 @@ private:
         float no_action_vote = 0.0f;
         float none = 0.0f;  // the nearest centre of "no action" so far
         std::size_t next_centre = 0, next_rep = 0;
-        Hypothesis best;
+        Hypothesis best;  // the best explanation so far, ending anywhere in a representative
+        // The best explanation whose newest character has another label than
+        // best's (for live_margin()): kept beside best as each candidate comes.
         float runner_up = 0.0f;
-        SegmentEnd end;
+        SegmentEnd end;  // the best one ending exactly here (a representative's last cell)
         float end_cost = 0.0f;
     };
 
