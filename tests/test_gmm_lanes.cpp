@@ -269,3 +269,48 @@ TEST_CASE("the lane paths are the ones the compiler's target selects") {
     CHECK(ACTIONSTRING_DETAIL_WIDE_LANES == 0);
 #endif
 }
+
+TEST_CASE("a posterior taken a few blocks at a time has gmm_posterior()'s bits") {
+    // gmm_pass_advance() in random steps, as spread work takes it
+    // (AnnotatorConfig::spread_work): the same blocks in the same order.
+    std::mt19937 rng(91);
+    std::normal_distribution<float> normal(0.0f, 1.0f);
+    std::uniform_int_distribution<std::size_t> step(0, 3);
+    std::size_t compared = 0, split = 0;
+    for (const Covariance kind : {Covariance::full, Covariance::diagonal})
+        for (const std::size_t J : {1u, 4u, 7u, 13u, 40u})
+            for (const std::size_t d : {3u, 9u, 24u}) {
+                LaneModel m = make_model(rng, d, J, kind);
+                for (float& v : m.means) v *= 3.0f;
+                std::vector<float> z(d), want(J), got(J), scratch(gmm_scratch_floats(m.view));
+                for (int sample = 0; sample < 4; ++sample) {
+                    for (std::size_t c = 0; c < d; ++c)
+                        z[c] = m.means[(static_cast<std::size_t>(sample) % J) * d + c] + 0.7f * normal(rng);
+                    for (const std::size_t start : {std::size_t{0}, J / 2, J - 1}) {
+                        std::size_t want_best = start, got_best = start;
+                        float want_ll = 0.0f, got_ll = 0.0f;
+                        REQUIRE(gmm_posterior(m.view, z.data(), want.data(), scratch.data(), &want_ll, &want_best) ==
+                                Status::ok);
+                        GmmPass pass;
+                        gmm_pass_begin(m.view, pass, start);
+                        std::size_t left = gmm_pass_blocks_left(m.view, pass), calls = 0;
+                        CHECK(left == (J + 3) / 4);
+                        for (bool more = true; more; ++calls) {
+                            more = gmm_pass_advance(m.view, pass, z.data(), got.data(), scratch.data(), step(rng));
+                            const std::size_t now = gmm_pass_blocks_left(m.view, pass);
+                            CHECK(now < left);  // every call moves on
+                            CHECK(more == (now > 0));
+                            left = now;
+                        }
+                        split += calls > 1;
+                        REQUIRE(gmm_pass_finish(m.view, pass, got.data(), &got_ll, &got_best) == Status::ok);
+                        for (std::size_t j = 0; j < J; ++j) CHECK(bits(got[j]) == bits(want[j]));
+                        CHECK(bits(got_ll) == bits(want_ll));
+                        CHECK(got_best == want_best);
+                        ++compared;
+                    }
+                }
+            }
+    CHECK(compared == 360);
+    CHECK(split > 150);
+}

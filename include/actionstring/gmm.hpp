@@ -360,6 +360,105 @@ inline Status gmm_log_joint(const ModelView& model, const float* feature, float*
     return Status::ok;
 }
 
+/// A posterior in the making, a few blocks of components at a time
+/// (gmm_pass_begin(), gmm_pass_advance(), gmm_pass_finish()): so a caller that
+/// spreads a frame's work (AnnotatorConfig::spread_work) can stop between
+/// blocks. gmm_posterior() is the same three calls in one go; the blocks come
+/// in the same order whatever the steps, so the result has the same bits.
+struct GmmPass {
+    std::size_t start = 0;  ///< The block computed first (the last peak's).
+    std::size_t done = 0;   ///< Components (of whole blocks) taken so far.
+    std::size_t first = 0;  ///< The next block's first component.
+    float peak = 0.0f;      ///< The largest log joint so far.
+    std::size_t best = 0;   ///< Its component (the first of equals).
+    bool failed = false;    ///< A log joint was NaN (pose_out_of_range).
+};
+
+/// Starts a pass; `most_probable` as gmm_posterior()'s on entry.
+inline void gmm_pass_begin(const ModelView& model, GmmPass& pass, std::size_t most_probable) noexcept {
+    const std::size_t block = ModelView::gmm_block;
+    pass = GmmPass{};
+    pass.start = most_probable < model.component_count ? most_probable - most_probable % block : 0;
+    pass.first = pass.start;
+    pass.peak = -detail::infinity();
+}
+
+/// Blocks of components a pass has left.
+inline std::size_t gmm_pass_blocks_left(const ModelView& model, const GmmPass& pass) noexcept {
+    const std::size_t block = ModelView::gmm_block;
+    return pass.failed ? 0u : (model.component_count - pass.done + block - 1) / block;
+}
+
+/// Takes up to `blocks` more blocks' log joints into `posterior` (at least one;
+/// two at once with AVX2 may take one more). Returns whether blocks are left.
+/// Arguments as gmm_posterior()'s; `feature` must hold the same values all pass.
+inline bool gmm_pass_advance(const ModelView& model, GmmPass& pass, const float* feature, float* posterior,
+                             float* scratch, std::size_t blocks) noexcept {
+    const std::size_t J = model.component_count;
+    const std::size_t block = ModelView::gmm_block;
+    // The log joints, the start's block first; a block that stops early
+    // writes −infinity, whose exp is the 0 its own would have given. The
+    // blocks come in rotated order, so equal peaks go to the lower index.
+    float peak = pass.peak;
+    std::size_t best = pass.best;
+    std::size_t n = pass.done, first = pass.first;
+    for (std::size_t taken = 0; n < J && !pass.failed && (taken < blocks || taken == 0); ++taken) {
+        std::size_t lanes = model.gmm_block_lanes(first);
+        float q[ModelView::gmm_block * (ACTIONSTRING_DETAIL_WIDE_LANES == 8 ? 2 : 1)];  // a pair with AVX2
+        bool computed = false;
+#if ACTIONSTRING_DETAIL_WIDE_LANES == 8
+        // With AVX2, this block and the next together when both are whole and
+        // the next comes next in the rotated order: the same distances, the same order.
+        if (model.covariance == Covariance::full && first + 2 * block <= J && first + block != pass.start) {
+            lanes = 2 * block;
+            computed = detail::gmm_block_distances<2 * ModelView::gmm_block>(model, first, feature, scratch, q, &peak);
+        } else
+#endif
+        {
+            computed = detail::gmm_distances(model, first, feature, scratch, q, &peak);
+        }
+        if (!computed) {
+            for (std::size_t l = 0; l < lanes; ++l) posterior[first + l] = -detail::infinity();
+        } else {
+            for (std::size_t l = 0; l < lanes; ++l) {
+                const std::size_t j = first + l;
+                const float value = detail::gmm_log_joint_of(model, j, q[l]);
+                if (detail::is_nan(value)) pass.failed = true;
+                posterior[j] = value;
+                if (value > peak || (value == peak && j < best)) peak = value, best = j;
+            }
+        }
+        n += lanes < block ? block : lanes;
+        first += lanes < block ? block : lanes;
+        if (first >= J) first = 0;
+    }
+    pass.peak = peak;
+    pass.best = best;
+    pass.done = n < J ? n : J;
+    pass.first = first;
+    return pass.done < J && !pass.failed;
+}
+
+/// Ends a pass whose blocks are all taken: the posteriors from the log joints.
+/// @return as gmm_posterior()'s
+inline Status gmm_pass_finish(const ModelView& model, GmmPass& pass, float* posterior, float* log_likelihood = nullptr,
+                              std::size_t* most_probable = nullptr) noexcept {
+    const std::size_t J = model.component_count;
+    if (pass.failed || !detail::is_finite(pass.peak)) return Status::pose_out_of_range;
+    const float peak = pass.peak;
+    float sum = 0.0f;
+    for (std::size_t j = 0; j < J; ++j) {
+        posterior[j] = detail::exp_portable(posterior[j] - peak);
+        sum += posterior[j];
+    }
+    // sum ≥ 1: the peak term is exp(0).
+    const float inverse = 1.0f / sum;
+    for (std::size_t j = 0; j < J; ++j) posterior[j] *= inverse;
+    if (log_likelihood != nullptr) *log_likelihood = peak + detail::log_portable(sum);
+    if (most_probable != nullptr) *most_probable = pass.best;
+    return Status::ok;
+}
+
 /// The pose feature t = [p(1|z) … p(J|z)] (paper eq. 5).
 ///
 /// Always sums to 1 and is never all zero: far from every key-pose the nearest
@@ -385,55 +484,10 @@ inline Status gmm_log_joint(const ModelView& model, const float* feature, float*
 inline Status gmm_posterior(const ModelView& model, const float* feature, float* posterior, float* scratch,
                             float* log_likelihood = nullptr, std::size_t* most_probable = nullptr) noexcept {
     if (feature == nullptr || posterior == nullptr || scratch == nullptr) return Status::invalid_argument;
-    const std::size_t J = model.component_count;
-    const std::size_t block = ModelView::gmm_block;
-    const std::size_t start = most_probable != nullptr && *most_probable < J ? *most_probable - *most_probable % block : 0;
-    // The log joints, the start's block first; a block that stops early
-    // writes −infinity, whose exp is the 0 its own would have given. The
-    // blocks come in rotated order, so equal peaks go to the lower index.
-    float peak = -detail::infinity();
-    std::size_t best = 0;
-    for (std::size_t n = 0, first = start; n < J; n += block, first = first + block < J ? first + block : 0) {
-        std::size_t lanes = model.gmm_block_lanes(first);
-        float q[ModelView::gmm_block * (ACTIONSTRING_DETAIL_WIDE_LANES == 8 ? 2 : 1)];  // a pair with AVX2
-        bool computed = false;
-#if ACTIONSTRING_DETAIL_WIDE_LANES == 8
-        // With AVX2, this block and the next together when both are whole and
-        // the next comes next in the rotated order: the same distances, the same order.
-        if (model.covariance == Covariance::full && first + 2 * block <= J && first + block != start) {
-            lanes = 2 * block;
-            n += block;
-            computed = detail::gmm_block_distances<2 * ModelView::gmm_block>(model, first, feature, scratch, q, &peak);
-        } else
-#endif
-        {
-            computed = detail::gmm_distances(model, first, feature, scratch, q, &peak);
-        }
-        if (!computed) {
-            for (std::size_t l = 0; l < lanes; ++l) posterior[first + l] = -detail::infinity();
-        } else {
-            for (std::size_t l = 0; l < lanes; ++l) {
-                const std::size_t j = first + l;
-                const float value = detail::gmm_log_joint_of(model, j, q[l]);
-                if (detail::is_nan(value)) return Status::pose_out_of_range;
-                posterior[j] = value;
-                if (value > peak || (value == peak && j < best)) peak = value, best = j;
-            }
-        }
-        if (lanes > block) first += block;  // a pair: the loop steps past its second block
-    }
-    if (!detail::is_finite(peak)) return Status::pose_out_of_range;
-    float sum = 0.0f;
-    for (std::size_t j = 0; j < J; ++j) {
-        posterior[j] = detail::exp_portable(posterior[j] - peak);
-        sum += posterior[j];
-    }
-    // sum ≥ 1: the peak term is exp(0).
-    const float inverse = 1.0f / sum;
-    for (std::size_t j = 0; j < J; ++j) posterior[j] *= inverse;
-    if (log_likelihood != nullptr) *log_likelihood = peak + detail::log_portable(sum);
-    if (most_probable != nullptr) *most_probable = best;
-    return Status::ok;
+    GmmPass pass;
+    gmm_pass_begin(model, pass, most_probable != nullptr ? *most_probable : 0);
+    gmm_pass_advance(model, pass, feature, posterior, scratch, model.component_count);
+    return gmm_pass_finish(model, pass, posterior, log_likelihood, most_probable);
 }
 
 }  // namespace actionstring
