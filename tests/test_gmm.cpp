@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
@@ -214,4 +215,36 @@ TEST_CASE("the portable log is accurate from subnormals to the largest float") {
     CHECK(detail::is_nan(detail::log_portable(-1.0f)));
     CHECK(detail::is_nan(detail::log_portable(std::numeric_limits<float>::quiet_NaN())));
     CHECK(detail::log_portable(std::numeric_limits<float>::infinity()) == std::numeric_limits<float>::infinity());
+}
+
+TEST_CASE("a projection taken a few columns at a time has project_pose()'s bits") {
+    // project_pose_columns() in steps of four columns (the tail of single
+    // columns last), as spread work takes it (AnnotatorConfig::spread_work).
+    std::mt19937 rng(3);
+    std::normal_distribution<float> normal(0.0f, 0.3f);
+    for (const std::size_t joints : {3u, 7u, 31u}) {  // D = 9, 21, 93: a tail each
+        host::ModelData data;
+        for (std::size_t j = 0; j < joints; ++j) data.pose_joints.push_back(static_cast<std::uint16_t>(j));
+        const std::size_t D = 3 * joints, d = 5;
+        data.feature_dim = static_cast<std::uint16_t>(d);
+        for (std::size_t i = 0; i < D; ++i) data.projection_mean.push_back(normal(rng));
+        for (std::size_t i = 0; i < D * d; ++i) data.projection_matrix.push_back(normal(rng));
+        const ModelView view = data.view();
+        REQUIRE(view.input_dim() == D);
+        std::vector<float> pose(D), want(d), got(d, 1.0f);
+        for (int sample = 0; sample < 30; ++sample) {
+            for (float& v : pose) v = normal(rng);
+            REQUIRE(project_pose(view, pose.data(), want.data()) == Status::ok);
+            std::size_t first = 0, calls = 0;
+            while (first < D) {
+                const std::size_t groups = 1 + static_cast<std::size_t>(rng() % 3);
+                const std::size_t last = (D - first) / 4 <= groups ? D : first + 4 * groups;
+                project_pose_columns(view, pose.data(), got.data(), first, last);
+                first = last;
+                ++calls;
+            }
+            CHECK(calls >= (joints > 3 ? 2u : 1u));
+            for (std::size_t r = 0; r < d; ++r) CHECK(std::memcmp(&got[r], &want[r], sizeof(float)) == 0);
+        }
+    }
 }
