@@ -51,11 +51,11 @@ Frames irregular_frames(const host::ToyWorld& world, std::uint32_t seed) {
     double t = 5.0;
     for (std::size_t i = 0; i < stream.size(); ++i) {
         const double u = unit(rng);
-        const bool slow = (i / 40) % 4 == 3;  // a quarter of the time at about 6 Hz
-        if (i == stream.size() / 3) t += 1.5;                           // a gap: restart
-        else if (i == stream.size() / 2) t -= 0.5;                      // far back: restart
-        else if (u < 0.04) t -= 0.01;                                   // a small step back: rejected
-        else if (u < 0.08) t += 0.0;                                    // the same instant
+        const bool slow = (i / 40) % 4 == 3;        // a quarter of the time at about 6 Hz
+        if (i == stream.size() / 3) t += 1.5;       // a gap: restart
+        else if (i == stream.size() / 2) t -= 0.5;  // far back: restart
+        else if (u < 0.04) t -= 0.01;               // a small step back: rejected
+        else if (u < 0.08) t += 0.0;                // the same instant
         else t += slow ? 0.12 + 0.1 * unit(rng) : (0.5 + unit(rng)) / 60.0;
         out.times.push_back(static_cast<std::int64_t>(t * 1e6));
         out.positions.push_back(stream[i].positions);
@@ -126,8 +126,8 @@ void check_deferred_equals_eager(const ModelView& view, std::uint32_t seed) {
     CHECK(want.size() > 100);
     CHECK(restarts == 2);
     CHECK(rejected > 10);
-    CHECK(two > 0);       // frames whose ticks took both poses
-    CHECK(repeated > 0);  // a pose taken by several ticks
+    CHECK(two > 0);                    // frames whose ticks took both poses
+    CHECK(repeated > 0);               // a pose taken by several ticks
     CHECK(2 * partial > want.size());  // many characters took several steps
     // An encoder that does not defer refuses, and reset() empties the queue.
     CHECK(eager->defer(EncodedFrame{}) == Status::invalid_argument);

@@ -44,13 +44,27 @@ struct EncodedFrame {
     bool accepted() const noexcept { return status == Status::ok || status == Status::stream_restarted; }
 };
 
-/// Stream timing of an encoder (AnnotatorConfig carries the same two).
+/// A character whose deferred encoding is done (StringEncoder::ready_character()):
+/// `count` ticks take it, and it was made from `feature` (feature_dim floats,
+/// owned by the encoder, valid until pop_character()).
+struct DeferredCharacter {
+    Character character = 0;
+    std::uint32_t count = 0;
+    const float* feature = nullptr;
+};
+
+/// Stream timing of an encoder (AnnotatorConfig carries the same two), and
+/// whether it may defer its characters' work.
 struct EncoderConfig {
     /// A longer gap between accepted frames restarts the stream.
     std::int64_t max_gap_us = 1000000;
     /// A frame this much earlier than the last one or less is rejected;
     /// further back the stream restarts.
     std::int64_t max_backward_us = 100000;
+    /// Room to queue the poses of one frame's ticks (defer()), so their
+    /// characters can be computed over later frames; two poses, each with its
+    /// feature, more storage. push_frame() alone does not need it.
+    bool deferred = false;
 };
 
 /// Frame-to-character encoder; needs only the feature tables of the model.
@@ -60,8 +74,8 @@ struct EncoderConfig {
 class StringEncoder {
 public:
     /// Bytes of storage init() needs for this model (constexpr when the model is).
-    static constexpr std::size_t required_bytes(const ModelView& model, const EncoderConfig& = {}) noexcept {
-        return plan(model).bytes;
+    static constexpr std::size_t required_bytes(const ModelView& model, const EncoderConfig& config = {}) noexcept {
+        return plan(model, config.deferred).bytes;
     }
 
     /// @return ok, invalid_model (tables, or precision factors that could
@@ -74,7 +88,7 @@ public:
         if (model.has_gmm() && !gmm_is_overflow_safe(model, max_pose_coordinate)) return Status::invalid_model;
         if (!StringSampler::settings_ok(model.string_period_us, config.max_gap_us, config.max_backward_us))
             return Status::invalid_argument;
-        const Plan p = plan(model);
+        const Plan p = plan(model, config.deferred);
         if (!detail::storage_fits(storage, bytes, p.bytes)) return Status::storage_too_small;
         detail::clear_storage(storage, p.bytes);
         poses_[0] = detail::storage_at<float>(storage, p.poses);
@@ -86,6 +100,13 @@ public:
         scratch_ = detail::storage_at<float>(storage, p.scratch);
         norms_ = detail::storage_at<float>(storage, p.norms);
         nonzero_ = detail::storage_at<std::uint16_t>(storage, p.nonzero);
+        deferred_ = config.deferred;
+        for (std::size_t e = 0; e < 2; ++e) {
+            queue_poses_[e] = detail::storage_at<float>(storage, p.queue_poses) + e * model.input_dim();
+            queue_features_[e] = detail::storage_at<float>(storage, p.queue_features) +
+                                 e * (model.has_projection() ? model.feature_dim : 0u);
+            if (!model.has_projection()) queue_features_[e] = queue_poses_[e];  // the pose is the feature
+        }
         if (model.has_gmm()) tree_node_norms(model, norms_);  // the sparse descent's (tree.hpp)
         const Status motion = motion_.init(model, detail::storage_at<unsigned char>(storage, p.motion),
                                            MotionRing::required_bytes(model));
@@ -103,6 +124,8 @@ public:
         has_previous_ = false;
         last_ = 0;
         most_probable_ = 0;
+        queued_ = 0;
+        head_ = 0;
     }
 
     /// Encodes one frame.
@@ -111,6 +134,25 @@ public:
     /// @param positions joint_count × 3 floats, xyz per joint in metres; read
     ///                  only during the call
     EncodedFrame push_frame(std::int64_t time_us, const float* positions) noexcept {
+        EncodedFrame out = accept_frame(time_us, positions);
+        if (!out.accepted()) return out;
+        // previous_ is this frame's slot now, the previous frame's the other.
+        if (out.from_previous > 0) {
+            out.previous = character(1u - previous_);
+            out.previous_feature = feature(1u - previous_);
+        }
+        if (out.from_current > 0) {
+            out.current = character(previous_);
+            out.current_feature = feature(previous_);
+        }
+        return out;
+    }
+
+    /// Takes a frame as push_frame() does (normalisation, ticks, motion) but
+    /// computes no character: `previous`, `current` and their features stay
+    /// unset. defer() then queues the ticks' poses, which stay valid until
+    /// the next frame.
+    EncodedFrame accept_frame(std::int64_t time_us, const float* positions) noexcept {
         EncodedFrame out;
         if (model_ == nullptr) {
             out.status = Status::not_initialized;
@@ -135,19 +177,121 @@ public:
             if (plan.from_current > 0) motion_.motion(*model_, time_us, poses_[current]);
             motion_.keep(*model_, time_us, poses_[current]);
         }
-        if (plan.from_previous > 0) {
-            out.previous = character(previous_);
-            out.from_previous = plan.from_previous;
-            out.previous_feature = feature(previous_);
-        }
-        if (plan.from_current > 0) {
-            out.current = character(current);
-            out.from_current = plan.from_current;
-            out.current_feature = feature(current);
-        }
+        out.from_previous = plan.from_previous;
+        out.from_current = plan.from_current;
         previous_ = current;
         has_previous_ = true;
         return out;
+    }
+
+    // Deferred characters (EncoderConfig::deferred). A character's work is
+    // staged: the projection, the GMM a block of components at a time, the
+    // posterior, the tree; so a caller can do a little in each frame. The
+    // stages are the ones push_frame() runs, in the same order, on a copy of
+    // the pose: the characters have the same bits.
+
+    /// Queues the ticks of the frame accept_frame() just took, in order (the
+    /// earlier pose first). The queue must be empty (finish and pop what it
+    /// holds first): it has room for one frame's two poses.
+    /// @return ok, not_initialized, invalid_argument (not deferred, a frame
+    ///         that was not accepted) or storage_too_small (the queue is not empty)
+    Status defer(const EncodedFrame& frame) noexcept {
+        if (model_ == nullptr) return Status::not_initialized;
+        if (!deferred_ || !frame.accepted()) return Status::invalid_argument;
+        if (queued_ != 0) return Status::storage_too_small;
+        head_ = 0;
+        if (frame.from_previous > 0) queue(1u - previous_, frame.from_previous);
+        if (frame.from_current > 0) queue(previous_, frame.from_current);
+        return Status::ok;
+    }
+
+    /// Characters queued and not popped yet.
+    std::size_t deferred_count() const noexcept { return queued_; }
+
+    /// The work left of every queued character, in the segmenter's units
+    /// (about one representative character's update, ActionSegmenter::work_left()).
+    std::size_t deferred_work_left() const noexcept {
+        std::size_t work = 0;
+        for (std::size_t e = 0; e < queued_; ++e) work += work_left(entries_[(head_ + e) % 2]);
+        return work;
+    }
+
+    /// Does about `work` units of the oldest queued character's stages (at
+    /// least one stage or block, so every call moves on). Returns whether
+    /// it is ready (ready_character()).
+    bool advance_deferred(std::size_t work) noexcept {
+        if (queued_ == 0) return false;
+        Entry& e = entries_[head_];
+        const std::size_t slot = head_;
+        std::size_t budget = work == 0 ? 1u : work;
+        auto spend = [&budget](std::size_t units) { budget = units >= budget ? 0u : budget - units; };
+        while (e.stage != Stage::ready) {
+            if (budget == 0) return false;
+            switch (e.stage) {
+                case Stage::project:
+                    if (model_->has_projection()) {
+                        // Four columns of the projection at a time.
+                        const std::size_t n = model_->input_dim(), per = project_group_work();
+                        const std::size_t groups = budget / per + (budget % per != 0 ? 1u : 0u);
+                        const std::size_t last = (n - e.next_column) / 4 <= groups ? n : e.next_column + 4 * groups;
+                        project_pose_columns(*model_, queue_poses_[slot], queue_features_[slot], e.next_column, last);
+                        spend((last - e.next_column + 3) / 4 * per);
+                        e.next_column = last;
+                        if (last < n) break;
+                    } else {
+                        spend(1);  // the pose is the feature
+                    }
+                    if (!model_->has_gmm()) {
+                        e.stage = Stage::descend;
+                        break;
+                    }
+                    gmm_pass_begin(*model_, e.gmm, most_probable_);
+                    e.stage = Stage::gmm;
+                    break;
+                case Stage::gmm: {
+                    const std::size_t per = gmm_block_work();
+                    const std::size_t blocks = budget / per + (budget % per != 0 ? 1u : 0u);
+                    const std::size_t before = gmm_pass_blocks_left(*model_, e.gmm);
+                    if (!gmm_pass_advance(*model_, e.gmm, queue_features_[slot], posterior_, scratch_, blocks))
+                        e.stage = Stage::posterior;
+                    spend((before - gmm_pass_blocks_left(*model_, e.gmm)) * per);
+                    break;
+                }
+                case Stage::posterior:
+                    // As character(): should it ever fail, the last character again.
+                    e.stage = gmm_pass_finish(*model_, e.gmm, posterior_, nullptr, &most_probable_) == Status::ok
+                                  ? Stage::descend
+                                  : Stage::ready;
+                    if (e.stage == Stage::ready) e.character = last_;
+                    spend(posterior_work());
+                    break;
+                case Stage::descend:
+                    last_ = model_->has_gmm() ? descend_tree_sparse(*model_, posterior_, norms_, nonzero_)
+                                              : descend_tree(*model_, queue_features_[slot]);
+                    e.character = last_;
+                    e.stage = Stage::ready;
+                    spend(descend_work());
+                    break;
+                case Stage::ready:
+                    break;
+            }
+        }
+        return true;
+    }
+
+    /// The oldest queued character once advance_deferred() has finished it,
+    /// else null. Valid until pop_character().
+    const DeferredCharacter* ready_character() noexcept {
+        if (queued_ == 0 || entries_[head_].stage != Stage::ready) return nullptr;
+        ready_out_ = DeferredCharacter{entries_[head_].character, entries_[head_].count, queue_features_[head_]};
+        return &ready_out_;
+    }
+
+    /// Drops the oldest queued character (once ready_character() gave it).
+    void pop_character() noexcept {
+        if (queued_ == 0) return;
+        head_ = (head_ + 1) % 2;
+        --queued_;
     }
 
     /// Time of tick k (character k) of the current stream.
@@ -162,6 +306,64 @@ private:
     // The slot's feature: its projected pose, or without a projection the pose itself.
     const float* feature(std::size_t slot) const noexcept {
         return model_->has_projection() ? features_[slot] : poses_[slot];
+    }
+
+    // A queued character's stages: the projection, the GMM's blocks, the posterior, the tree.
+    enum class Stage : std::uint8_t { project, gmm, posterior, descend, ready };
+    struct Entry {
+        Stage stage = Stage::project;
+        std::size_t next_column = 0;  // the projection's next pose coordinate
+        std::uint32_t count = 0;
+        Character character = 0;
+        GmmPass gmm;
+    };
+
+    // Queues a slot's pose (ticks at this frame: the queue is in order).
+    void queue(std::size_t slot, std::uint32_t count) noexcept {
+        const std::size_t e = (head_ + queued_) % 2;
+        const std::size_t n = model_->input_dim();
+        for (std::size_t i = 0; i < n; ++i) queue_poses_[e][i] = poses_[slot][i];
+        entries_[e] = Entry{};
+        entries_[e].count = count;
+        ready_[slot] = true;  // its motion is taken (accept_frame())
+        ++queued_;
+    }
+
+    // Each stage's work in the segmenter's units, from the operations it
+    // does (one unit is about four multiply-adds in lanes): the estimates
+    // only share a frame's budget out, the results do not depend on them.
+    std::size_t project_group_work() const noexcept { return model_->feature_dim + 1u; }  // four columns
+    std::size_t project_work(std::size_t next_column) const noexcept {
+        return model_->has_projection() ? (model_->input_dim() - next_column + 3u) / 4u * project_group_work() : 1u;
+    }
+    std::size_t gmm_block_work() const noexcept {
+        const std::size_t d = model_->feature_dim;
+        return (model_->covariance == Covariance::diagonal ? d : d * (d + 1u) / 2u + d) + 1u;
+    }
+    std::size_t posterior_work() const noexcept { return model_->component_count + 1u; }
+    std::size_t descend_work() const noexcept {
+        std::size_t depth = 1;
+        while ((std::size_t{1} << depth) < model_->node_count) ++depth;
+        return depth * (model_->tree_dim() / 4u + 1u);
+    }
+    std::size_t work_left(const Entry& e) const noexcept {
+        switch (e.stage) {
+            case Stage::project:
+                return project_work(e.next_column) +
+                       (model_->has_gmm()
+                            ? gmm_pass_blocks_left(*model_, GmmPass{}) * gmm_block_work() + posterior_work()
+                            : 0u) +
+                       descend_work();
+            case Stage::gmm:
+                return gmm_pass_blocks_left(*model_, e.gmm) * gmm_block_work() + posterior_work() + descend_work();
+            case Stage::posterior:
+                return posterior_work() + descend_work();
+            case Stage::descend:
+                return descend_work();
+            case Stage::ready:
+                return 0;
+        }
+        return 0;
     }
 
     Character character(std::size_t slot) noexcept {
@@ -180,10 +382,10 @@ private:
     }
 
     struct Plan {
-        std::size_t poses = 0, skeleton = 0, feature = 0, posterior = 0, scratch = 0, norms = 0, nonzero = 0, motion = 0,
-                    bytes = 0;
+        std::size_t poses = 0, skeleton = 0, feature = 0, posterior = 0, scratch = 0, norms = 0, nonzero = 0,
+                    motion = 0, queue_poses = 0, queue_features = 0, bytes = 0;
     };
-    static constexpr Plan plan(const ModelView& m) noexcept {
+    static constexpr Plan plan(const ModelView& m, bool deferred) noexcept {
         detail::StorageLayout layout;
         Plan p;
         p.poses = layout.add<float>(2 * m.input_dim());  // this frame's and the last one's
@@ -194,6 +396,8 @@ private:
         p.norms = layout.add<float>(m.has_gmm() ? tree_norm_floats(m) : 0u);  // the sparse descent is for posteriors
         p.nonzero = layout.add<std::uint16_t>(m.has_gmm() ? m.component_count : 0u);
         p.motion = layout.add<unsigned char>(MotionRing::required_bytes(m));
+        p.queue_poses = layout.add<float>(deferred ? 2u * m.input_dim() : 0u);  // deferred: two poses queued
+        p.queue_features = layout.add<float>(deferred && m.has_projection() ? 2u * m.feature_dim : 0u);
         p.bytes = layout.bytes();
         return p;
     }
@@ -215,6 +419,13 @@ private:
     float* scratch_ = nullptr;    // the GMM's gmm_scratch_floats()
     float* norms_ = nullptr;      // with a GMM: the tree's node norms (tree_node_norms())
     std::uint16_t* nonzero_ = nullptr;  // with a GMM: the posterior's non-zero coordinates
+    // Deferred characters: a queue of up to two, in storage (poses and features) and here.
+    bool deferred_ = false;
+    float* queue_poses_[2] = {};
+    float* queue_features_[2] = {};  // the projected poses; without a projection, the poses
+    Entry entries_[2] = {};
+    std::size_t head_ = 0, queued_ = 0;
+    DeferredCharacter ready_out_;
 };
 
 }  // namespace actionstring
