@@ -50,21 +50,21 @@ struct AnnotatorConfig {
     /// but reports each action later; a model carries its own (chosen at
     /// training, ModelView::min_action_us).
     std::int64_t min_action_us = 250000;
-    /// Spread each character's segmenter work (its pass over every
-    /// representative character, and over the exemplars when the settings
-    /// weigh them) over the frames until the next character is due, instead
-    /// of doing it all in the frame that emits the character. The frames'
-    /// cost becomes flat (a real-time budget is set by the costliest frame):
-    /// each frame does its share of what is left, judged from the last frame
-    /// interval and the next tick's time. The labels, their times and the
-    /// events are bit for bit the same; each is reported up to one string
-    /// period later (live_label(), settled labels, events), and a frame that
-    /// emits the next character first finishes the last (finish_work() does
-    /// it at once). A frame that restarts the stream finishes the old
-    /// stream's last character too: its events are reported, but the label it
-    /// settles is not counted in FrameResult::characters_settled, as it is
-    /// not the new stream's. The encoder's work (projection, GMM, tree) and
-    /// the window rule stay in the character's frame.
+    /// Spread each character's work (the encoder's projection, GMM and tree;
+    /// the segmenter's pass over every representative character, and over
+    /// the exemplars when the settings weigh them) over the frames until the
+    /// next character is due, instead of doing it all in the frame that
+    /// emits the character. The frames' cost becomes flat (a real-time budget
+    /// is set by the costliest frame): each frame does its share of what is
+    /// left, judged from the last frame interval and the next tick's time.
+    /// The characters, labels, their times and the events are bit for bit the
+    /// same; each is reported up to one string period later (last_character(),
+    /// live_label(), settled labels, windows, events), and a frame that emits
+    /// the next character first finishes the last (finish_work() does it at
+    /// once). A frame that restarts the stream finishes the old stream's last
+    /// character too: its events are reported, but the labels it settles are
+    /// not counted in FrameResult::characters_settled, as they are not the new
+    /// stream's. Needs more storage: two queued poses (required_bytes()).
     bool spread_work = false;
 };
 
@@ -84,7 +84,8 @@ struct FrameResult {
     /// pose_out_of_range, time_went_backwards, not_initialized, invalid_argument).
     /// A rejected frame changes nothing: the string, windows and label hold.
     Status status = Status::ok;
-    /// Characters this frame appended to the action string.
+    /// Characters this frame appended to the action string (with spread_work,
+    /// the ticks it took: their characters are computed over the next frames).
     std::uint32_t characters = 0;
     /// Windows that completed during this frame (the last one is last_window()).
     std::uint32_t windows_completed = 0;
@@ -143,8 +144,7 @@ public:
         if (status == Status::ok)
             status = segmenter_.init(model, config.segmenter, base + p.segmenter, p.segmenter_bytes);
         if (status == Status::ok)
-            status = encoder_.init(model, EncoderConfig{config.max_gap_us, config.max_backward_us}, base + p.encoder,
-                                   p.encoder_bytes);
+            status = encoder_.init(model, encoder_config(config), base + p.encoder, p.encoder_bytes);
         if (status != Status::ok) return status;
         live_ = reinterpret_cast<LabelId*>(base + p.live);
         live_ring_ = p.live_count;
@@ -174,8 +174,9 @@ public:
         events_.begin_frame();
         if (model_ == nullptr) return 0;
         FrameResult finished;
-        finish_character(finished);
-        finish_stream(pushed_ > 0 ? encoder_.tick_time_us(0) : 0);
+        const std::int64_t origin_us = pushed_ > 0 ? encoder_.tick_time_us(0) : 0;
+        work_on(all_work, finished, origin_us);
+        finish_stream(origin_us);
         clear_stream();
         return static_cast<std::uint32_t>(events_.event_count());
     }
@@ -193,7 +194,7 @@ public:
             return result;
         }
         events_.begin_frame();
-        finish_character(result);
+        work_on(all_work, result, encoder_.tick_time_us(0));
         result.events = static_cast<std::uint32_t>(events_.event_count());
         return result;
     }
@@ -212,22 +213,37 @@ public:
         events_.begin_frame();
         // The old stream's clock, for events of its tail should this frame restart it.
         const std::int64_t origin_us = pushed_ > 0 ? encoder_.tick_time_us(0) : 0;
-        const EncodedFrame encoded = encoder_.push_frame(time_us, positions);
+        // Spread, the frame is taken now and its characters computed later.
+        const EncodedFrame encoded =
+            config_.spread_work ? encoder_.accept_frame(time_us, positions) : encoder_.push_frame(time_us, positions);
         result.status = encoded.status;
         if (!encoded.accepted()) return result;
         if (encoded.status == Status::stream_restarted) {
             FrameResult old_stream;  // its settled characters are not this stream's
-            report(segmenter_.finish(), old_stream, origin_us);  // the old stream's last character counts
+            work_on(all_work, old_stream, origin_us);  // the old stream's last characters count
             finish_stream(origin_us);  // the old stream ends: its tail settles, its action ends
             if (window_rule_) matcher_.reset();
             segmenter_.reset();
             has_window_ = false;
             has_last_time_ = false;  // the gap is no frame interval
             pushed_ = 0;
+            fed_ = 0;
         }
-        emit(encoded.previous, encoded.from_previous, encoded.previous_feature, result);
-        emit(encoded.current, encoded.from_current, encoded.current_feature, result);
-        if (config_.spread_work) continue_character(time_us, result);
+        pushed_ += encoded.count();
+        result.characters = encoded.count();
+        if (!config_.spread_work) {
+            feed(encoded.previous, encoded.from_previous, encoded.previous_feature, result, encoder_.tick_time_us(0));
+            feed(encoded.current, encoded.from_current, encoded.current_feature, result, encoder_.tick_time_us(0));
+        } else {
+            if (encoded.count() > 0) {
+                // The characters before are computed and given to the
+                // segmenter first (normally they are already), so the queue
+                // has room for this frame's.
+                while (encoder_.deferred_count() > 0) work_on_queue(all_work, result, encoder_.tick_time_us(0));
+                encoder_.defer(encoded);
+            }
+            continue_work(time_us, result);
+        }
         last_time_us_ = time_us;
         has_last_time_ = true;
         result.events = static_cast<std::uint32_t>(events_.event_count());
@@ -285,56 +301,94 @@ public:
     std::uint64_t characters() const noexcept { return pushed_; }
     /// How many settled labels settled_label(character) remembers.
     std::size_t settled_history() const noexcept { return segmenter_.settled_history(); }
-    /// The most recent character (meaningful once characters() > 0).
+    /// The most recent character (meaningful once characters() > 0; with
+    /// spread_work, the most recent one computed).
     Character last_character() const noexcept { return last_character_; }
     bool initialized() const noexcept { return model_ != nullptr; }
 
 private:
-    void emit(Character character, std::uint32_t count, const float* feature, FrameResult& result) noexcept {
+    // Gives `count` ticks' character to the segmenter (and the window rule),
+    // in a stream whose character 0 ticked at origin_us. The segmenter's
+    // character before is finished first (when spread, it usually is).
+    void feed(Character character, std::uint32_t count, const float* feature, FrameResult& result,
+              std::int64_t origin_us) noexcept {
         for (std::uint32_t t = 0; t < count; ++t) {
-            const std::uint64_t index = pushed_++;
+            const std::uint64_t index = fed_++;
             last_character_ = character;
-            ++result.characters;
-            // The character before is finished first (when spread, it usually is).
-            finish_character(result);
+            report(segmenter_.finish(), result, origin_us);
             segmenter_.begin(character, feature);
-            if (!config_.spread_work) finish_character(result);
+            if (!config_.spread_work || t + 1 < count) report(segmenter_.finish(), result, origin_us);
             if (!window_rule_ || !matcher_.push(character)) continue;
             ++result.windows_completed;
             has_window_ = true;
             window_.first_character = matcher_.completed_window_start();
-            window_.start_time_us = encoder_.tick_time_us(window_.first_character);
-            window_.end_time_us = encoder_.tick_time_us(index);
+            window_.start_time_us = tick_time(origin_us, window_.first_character);
+            window_.end_time_us = tick_time(origin_us, index);
             window_.classification = classify_distances(*model_, matcher_.completed_distances());
         }
     }
 
-    // With spread_work: this frame's share of the character in progress,
-    // what is left divided by the frames left before the next tick (judged
-    // from the interval since the last accepted frame; all of it when the
-    // tick is due). A stream's first frame has no interval to judge by: it
-    // takes the least step, and the next frame, which has one, goes on.
-    void continue_character(std::int64_t time_us, FrameResult& result) noexcept {
-        if (!segmenter_.in_progress()) return;
+    static constexpr std::size_t all_work = ~static_cast<std::size_t>(0);
+
+    // With spread_work: about `work` units (at least one step) of what is
+    // open, oldest first: the segmenter's character in progress, then the
+    // queued characters' encoding, each given to the segmenter once computed,
+    // and its segmenter work. all_work finishes everything.
+    void work_on(std::size_t work, FrameResult& result, std::int64_t origin_us) noexcept {
+        std::size_t budget = work == 0 ? 1u : work;
+        for (;;) {
+            if (segmenter_.in_progress()) {
+                const std::size_t before = segmenter_.work_left();
+                report(segmenter_.advance(budget), result, origin_us);
+                budget = spend(budget, before - segmenter_.work_left());
+                if (segmenter_.in_progress() || budget == 0) return;
+            }
+            if (encoder_.deferred_count() == 0) return;
+            budget = work_on_queue(budget, result, origin_us);
+            if (budget == 0) return;
+        }
+    }
+
+    // About `budget` units of the oldest queued character's encoding; once it
+    // is computed, it goes to the segmenter. Returns the budget left.
+    std::size_t work_on_queue(std::size_t budget, FrameResult& result, std::int64_t origin_us) noexcept {
+        const std::size_t before = encoder_.deferred_work_left();
+        const bool ready = encoder_.advance_deferred(budget);
+        budget = spend(budget, before - encoder_.deferred_work_left());
+        if (!ready) return 0;
+        const DeferredCharacter* c = encoder_.ready_character();
+        feed(c->character, c->count, c->feature, result, origin_us);
+        encoder_.pop_character();
+        return budget;
+    }
+
+    static std::size_t spend(std::size_t budget, std::size_t units) noexcept {
+        return budget == all_work ? all_work : units >= budget ? 0u : budget - units;
+    }
+
+    // With spread_work: this frame's share of the work open, what is left
+    // divided by the frames left before the next tick (judged from the
+    // interval since the last accepted frame; all of it when the tick is
+    // due). A stream's first frame has no interval to judge by: it takes the
+    // least step, and the next frame, which has one, goes on.
+    void continue_work(std::int64_t time_us, FrameResult& result) noexcept {
+        if (!segmenter_.in_progress() && encoder_.deferred_count() == 0) return;
         if (!has_last_time_) {
-            report(segmenter_.advance(1), result, encoder_.tick_time_us(0));
+            work_on(1, result, encoder_.tick_time_us(0));
             return;
         }
-        const std::int64_t next_tick = encoder_.tick_time_us(segmenter_.characters_pushed() + 1);
+        const std::int64_t next_tick = encoder_.tick_time_us(pushed_);  // the next tick to be taken
         const std::int64_t interval = time_us - last_time_us_;
         std::size_t frames_left = 1;
         if (interval > 0 && next_tick > time_us) {
             const std::int64_t ahead = (next_tick - time_us + interval - 1) / interval;
             frames_left = ahead > 1 ? static_cast<std::size_t>(ahead < 1000000 ? ahead : 1000000) : 1u;
         }
-        const std::size_t left = segmenter_.work_left();
+        // The queued characters' segmenter work is not begun yet, but it is known.
+        const std::size_t left = segmenter_.work_left() + encoder_.deferred_work_left() +
+                                 static_cast<std::size_t>(pushed_ - fed_) * segmenter_.work_per_character();
         const std::size_t share = left / frames_left + (left % frames_left != 0 ? 1u : 0u);
-        report(segmenter_.advance(share), result, encoder_.tick_time_us(0));
-    }
-
-    // Finishes the character in progress, if any, and reports what it settled.
-    void finish_character(FrameResult& result) noexcept {
-        report(segmenter_.finish(), result, encoder_.tick_time_us(0));
+        work_on(share, result, encoder_.tick_time_us(0));
     }
 
     // A character the segmenter has just finished: its live label, and the
@@ -354,7 +408,7 @@ private:
     // takes its provisional labels, and a running action ends.
     void finish_stream(std::int64_t origin_us) noexcept {
         const std::uint64_t first = segmenter_.has_settled() ? segmenter_.settled_character() + 1 : 0;
-        for (std::uint64_t c = first; c < pushed_; ++c) {
+        for (std::uint64_t c = first; c < fed_; ++c) {
             const LabelId label = segmenter_.provisional_label(c);
             events_.settle(c, label, live_[c % live_ring_] == label, tick_time(origin_us, c));
         }
@@ -378,6 +432,11 @@ private:
         window_ = WindowResult{};
         last_character_ = 0;
         pushed_ = 0;
+        fed_ = 0;
+    }
+
+    static constexpr EncoderConfig encoder_config(const AnnotatorConfig& config) noexcept {
+        return EncoderConfig{config.max_gap_us, config.max_backward_us, config.spread_work};
     }
 
     // One block: the encoder's, the window matcher's (with the window rule)
@@ -389,7 +448,7 @@ private:
     };
     static constexpr Plan plan(const ModelView& model, const AnnotatorConfig& config) noexcept {
         Plan p;
-        p.encoder_bytes = StringEncoder::required_bytes(model);
+        p.encoder_bytes = StringEncoder::required_bytes(model, encoder_config(config));
         p.matcher_bytes = config.window_rule ? WindowMatcher::required_bytes(model) : 0u;
         p.segmenter_bytes = ActionSegmenter::required_bytes(model, config.segmenter);
         detail::StorageLayout layout;
@@ -411,7 +470,8 @@ private:
     WindowMatcher matcher_;
     ActionSegmenter segmenter_;
     bool window_rule_ = false;
-    std::uint64_t pushed_ = 0;
+    std::uint64_t pushed_ = 0;  // ticks taken in this stream
+    std::uint64_t fed_ = 0;     // characters given to the segmenter (pushed_ less those queued)
     ActionEventTracker events_;
     LabelId* live_ = nullptr;  // live label of each remembered character, by index mod live_ring_
     std::size_t live_ring_ = 1;

@@ -247,6 +247,16 @@ public:
         return work;
     }
 
+    /// The work of one character from begin() (given a feature) to done:
+    /// work_left() just after begin(). The same for every character.
+    std::size_t work_per_character() const noexcept {
+        if (model_ == nullptr) return 0;
+        const ModelView& m = *model_;
+        std::size_t work = m.representative_count * rep_overhead + m.total_representative_chars();
+        if (exemplar_distances_ != nullptr) work += m.exemplar_count * centre_work(m);
+        return work;
+    }
+
     /// Does about `work` units (work_left()) of the character in progress, and
     /// at least one representative's or four exemplars' worth, so every call
     /// moves on. Returns idle, working, or (when it finished the character)

@@ -82,8 +82,16 @@ std::uint32_t calibration_cycles(std::uint32_t iterations) {
 // model's own (the generated kAnnotatorBytes): the model's settings, so the
 // segmenter alone labels the stream; it is the better rule on streams of
 // actions, and leaving the paper's window matcher out halves the state.
+// The second pass spreads the work, which queues two poses: its bytes, when more.
+constexpr actionstring::AnnotatorConfig spread_settings() {
+    actionstring::AnnotatorConfig config = actionstring::annotator_config(model::kModel);
+    config.spread_work = true;
+    return config;
+}
+constexpr std::size_t kSpreadBytes = Annotator::required_bytes(model::kModel, spread_settings());
 alignas(Annotator) unsigned char annotator_object[sizeof(Annotator)];
-actionstring::StateBuffer<model::kAnnotatorBytes> annotator_state;
+actionstring::StateBuffer<(kSpreadBytes > model::kAnnotatorBytes ? kSpreadBytes : model::kAnnotatorBytes)>
+    annotator_state;
 
 const char* name(actionstring::LabelId label) {
     return label == actionstring::unknown_label ? "unknown" : model::kModel.label_names[label];
@@ -181,8 +189,7 @@ int main() {
     // Again with each character's segmenter work spread over the frames until
     // the next (AnnotatorConfig::spread_work), in the same storage: the same
     // settled labels, a flatter cost per frame ('# spread cycles' lines).
-    actionstring::AnnotatorConfig spread_config = actionstring::annotator_config(model::kModel);
-    spread_config.spread_work = true;
+    const actionstring::AnnotatorConfig spread_config = spread_settings();
     if (annotator.init(model::kModel, spread_config, annotator_state.data(), annotator_state.size()) !=
         actionstring::Status::ok) {
         line.text("spread: model rejected").write();
