@@ -103,40 +103,44 @@ TEST_CASE("the tripwires fire") {
 }
 
 TEST_CASE("streaming thousands of frames through the annotator allocates nothing") {
-    for (const auto covariance : {actionstring::Covariance::full, actionstring::Covariance::diagonal}) {
-        actionstring::host::ToyOptions options;
-        options.covariance = covariance;
-        options.neighbours = 3;
-        actionstring::host::ToyWorld world = actionstring::host::make_toy_world(options);
-        const actionstring::ModelView view = world.model.view();
-        // Storage allocated once, before the stream, as a host tool does.
-        actionstring::host::Stateful<actionstring::Annotator> annotator;
-        actionstring::AnnotatorConfig config = actionstring::annotator_config(view);
-        config.window_rule = true;
-        REQUIRE(annotator.init(view, config) == actionstring::Status::ok);
-        std::vector<int> sequence;
-        for (int i = 0; i < 40; ++i) sequence.push_back(i % 4);
-        actionstring::host::ToyStreamOptions stream;
-        stream.frame_rate_hz = 60.0;
-        stream.frame_time_jitter = 0.3;
-        stream.drop_probability = 0.05;
-        auto frames = actionstring::host::toy_stream(world, sequence, stream);
-        frames[100].positions.assign(15, 0.0f);  // a lost-tracking frame on the way
+    for (const auto covariance : {actionstring::Covariance::full, actionstring::Covariance::diagonal})
+        for (const bool spread : {false, true}) {  // spread: queued poses, a GMM in steps
+            actionstring::host::ToyOptions options;
+            options.covariance = covariance;
+            options.neighbours = 3;
+            actionstring::host::ToyWorld world = actionstring::host::make_toy_world(options);
+            const actionstring::ModelView view = world.model.view();
+            // Storage allocated once, before the stream, as a host tool does.
+            actionstring::host::Stateful<actionstring::Annotator> annotator;
+            actionstring::AnnotatorConfig config = actionstring::annotator_config(view);
+            config.window_rule = true;
+            config.spread_work = spread;
+            REQUIRE(annotator.init(view, config) == actionstring::Status::ok);
+            std::vector<int> sequence;
+            for (int i = 0; i < 40; ++i) sequence.push_back(i % 4);
+            actionstring::host::ToyStreamOptions stream;
+            stream.frame_rate_hz = 60.0;
+            stream.frame_time_jitter = 0.3;
+            stream.drop_probability = 0.05;
+            auto frames = actionstring::host::toy_stream(world, sequence, stream);
+            frames[100].positions.assign(15, 0.0f);  // a lost-tracking frame on the way
 
-        Eigen::internal::set_is_malloc_allowed(false);
-        const Counts before = snapshot();
-        std::size_t windows = 0;
-        for (const auto& frame : frames) {
-            windows += annotator->push_frame(frame.time_us, frame.positions.data()).windows_completed;
-            g_sink = const_cast<char*>(annotator->label_name());
+            Eigen::internal::set_is_malloc_allowed(false);
+            const Counts before = snapshot();
+            std::size_t windows = 0;
+            for (const auto& frame : frames) {
+                windows += annotator->push_frame(frame.time_us, frame.positions.data()).windows_completed;
+                g_sink = const_cast<char*>(annotator->label_name());
+            }
+            windows += annotator->finish_work().windows_completed;
+            annotator->flush();
+            const Counts after = snapshot();
+            Eigen::internal::set_is_malloc_allowed(true);
+
+            CHECK(frames.size() > 4000);
+            CHECK(windows > 150);
+            CHECK(after.mallocs == before.mallocs);
+            CHECK(after.news == before.news);
+            CHECK(after.eigen == before.eigen);
         }
-        const Counts after = snapshot();
-        Eigen::internal::set_is_malloc_allowed(true);
-
-        CHECK(frames.size() > 4000);
-        CHECK(windows > 150);
-        CHECK(after.mallocs == before.mallocs);
-        CHECK(after.news == before.news);
-        CHECK(after.eigen == before.eigen);
-    }
 }

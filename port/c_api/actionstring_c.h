@@ -85,9 +85,10 @@ typedef struct actionstring_config {
     int64_t max_backward_us; /**< a frame this much earlier than the last is rejected as jitter (100 ms) */
     int32_t window_rule;     /**< nonzero: also run the paper's window rule (actionstring_label()); default 0 */
     int64_t min_action_us;   /**< events: a shorter action is flicker and not reported (the model's own) */
-    int32_t spread_work;     /**< nonzero: each character's segmenter work is spread over the frames until the
-                                  next one, for a flat frame cost; the same labels and events, each reported up
-                                  to one string period later (actionstring_finish_work()); default 0 */
+    int32_t spread_work;     /**< nonzero: each character's work (encoder and segmenter) is spread over the
+                                  frames until the next one, for a flat frame cost; the same labels and events,
+                                  each reported up to one string period later (actionstring_finish_work()); more
+                                  state (actionstring_state_size()); default 0 */
 } actionstring_config;
 
 /** What one actionstring_push_frame() did. */
@@ -167,7 +168,7 @@ ACTIONSTRING_C_API actionstring_status actionstring_event_at(const actionstring_
  *  actionstring_event_at()). The next frame starts a new stream. */
 ACTIONSTRING_C_API actionstring_status actionstring_flush(actionstring_state* state, uint32_t* events);
 
-/** With config.spread_work: finishes the work of the character in progress now and
+/** With config.spread_work: finishes the work of the characters in progress now and
  *  reports it as a frame would (`result` may be NULL: characters_settled, events), e.g.
  *  before a pause in the frames. Does nothing otherwise. NOT_INITIALIZED for a bad state. */
 ACTIONSTRING_C_API actionstring_status actionstring_finish_work(actionstring_state* state,

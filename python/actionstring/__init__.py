@@ -254,9 +254,10 @@ class Annotator:
     Online settings (``settle``, ``segment_penalty``, ``unknown_cost``, ...)
     override the model's own; ``window_rule=True`` also runs the paper's rule
     (``label``, ``confidence``). ``spread_work=True`` spreads each character's
-    segmenter work over the frames until the next character, for a flat cost
-    per frame: the same settled labels and events, each up to one string period
-    later; ``finish_work()`` does what is left at once.
+    work (the encoder's projection, GMM and tree, and the segmenter's) over the
+    frames until the next character, for a flat cost per frame: the same
+    settled labels and events, each up to one string period later;
+    ``finish_work()`` does what is left at once.
     """
 
     def __init__(self, model: Model, **online_settings: Any):
@@ -267,7 +268,7 @@ class Annotator:
         return self._native.push_frame(float(time_s), positions)
 
     def finish_work(self) -> Dict[str, Any]:
-        """With ``spread_work=True``: finishes the work of the character in
+        """With ``spread_work=True``: finishes the work of the characters in
         progress now, and returns what a frame returns (``settled``, ``events``,
         ``live_label``, ``live_margin``); e.g. before reading the labels at the
         end of a stream, or before a pause in the frames."""

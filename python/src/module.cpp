@@ -323,7 +323,7 @@ public:
         return out;
     }
 
-    /// With spread_work: the work of the character in progress, done now.
+    /// With spread_work: the work of the characters in progress, done now.
     py::dict finish_work() {
         const FrameResult r = annotator_->finish_work();
         py::dict out;
@@ -546,7 +546,7 @@ PYBIND11_MODULE(_actionstring, m) {
         .def("reset", &StreamAnnotator::reset)
         .def("flush", &StreamAnnotator::flush)
         .def("finish_work", &StreamAnnotator::finish_work,
-             "With spread_work=True: finishes the character whose work is being spread, now; returns what a "
+             "With spread_work=True: finishes the characters whose work is being spread, now; returns what a "
              "frame returns (settled, events, live_label, live_margin)")
         .def_property_readonly("live_label", &StreamAnnotator::live_label)
         .def_property_readonly("live_margin", &StreamAnnotator::live_margin)

@@ -106,8 +106,9 @@ def test_the_model_carries_its_shortest_action(toy_clips):
 
 
 def test_spread_work_settles_the_same_labels_later(toy_model, toy_clips):
-    """spread_work=True: each character's segmenter work over the frames until
-    the next one; the same settled labels and events, none reported earlier."""
+    """spread_work=True: each character's work (the encoder's and the
+    segmenter's) over the frames until the next one; the same settled labels
+    and events, none reported earlier."""
     plain = actionstring.Annotator(toy_model, settle=0.5)
     spread = actionstring.Annotator(toy_model, settle=0.5, spread_work=True)
     clip = toy_clips[1]
@@ -122,7 +123,7 @@ def test_spread_work_settles_the_same_labels_later(toy_model, toy_clips):
             for c, _, _ in result["settled"]:
                 reported_at[flag][c] = f
     tail = spread.finish_work()
-    assert len(tail["settled"]) <= 1
+    assert len(tail["settled"]) <= 2  # the character in progress, one queued
     got[True] += tail["settled"]
     events[True] += tail["events"]
     assert plain.finish_work()["settled"] == []
