@@ -329,22 +329,37 @@ private:
         ++queued_;
     }
 
-    // Each stage's work in the segmenter's units, from the operations it
-    // does (one unit is about four multiply-adds in lanes): the estimates
-    // only share a frame's budget out, the results do not depend on them.
-    std::size_t project_group_work() const noexcept { return model_->feature_dim + 1u; }  // four columns
+    // Each stage's work in the segmenter's units (about one representative
+    // character's update), from the operations it does: the estimates only
+    // share a frame's budget out, the results do not depend on them. On a
+    // core without SIMD (a Cortex-M4) a cell costs about four multiply-adds;
+    // with SIMD the lanes make the arithmetic cheaper than a cell, whose
+    // recurrence waits on its neighbours: on the host's bench
+    // (bench/frame_latency.cpp) a GMM block's multiply-adds ran about four
+    // times faster per unit than the segmenter's cells. Eight, between the
+    // two, gave the flattest frames of the values tried (4, 8, 16).
+#if ACTIONSTRING_DETAIL_LANES >= 4
+    static constexpr std::size_t per_unit = 8;  // multiply-adds per unit
+#else
+    static constexpr std::size_t per_unit = 4;
+#endif
+    std::size_t project_group_work() const noexcept {  // four columns
+        return 4u * model_->feature_dim / per_unit + 1u;
+    }
     std::size_t project_work(std::size_t next_column) const noexcept {
         return model_->has_projection() ? (model_->input_dim() - next_column + 3u) / 4u * project_group_work() : 1u;
     }
-    std::size_t gmm_block_work() const noexcept {
+    std::size_t gmm_block_work() const noexcept {  // four components
         const std::size_t d = model_->feature_dim;
-        return (model_->covariance == Covariance::diagonal ? d : d * (d + 1u) / 2u + d) + 1u;
+        return 4u * (model_->covariance == Covariance::diagonal ? d : d * (d + 1u) / 2u + d) / per_unit + 1u;
     }
-    std::size_t posterior_work() const noexcept { return model_->component_count + 1u; }
+    // An exp, a sum and a product per component: about sixteen multiply-adds.
+    std::size_t posterior_work() const noexcept { return 16u * model_->component_count / per_unit + 1u; }
+    // Per level two distances over the tree's dimension, or their sparse difference.
     std::size_t descend_work() const noexcept {
         std::size_t depth = 1;
         while ((std::size_t{1} << depth) < model_->node_count) ++depth;
-        return depth * (model_->tree_dim() / 4u + 1u);
+        return depth * (4u * model_->tree_dim() / per_unit + 2u);
     }
     std::size_t work_left(const Entry& e) const noexcept {
         switch (e.stage) {
