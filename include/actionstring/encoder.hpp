@@ -336,8 +336,10 @@ private:
     // with SIMD the lanes make the arithmetic cheaper than a cell, whose
     // recurrence waits on its neighbours: on the host's bench
     // (bench/frame_latency.cpp) a GMM block's multiply-adds ran about four
-    // times faster per unit than the segmenter's cells. Eight, between the
-    // two, gave the flattest frames of the values tried (4, 8, 16).
+    // times faster per unit than the segmenter's cells. Of 4, 8 and 16
+    // multiply-adds per unit there, 16 let the frames that emit a character
+    // of a 250-representative model take too much (p99 over every frame 3.1
+    // against 2.7 µs); all three gave about 2.2 µs at J = 40. So eight.
 #if ACTIONSTRING_DETAIL_LANES >= 4
     static constexpr std::size_t per_unit = 8;  // multiply-adds per unit
 #else
