@@ -197,9 +197,9 @@ void measure_model(const std::string& name, const ModelView& model, const host::
         std::fprintf(stderr, "%s: the annotator refused the model's own settings\n", name.c_str());
         std::exit(1);
     }
-    // And again with each character's segmenter work spread over the frames
-    // until the next one (AnnotatorConfig::spread_work): the same labels, a
-    // flatter frame cost.
+    // And again with each character's work (encoder and segmenter) spread over
+    // the frames until the next one (AnnotatorConfig::spread_work): the same
+    // labels, a flatter frame cost.
     AnnotatorConfig spread_config = annotator_config(model);
     spread_config.spread_work = true;
     host::Stateful<Annotator> spread;

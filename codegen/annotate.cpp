@@ -48,8 +48,9 @@ int run_annotate(int argc, char** argv) {
                 "settled label ({\"settled\": …, \"time\": …}) and each action event. A malformed\n"
                 "line is skipped and counted, never fatal; the end of the input (or\n"
                 "--idle-timeout seconds without a datagram) ends the stream.\n"
-                "--spread-work spreads each character's segmenter work over the frames until\n"
-                "the next character: the same labels, each up to one string period later.\n"
+                "--spread-work spreads each character's work (encoder and segmenter) over the\n"
+                "frames until the next character: the same labels, each up to one string period\n"
+                "later.\n"
                 "The segmenter options are those of 'actionstring eval'.\n");
             return 0;
         }

@@ -186,7 +186,7 @@ int main() {
         .text(" labels fnv1a32 ")
         .hex(hash)
         .write();
-    // Again with each character's segmenter work spread over the frames until
+    // Again with each character's work (encoder and segmenter) spread over the frames until
     // the next (AnnotatorConfig::spread_work), in the same storage: the same
     // settled labels, a flatter cost per frame ('# spread cycles' lines).
     const actionstring::AnnotatorConfig spread_config = spread_settings();
