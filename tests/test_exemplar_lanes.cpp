@@ -5,6 +5,7 @@
 // the code: four partial sums over j ≡ k (mod 4), then (s0 + s1) + (s2 + s3).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -69,4 +70,64 @@ TEST_CASE("exemplar distances: the documented order, bit for bit, for every dime
         }
     }
     CHECK(order_mattered > compared / 10);
+}
+
+TEST_CASE("exemplar distances: centres stored label by label, in runs of any length, pieces in any split") {
+    // The nearest of a run of one label's centres is kept in a register and
+    // written once (detail::NearestRun): runs that start and end inside a
+    // block of four, "no action"'s centres (asked for or not), a label beyond
+    // the model's (never wanted), and the centres taken in uneven pieces.
+    std::mt19937 rng(5);
+    std::normal_distribution<float> normal(0.0f, 1.0f);
+    std::size_t compared = 0;
+    for (const std::size_t d : {3u, 8u, 13u, 24u}) {
+        for (int trial = 0; trial < 30; ++trial) {
+            const std::size_t L = 4;
+            std::vector<LabelId> labels;
+            for (std::size_t l = 0; l < L + 2; ++l) {
+                const LabelId id = l < L    ? static_cast<LabelId>(l)
+                                   : l == L ? unknown_label
+                                            : static_cast<LabelId>(L + 3);
+                const std::size_t run = static_cast<std::size_t>(rng() % 11);  // 0 … 10 centres
+                labels.insert(labels.end(), run, id);
+            }
+            if (trial % 3 == 0) std::shuffle(labels.begin(), labels.end(), rng);  // and no order at all
+            const std::size_t n = labels.size();
+            std::vector<float> centres(n * d), feature(d);
+            for (float& v : centres) v = normal(rng);
+            for (float& v : feature) v = normal(rng);
+            ModelView view{};
+            view.label_count = static_cast<std::uint16_t>(L);
+            view.feature_dim = static_cast<std::uint16_t>(d);
+            view.exemplar_count = static_cast<std::uint16_t>(n);
+            view.exemplar_labels = labels.data();
+            view.exemplars = centres.data();
+            const float inf = std::numeric_limits<float>::infinity();
+            std::vector<float> expected(L, inf);
+            float expected_none = inf;
+            for (std::size_t e = 0; e < n; ++e) {
+                const float s = reference_distance(feature.data(), &centres[e * d], d);
+                if (labels[e] < L && s < expected[labels[e]]) expected[labels[e]] = s;
+                if (labels[e] == unknown_label && s < expected_none) expected_none = s;
+            }
+            std::vector<float> got(L, 0.0f);
+            float none = 0.0f;
+            exemplar_distances(view, feature.data(), got.data(), &none);
+            CHECK(std::memcmp(expected.data(), got.data(), L * sizeof(float)) == 0);
+            CHECK(std::memcmp(&expected_none, &none, sizeof none) == 0);
+            exemplar_distances(view, feature.data(), got.data());  // "no action" not asked for
+            CHECK(std::memcmp(expected.data(), got.data(), L * sizeof(float)) == 0);
+            std::vector<float> pieces(L, inf);
+            float pieces_none = inf;
+            for (std::size_t first = 0; first < n;) {
+                const std::size_t last = std::min(n, first + 1 + static_cast<std::size_t>(rng() % 7));
+                nearest_exemplars(view, feature.data(), first, last, pieces.data(), &pieces_none);
+                first = last;
+            }
+            CHECK(std::memcmp(expected.data(), pieces.data(), L * sizeof(float)) == 0);
+            CHECK(std::memcmp(&expected_none, &pieces_none, sizeof none) == 0);
+            ++compared;
+        }
+    }
+    CHECK(compared == 120);
 }

@@ -58,17 +58,37 @@ inline float exemplar_distance(const float* x, const float* centre, std::size_t 
     return (sum0 + sum1) + (sum2 + sum3);
 }
 
-/// A smaller distance replaces a label's nearest so far (a select, not a jump:
-/// which centre is nearer depends on the data); a centre of "no action" goes
-/// to `no_action` when the caller asked for it.
-inline void keep_nearest(const ModelView& model, std::size_t e, float distance, float* distances,
-                         float* no_action) noexcept {
+/// Where centre e's distance goes: its label's nearest so far, `no_action`
+/// for a centre of "no action" when the caller asked for it, else nowhere (null).
+inline float* nearest_slot(const ModelView& model, std::size_t e, float* distances, float* no_action) noexcept {
     const LabelId label = model.exemplar_labels[e];
-    float* slot = label < model.label_count ? distances + label : (label == unknown_label ? no_action : nullptr);
-    if (slot == nullptr) return;
-    const float nearest = *slot;
-    *slot = distance < nearest ? distance : nearest;
+    return label < model.label_count ? distances + label : (label == unknown_label ? no_action : nullptr);
 }
+
+/// The nearest distance of a run of centres that share a slot (a label's
+/// centres are stored together), kept in a register and written to the slot
+/// once when the run ends, rather than read and written back per centre,
+/// which chains every centre to the last through memory. Each step is
+/// `distance < nearest ? distance : nearest` (a select, not a jump: which
+/// centre is nearer depends on the data), as it was per centre, and a minimum
+/// does not depend on the grouping: the same bits.
+struct NearestRun {
+    float* slot = nullptr;
+    float nearest = infinity();
+
+    void take(float* to, float distance) noexcept {
+        if (to != slot) {
+            flush();
+            slot = to;
+            nearest = to != nullptr ? *to : infinity();
+        }
+        nearest = distance < nearest ? distance : nearest;
+    }
+    void flush() noexcept {
+        if (slot != nullptr) *slot = nearest;
+        slot = nullptr;
+    }
+};
 
 }  // namespace detail
 
@@ -86,6 +106,7 @@ inline void nearest_exemplars(const ModelView& model, const float* feature, std:
     const std::size_t n = last < model.exemplar_count ? last : model.exemplar_count;
     std::size_t e = first;
     const float* centre = model.exemplars + e * d;
+    detail::NearestRun run;
 #if ACTIONSTRING_DETAIL_LANES == 4
     // Four centres at a time, each in its own register of four partial sums
     // (lane k: the coordinates j ≡ k mod 4), so the four chains of additions are
@@ -118,11 +139,20 @@ inline void nearest_exemplars(const ModelView& model, const float* feature, std:
         detail::transpose(sums[0], sums[1], sums[2], sums[3]);
         float four[4];
         detail::store_lanes(four, (sums[0] + sums[1]) + (sums[2] + sums[3]));
-        for (std::size_t k = 0; k < 4; ++k) detail::keep_nearest(model, e + k, four[k], distances, no_action);
+        const LabelId* label = model.exemplar_labels + e;
+        if (label[0] == label[1] && label[0] == label[2] && label[0] == label[3]) {
+            // Four centres of one label, the usual case: one slot.
+            float* const slot = detail::nearest_slot(model, e, distances, no_action);
+            for (std::size_t k = 0; k < 4; ++k) run.take(slot, four[k]);
+        } else {
+            for (std::size_t k = 0; k < 4; ++k)
+                run.take(detail::nearest_slot(model, e + k, distances, no_action), four[k]);
+        }
     }
 #endif
     for (; e < n; ++e, centre += d)
-        detail::keep_nearest(model, e, detail::exemplar_distance(feature, centre, d), distances, no_action);
+        run.take(detail::nearest_slot(model, e, distances, no_action), detail::exemplar_distance(feature, centre, d));
+    run.flush();
 }
 
 /// Per label, the squared Euclidean distance from one feature to the label's
