@@ -4,7 +4,9 @@
 // project → GMM posterior → tree descent. Ticks fall at a fixed rate in time
 // (sampler.hpp); the posterior is skipped for frames no tick lands nearest to,
 // so most frames cost one normalisation. The trainer turns clips into strings
-// with this same class.
+// with this same class. With EncoderConfig::deferred the same stages can run
+// later, a little at a time, on a copy of the pose (accept_frame(), defer(),
+// advance_deferred()): what AnnotatorConfig::spread_work uses.
 #pragma once
 
 #include <cstddef>
@@ -298,7 +300,8 @@ public:
     std::int64_t tick_time_us(std::uint64_t tick) const noexcept { return sampler_.tick_time_us(tick); }
     /// The GMM posterior of the last frame whose character was computed
     /// (component_count floats, owned by the encoder, valid until the next
-    /// push_frame(); meaningless for a model without a GMM).
+    /// push_frame() or advance_deferred(), which builds the next one in place;
+    /// meaningless for a model without a GMM).
     const float* last_posterior() const noexcept { return posterior_; }
     bool initialized() const noexcept { return model_ != nullptr; }
 
