@@ -136,6 +136,10 @@ void check_deferred_equals_eager(const ModelView& view, std::uint32_t seed) {
     REQUIRE(deferred->defer(deferred->accept_frame(frames.times.back() + 5000000, frames.positions[finite].data())) ==
             Status::ok);
     CHECK(deferred->deferred_count() == 1);
+    // push_frame() would overwrite the queued character's posterior: refused.
+    CHECK(deferred->push_frame(frames.times.back() + 5100000, frames.positions[finite].data()).status ==
+          Status::invalid_argument);
+    CHECK(deferred->deferred_count() == 1);
     deferred->reset();
     CHECK(deferred->deferred_count() == 0);
     CHECK_FALSE(deferred->advance_deferred(10));

@@ -130,12 +130,18 @@ public:
         head_ = 0;
     }
 
-    /// Encodes one frame.
+    /// Encodes one frame. Refused (invalid_argument, nothing changed) while
+    /// deferred characters are queued: finish and pop them first.
     /// @param time_us   capture time in microseconds (any origin, non-decreasing;
     ///                  equal times are one instant and the later frame wins)
     /// @param positions joint_count × 3 floats, xyz per joint in metres; read
     ///                  only during the call
     EncodedFrame push_frame(std::int64_t time_us, const float* positions) noexcept {
+        if (queued_ != 0) {  // its stages would overwrite the queued character's posterior
+            EncodedFrame refused;
+            refused.status = Status::invalid_argument;
+            return refused;
+        }
         EncodedFrame out = accept_frame(time_us, positions);
         if (!out.accepted()) return out;
         // previous_ is this frame's slot now, the previous frame's the other.
