@@ -31,6 +31,18 @@ float in_order_distance(const float* x, const float* c, std::size_t d) {
     return sum;
 }
 
+// A view of exemplars alone: `labels` and `centres` (feature_dim floats each) must outlive it.
+ModelView exemplar_view(std::size_t label_count, std::size_t d, const std::vector<LabelId>& labels,
+                        const std::vector<float>& centres) {
+    ModelView view{};
+    view.label_count = static_cast<std::uint16_t>(label_count);
+    view.feature_dim = static_cast<std::uint16_t>(d);
+    view.exemplar_count = static_cast<std::uint16_t>(labels.size());
+    view.exemplar_labels = labels.data();
+    view.exemplars = centres.data();
+    return view;
+}
+
 }  // namespace
 
 TEST_CASE("exemplar distances: the documented order, bit for bit, for every dimension and centre count") {
@@ -49,12 +61,7 @@ TEST_CASE("exemplar distances: the documented order, bit for bit, for every dime
             for (float& v : centres) v = coordinate();
             for (float& v : feature) v = coordinate();
             for (std::size_t e = 0; e < n; ++e) labels[e] = static_cast<LabelId>(rng() % 3);
-            ModelView view{};
-            view.label_count = static_cast<std::uint16_t>(L);
-            view.feature_dim = static_cast<std::uint16_t>(d);
-            view.exemplar_count = static_cast<std::uint16_t>(n);
-            view.exemplar_labels = labels.data();
-            view.exemplars = centres.data();
+            const ModelView view = exemplar_view(L, d, labels, centres);
             std::vector<float> expected(L, std::numeric_limits<float>::infinity()), got(L, 0.0f);
             for (std::size_t e = 0; e < n; ++e) {
                 const float s = reference_distance(feature.data(), &centres[e * d], d);
@@ -96,12 +103,7 @@ TEST_CASE("exemplar distances: centres stored label by label, in runs of any len
             std::vector<float> centres(n * d), feature(d);
             for (float& v : centres) v = normal(rng);
             for (float& v : feature) v = normal(rng);
-            ModelView view{};
-            view.label_count = static_cast<std::uint16_t>(L);
-            view.feature_dim = static_cast<std::uint16_t>(d);
-            view.exemplar_count = static_cast<std::uint16_t>(n);
-            view.exemplar_labels = labels.data();
-            view.exemplars = centres.data();
+            const ModelView view = exemplar_view(L, d, labels, centres);
             const float inf = std::numeric_limits<float>::infinity();
             std::vector<float> expected(L, inf);
             float expected_none = inf;
