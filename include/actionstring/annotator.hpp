@@ -62,9 +62,10 @@ struct AnnotatorConfig {
     /// live_label(), settled labels, windows, events), and a frame that emits
     /// the next character first finishes the last (finish_work() does it at
     /// once). A frame that restarts the stream finishes the old stream's last
-    /// character too: its events are reported, but the labels it settles are
-    /// not counted in FrameResult::characters_settled, as they are not the new
-    /// stream's. Needs more storage: two queued poses (required_bytes()).
+    /// characters too (the one in progress and those queued): their events
+    /// are reported, but the labels they settle and the windows they complete
+    /// are not counted in its FrameResult, as they are not the new stream's.
+    /// Needs more storage: two queued poses (required_bytes()).
     bool spread_work = false;
 };
 
@@ -181,7 +182,7 @@ public:
         return static_cast<std::uint32_t>(events_.event_count());
     }
 
-    /// With spread_work: finishes the work of the character in progress now,
+    /// With spread_work: finishes the work of the characters in progress now,
     /// rather than over the frames to come, and reports it as a frame would
     /// (characters_settled, events; status ok, no characters). Call it before
     /// reading provisional_label() at the end of a stream, or whenever the

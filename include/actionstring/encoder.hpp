@@ -103,6 +103,7 @@ public:
         norms_ = detail::storage_at<float>(storage, p.norms);
         nonzero_ = detail::storage_at<std::uint16_t>(storage, p.nonzero);
         deferred_ = config.deferred;
+        stage_work_ = stage_work(model);
         for (std::size_t e = 0; e < 2; ++e) {
             queue_poses_[e] = detail::storage_at<float>(storage, p.queue_poses) + e * model.input_dim();
             queue_features_[e] = detail::storage_at<float>(storage, p.queue_features) +
@@ -354,24 +355,31 @@ private:
 #else
     static constexpr std::size_t per_unit = 4;
 #endif
-    std::size_t project_group_work() const noexcept {  // four columns
-        return 4u * model_->feature_dim / per_unit + 1u;
+    // The estimates depend on the model alone: taken once, at init().
+    struct StageWork {
+        std::size_t project_group = 0;  // four columns of the projection
+        std::size_t gmm_block = 0;      // four components
+        std::size_t posterior = 0;      // an exp, a sum and a product per component: about sixteen multiply-adds
+        std::size_t descend = 0;        // per level two distances over the tree's dimension, or their sparse difference
+    };
+    static StageWork stage_work(const ModelView& m) noexcept {
+        StageWork w;
+        const std::size_t d = m.feature_dim;
+        w.project_group = 4u * d / per_unit + 1u;
+        w.gmm_block = 4u * (m.covariance == Covariance::diagonal ? d : d * (d + 1u) / 2u + d) / per_unit + 1u;
+        w.posterior = 16u * m.component_count / per_unit + 1u;
+        std::size_t depth = 1;
+        while ((std::size_t{1} << depth) < m.node_count) ++depth;
+        w.descend = depth * (4u * m.tree_dim() / per_unit + 2u);
+        return w;
     }
+    std::size_t project_group_work() const noexcept { return stage_work_.project_group; }
     std::size_t project_work(std::size_t next_column) const noexcept {
         return model_->has_projection() ? (model_->input_dim() - next_column + 3u) / 4u * project_group_work() : 1u;
     }
-    std::size_t gmm_block_work() const noexcept {  // four components
-        const std::size_t d = model_->feature_dim;
-        return 4u * (model_->covariance == Covariance::diagonal ? d : d * (d + 1u) / 2u + d) / per_unit + 1u;
-    }
-    // An exp, a sum and a product per component: about sixteen multiply-adds.
-    std::size_t posterior_work() const noexcept { return 16u * model_->component_count / per_unit + 1u; }
-    // Per level two distances over the tree's dimension, or their sparse difference.
-    std::size_t descend_work() const noexcept {
-        std::size_t depth = 1;
-        while ((std::size_t{1} << depth) < model_->node_count) ++depth;
-        return depth * (4u * model_->tree_dim() / per_unit + 2u);
-    }
+    std::size_t gmm_block_work() const noexcept { return stage_work_.gmm_block; }
+    std::size_t posterior_work() const noexcept { return stage_work_.posterior; }
+    std::size_t descend_work() const noexcept { return stage_work_.descend; }
     std::size_t work_left(const Entry& e) const noexcept {
         switch (e.stage) {
             case Stage::project:
@@ -451,6 +459,7 @@ private:
     float* queue_features_[2] = {};  // the projected poses; without a projection, the poses
     Entry entries_[2] = {};
     std::size_t head_ = 0, queued_ = 0;
+    StageWork stage_work_;
     DeferredCharacter ready_out_;
 };
 
