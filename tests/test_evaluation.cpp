@@ -130,9 +130,13 @@ TEST_CASE("the model and every baseline recognise held-out toy performances") {
     one_character.character_count = 1;
     CHECK(evaluate_pca_characters(one_character, train, test).clip_accuracy <= 0.5);
     CHECK(dtw.confusion.size() == 4);
-    const auto times = annotator_frame_times(view, test);
+    const auto times = annotator_frame_times(view, test, annotator_config(view));
     CHECK(times.size() > 1000);
     CHECK(std::is_sorted(times.begin(), times.end()));
+    // Timed with eval's settings (here the work spread): one time per frame too.
+    AnnotatorConfig spread = annotator_config(view);
+    spread.spread_work = true;
+    CHECK(annotator_frame_times(view, test, spread).size() == times.size());
 }
 
 TEST_CASE("online metrics on a timeline scored by hand") {

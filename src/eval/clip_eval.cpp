@@ -79,12 +79,13 @@ ClipResults evaluate_model(const ModelView& model, const std::vector<LabelledCli
     return r;
 }
 
-std::vector<double> annotator_frame_times(const ModelView& model, const std::vector<LabelledClip>& clips) {
+std::vector<double> annotator_frame_times(const ModelView& model, const std::vector<LabelledClip>& clips,
+                                          const AnnotatorConfig& config) {
     for (const LabelledClip& c : clips) require_joint_count(model, c.clip.joint_count(), c.clip.source);
-    // As a device runs it: the model's own settings, the segmenter alone.
+    // As a device runs it, with the settings the online figures used.
     Stateful<Annotator> annotator;
     std::vector<double> times;
-    if (annotator.init(model, annotator_config(model)) != Status::ok) return times;
+    if (annotator.init(model, config) != Status::ok) return times;
     // Clips back to back on one clock: each starts 1 µs after the previous
     // ends, whatever its own time axis (an interval of a recording starts late).
     std::int64_t offset = 0;

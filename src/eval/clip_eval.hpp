@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "actionstring/annotator.hpp"
 #include "actionstring/model.hpp"
 #include "eval/significance.hpp"
 #include "io/clip_list.hpp"
@@ -49,9 +50,11 @@ void compare_with_model(const ClipResults& model, ClipResults& baseline, const s
 /// representatives (runtime batch distance, kNN).
 ClipResults evaluate_model(const ModelView& model, const std::vector<LabelledClip>& clips);
 
-/// Per-frame cost of the annotator over the clips' frames, joined back to back
-/// as one stream, in nanoseconds (sorted).
-std::vector<double> annotator_frame_times(const ModelView& model, const std::vector<LabelledClip>& clips);
+/// Per-frame cost of the annotator with `config` (eval's: the model's own
+/// settings and the options given) over the clips' frames, joined back to
+/// back as one stream, in nanoseconds (sorted).
+std::vector<double> annotator_frame_times(const ModelView& model, const std::vector<LabelledClip>& clips,
+                                          const AnnotatorConfig& config);
 
 }  // namespace host
 }  // namespace actionstring

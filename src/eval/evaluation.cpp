@@ -62,7 +62,8 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
         e.results.push_back(evaluate_pose_dtw(view, train, e.clips));
         for (std::size_t i = 1; i < e.results.size(); ++i) compare_with_model(e.results.front(), e.results[i], e.clips);
     }
-    e.frame_ns = annotator_frame_times(view, e.clips);
+    e.frame_ns = annotator_frame_times(view, e.clips, config);
+    e.frame_spread = config.spread_work;
     e.online = online;
     if (online && e.recordings) {
         for (LabelledRecording& recording : recordings) conform_to_model(view, recording.clip);
@@ -89,6 +90,7 @@ std::string evaluation_json(const Evaluation& e, const std::string& model_name, 
         .field("median", sorted_quantile(e.frame_ns, 0.5))
         .field("p99", sorted_quantile(e.frame_ns, 0.99))
         .field("max", sorted_quantile(e.frame_ns, 1.0))
+        .field("spread_work", e.frame_spread)
         .end_object();
     out.key("baselines").begin_array();
     for (std::size_t i = 1; i < e.results.size(); ++i) write_json(out, e.results[i], e.clips);

@@ -22,6 +22,7 @@ struct Evaluation {
     bool recordings = false;           ///< The streams are whole recordings (a list with intervals).
     std::vector<ClipResults> results;  ///< The model's first, then the baselines.
     std::vector<double> frame_ns;      ///< The annotator's per-frame times, sorted.
+    bool frame_spread = false;         ///< Whether they were taken with spread_work.
     bool online = false;
     OnlineReport online_report;
     /// With recordings: their unlabelled stretches of 1 s or more, each
