@@ -71,6 +71,8 @@ void print_train_usage(std::FILE* out) {
                  "  --exemplars N           k-means centres of each label's training features, compared\n"
                  "                          with a clip's features beside its string, 0 = none [0]\n"
                  "  --exemplar-weight W     their weight beside DTW and the votes, 0 = none [0]\n"
+                 "  --exemplar-dims K       the features' first K coordinates the centres keep and\n"
+                 "                          compare, for speed (K multiply-adds per centre), 0 = all [0]\n"
                  "  --no-action-exemplars true|false  with a list of recordings, centres of their\n"
                  "                          unlabelled stretches too, for the segmenter [true]\n"
                  "  --window S, --step S    sliding window and step in seconds [%g, %g]\n"

@@ -98,7 +98,12 @@ TEST_CASE("a blob round-trips every field, deterministically") {
     options.velocity_weight = 1.0;
     options.velocity_span_s = 0.3;
     options.scale_mode = ScaleMode::bone_lengths;
+    // And exemplars of the feature's first 5 coordinates.
+    options.exemplars = 4;
+    options.exemplar_weight = 1.0;
+    options.exemplar_dims = 5;
     const host::ModelData model = host::train_model(host::toy_clips(world, 2, 6), options);
+    REQUIRE(model.exemplar_dim == 5);
     const host::ModelData back = host::read_blob("motion.blob", host::write_blob(model));
     CHECK(host::serialize_model(back) == host::serialize_model(model));
 }

@@ -79,6 +79,34 @@ TEST_CASE("exemplar distances: the documented order, bit for bit, for every dime
     CHECK(order_mattered > compared / 10);
 }
 
+TEST_CASE("exemplar distances: a model's exemplar_dim leading coordinates, the rest of the feature unread") {
+    std::mt19937 rng(5);
+    std::normal_distribution<float> normal(0.0f, 1.0f);
+    for (const std::size_t k : {1u, 3u, 4u, 5u, 8u, 12u, 13u}) {
+        const std::size_t d = k + 1 + k % 5, n = 37, L = 3;
+        std::vector<float> centres(n * k), feature(d);
+        std::vector<LabelId> labels(n);
+        for (float& v : centres) v = normal(rng);
+        for (float& v : feature) v = normal(rng);
+        for (std::size_t e = 0; e < n; ++e) labels[e] = static_cast<LabelId>(e * L / n);  // label by label
+        ModelView view = exemplar_view(L, d, labels, centres);
+        view.exemplar_dim = static_cast<std::uint16_t>(k);
+        REQUIRE(view.exemplar_dims() == k);
+        std::vector<float> expected(L, std::numeric_limits<float>::infinity()), got(L, 0.0f);
+        for (std::size_t e = 0; e < n; ++e) {
+            const float s = reference_distance(feature.data(), &centres[e * k], k);
+            if (s < expected[labels[e]]) expected[labels[e]] = s;
+        }
+        exemplar_distances(view, feature.data(), got.data());
+        CAPTURE(k);
+        CHECK(std::memcmp(expected.data(), got.data(), L * sizeof(float)) == 0);
+        // The coordinates past k do not count.
+        for (std::size_t j = k; j < d; ++j) feature[j] = 1e6f;
+        exemplar_distances(view, feature.data(), got.data());
+        CHECK(std::memcmp(expected.data(), got.data(), L * sizeof(float)) == 0);
+    }
+}
+
 TEST_CASE("exemplar distances: centres stored label by label, in runs of any length, pieces in any split") {
     // The nearest of a run of one label's centres is kept in a register and
     // written once (detail::NearestRun): runs that start and end inside a

@@ -538,7 +538,7 @@ TEST_CASE("exemplars: a label with fewer features than centres keeps every featu
     // Label a: three features; label b: one feature twice (both characters on it).
     const std::vector<std::vector<float>> features{{0, 0, 1, 0}, {5, 5, 5, 5}, {0, 1}};
     const std::vector<LabelId> labels{0, 1, 0};
-    set_exemplars(m, features, labels, 8, 1.0, 1);
+    set_exemplars(m, features, labels, 8, 0, 1.0, 1);
     CHECK(m.exemplar_labels == std::vector<LabelId>{0, 0, 0, 1, 1});
     CHECK(m.exemplars == std::vector<float>{0, 0, 1, 0, 0, 1, 5, 5, 5, 5});
     // Every feature is a centre of its own label, so the scale is the nearest other label's mean distance.
@@ -550,16 +550,27 @@ TEST_CASE("exemplars: a label with fewer features than centres keeps every featu
     with_none.push_back({9, 9, 8, 8});
     std::vector<LabelId> none_labels = labels;
     none_labels.push_back(unknown_label);
-    set_exemplars(m, with_none, none_labels, 8, 1.0, 1);
+    set_exemplars(m, with_none, none_labels, 8, 0, 1.0, 1);
     CHECK(m.exemplar_labels == std::vector<LabelId>{0, 0, 0, 1, 1, unknown_label, unknown_label});
     CHECK(m.exemplars == std::vector<float>{0, 0, 1, 0, 0, 1, 5, 5, 5, 5, 9, 9, 8, 8});
     CHECK(m.exemplar_scale == doctest::Approx(other));
     CHECK(m.view().has_no_action_exemplars());
     // Only no action's features: nothing to classify clips with.
-    CHECK_THROWS_AS(set_exemplars(m, {{9, 9}}, {unknown_label}, 8, 1.0, 1), std::invalid_argument);
-    set_exemplars(m, features, labels, 0, 1.0, 1);
+    CHECK_THROWS_AS(set_exemplars(m, {{9, 9}}, {unknown_label}, 8, 0, 1.0, 1), std::invalid_argument);
+    set_exemplars(m, features, labels, 0, 0, 1.0, 1);
     CHECK(m.exemplar_labels.empty());
     CHECK(m.exemplar_weight == 0.0f);
+    // The first coordinate only: each centre keeps one, and the scale is measured on it.
+    set_exemplars(m, features, labels, 8, 1, 1.0, 1);
+    CHECK(m.exemplar_dim == 1);
+    CHECK(m.view().exemplar_dims() == 1);
+    CHECK(m.exemplars == std::vector<float>{0, 1, 0, 5, 5});
+    // Every feature is its own centre again, so the nearest other label's: 25, 16, 25 for a; 16, 16 for b.
+    CHECK(m.exemplar_scale == doctest::Approx((25.0 + 16.0 + 25.0 + 16.0 + 16.0) / 5.0));
+    // All of them: stored as 0 (every coordinate), so older models read the same way.
+    set_exemplars(m, features, labels, 8, 2, 1.0, 1);
+    CHECK(m.exemplar_dim == 0);
+    CHECK_THROWS_AS(set_exemplars(m, features, labels, 8, 3, 1.0, 1), std::invalid_argument);
 }
 
 TEST_CASE("a model without a GMM (PCA-only characters) trains, validates, round-trips and generates a header") {
@@ -673,7 +684,8 @@ std::string older_artifact(const ModelData& model, int version) {
         const std::string line = fields.substr(at, end - at);
         const bool added = (version < 6 && line.find("exemplar") != std::string::npos) ||
                            (version < 7 && line.find("acceleration_weight") != std::string::npos) ||
-                           (version < 8 && line.find("min_action_us") != std::string::npos);
+                           (version < 8 && line.find("min_action_us") != std::string::npos) ||
+                           (version < 9 && line.find("exemplar_dim ") == 0);
         if (!added) body += line;
         at = end;
     }
@@ -684,12 +696,14 @@ std::string older_artifact(const ModelData& model, int version) {
 
 }  // namespace
 
-TEST_CASE("version-5 to 7 artifacts (before the exemplars, the acceleration, the shortest action) are read") {
+TEST_CASE(
+    "version-5 to 8 artifacts (before the exemplars, the acceleration, the shortest action, the exemplars' "
+    "dimension) are read") {
     const ToyWorld world = make_toy_world();
     REQUIRE_FALSE(world.model.view().has_exemplars());
     REQUIRE_FALSE(world.model.view().has_acceleration());
     REQUIRE(world.model.min_action_us == 250000u);  // what a model without the field has
-    for (const int version : {5, 6, 7}) {
+    for (const int version : {5, 6, 7, 8}) {
         CAPTURE(version);
         const std::string old = older_artifact(world.model, version);
         CHECK(serialize_model(parse_model("old.model", old)) == serialize_model(world.model));
@@ -698,14 +712,23 @@ TEST_CASE("version-5 to 7 artifacts (before the exemplars, the acceleration, the
         std::string current = old;
         current.replace(0, std::string("actionstring-model 5").size(),
                         "actionstring-model " + std::to_string(artifact_version));
-        const char* const missing = version < 7 ? "expected 'acceleration_weight'" : "expected 'min_action_us'";
+        const char* const missing = version < 7 ? "expected 'acceleration_weight'" : "expected 'exemplar_dim'";
         CHECK_THROWS_WITH_AS(parse_model("new.model", current), doctest::Contains(missing), ReadError);
     }
     // A version-7 model's events keep the runtime's default shortest action.
     ModelData shorter = parse_model("copy.model", serialize_model(world.model));
     shorter.min_action_us = 500000;
     CHECK(parse_model("v7.model", older_artifact(shorter, 7)).min_action_us == 250000u);
-    CHECK(parse_model("v8.model", serialize_model(shorter)).min_action_us == 500000u);
+    CHECK(parse_model("v8.model", older_artifact(shorter, 8)).min_action_us == 500000u);
+    // A version-8 model's exemplars keep every coordinate of the feature.
+    TrainingOptions options = toy_pca_only_options();
+    options.exemplars = 3;
+    options.exemplar_weight = 1.0;
+    const ModelData with_exemplars = train_model(toy_clips(make_toy_world(), 2, 7), options);
+    REQUIRE(with_exemplars.exemplar_dim == 0);
+    const ModelData read = parse_model("v8.model", older_artifact(with_exemplars, 8));
+    CHECK(read.exemplar_dim == 0);
+    CHECK(serialize_model(read) == serialize_model(with_exemplars));
 }
 
 TEST_CASE("a version-4 artifact (factors component by component) is read and reordered") {
@@ -810,4 +833,23 @@ TEST_CASE("'no action' votes: learned from the unlabelled stretches of recording
     // The labels' centres and their scale do not depend on no action's.
     CHECK(without.exemplar_scale == with_none.exemplar_scale);
     CHECK(std::equal(without.exemplars.begin(), without.exemplars.end(), with_none.exemplars.begin()));
+    // Centres of the features' first coordinates only: fewer floats, the same
+    // validation, and the artifact and the header keep the dimension.
+    options.exemplar_dims = 2;
+    const ModelData leading = train_model(train, options, nullptr, &stretches);
+    const ModelView leading_view = leading.view();
+    CHECK(validate_model(leading_view) == Status::ok);
+    CHECK(leading.exemplar_dim == 2);
+    CHECK(leading.exemplars.size() == leading.exemplar_labels.size() * 2);
+    const std::string text = serialize_model(leading);
+    CHECK(serialize_model(parse_model("x.model", text)) == text);
+    CHECK(generate_header(leading, artifact_checksum(text), "leading", "x.model").find("m.exemplar_dim = 2;") !=
+          std::string::npos);
+    // A view claiming more coordinates than the feature has is refused.
+    ModelView wide = leading_view;
+    wide.exemplar_dim = static_cast<std::uint16_t>(wide.feature_dim + 1);
+    CHECK(validate_model(wide) == Status::invalid_model);
+    // Clip classification and the annotator run on it.
+    Stateful<Annotator> annotator;
+    CHECK(annotator.init(leading_view, annotator_config(leading_view)) == Status::ok);
 }

@@ -11,7 +11,8 @@
 // frame-level nearest-neighbour vote ("naive-Bayes nearest neighbour"), which
 // is blind to order, beside DTW on the strings, which is not.
 //
-// Per character: exemplar_count × feature_dim multiply-adds, each centre's sum
+// Per character: exemplar_count × exemplar_dims() multiply-adds (a model may
+// keep only the feature's leading coordinates, ModelView::exemplar_dim), each centre's sum
 // in one fixed order (detail::exemplar_distance()), so a generated header, a
 // loaded model, the lanes of an x86 host and a Cortex-M4 give the same bits.
 #pragma once
@@ -102,7 +103,7 @@ inline void nearest_exemplars(const ModelView& model, const float* feature, std:
                               float* distances, float* no_action = nullptr) noexcept {
     if (distances == nullptr || feature == nullptr || model.exemplars == nullptr || model.exemplar_labels == nullptr)
         return;
-    const std::size_t d = model.feature_dim;
+    const std::size_t d = model.exemplar_dims();
     const std::size_t n = last < model.exemplar_count ? last : model.exemplar_count;
     std::size_t e = first;
     const float* centre = model.exemplars + e * d;
@@ -158,7 +159,7 @@ inline void nearest_exemplars(const ModelView& model, const float* feature, std:
 /// Per label, the squared Euclidean distance from one feature to the label's
 /// nearest exemplar (+inf for a label without exemplars). Each centre's sum
 /// is detail::exemplar_distance()'s, in its order, on every target.
-/// @param feature   feature_dim floats (the projected pose the character was
+/// @param feature   feature_dim floats, of which the first exemplar_dims() are read (the projected pose the character was
 ///                  made from, EncodedFrame's previous_feature / current_feature); read only during the call
 /// @param distances receives label_count floats (caller-owned)
 /// @param no_action when not null, receives the distance to the nearest centre

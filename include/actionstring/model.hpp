@@ -134,6 +134,12 @@ struct ModelView {
     constexpr bool has_exemplars() const noexcept {
         return exemplar_weight > 0.0f && exemplar_count > 0 && exemplars != nullptr;
     }
+    /// Coordinates of each exemplar centre: the feature's first
+    /// exemplar_dim (a PCA feature's leading ones hold most of its variance,
+    /// so a model can trade distance work for accuracy), or all of them.
+    constexpr std::size_t exemplar_dims() const noexcept {
+        return exemplar_dim == 0 ? std::size_t{feature_dim} : std::size_t{exemplar_dim};
+    }
     /// Whether the exemplars include centres of "no action" (labelled
     /// unknown_label, after every label's): the segmenter then weighs "no
     /// action" by its exemplars too. Learned from the unlabelled stretches of
@@ -410,6 +416,7 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     // Exemplars: labelled points of the feature space, a positive scale.
     if (!(m.exemplar_weight >= 0.0f && m.exemplar_weight <= 1000.0f))
         return refuse(problem, "exemplar_weight: negative, non-finite or beyond 1000");
+    if (m.exemplar_dim > m.feature_dim) return refuse(problem, "exemplar_dim: more than feature_dim");
     if (m.exemplar_count > 0) {
         if (m.exemplar_labels == nullptr) return refuse(problem, "exemplar_labels: missing");
         // Each a label of the model, or unknown_label ("no action") after every label's.
@@ -423,7 +430,7 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
             if (label >= m.label_count) return refuse(problem, "exemplar_labels: not a label of the model");
             if (no_action) return refuse(problem, "exemplar_labels: a label's centre after those of no action");
         }
-        if (!detail::all_within(m.exemplars, std::size_t{m.exemplar_count} * m.feature_dim, -max_table_value,
+        if (!detail::all_within(m.exemplars, std::size_t{m.exemplar_count} * m.exemplar_dims(), -max_table_value,
                                 max_table_value))
             return refuse(problem, "exemplars: missing, non-finite or beyond 1e6");
     }

@@ -102,9 +102,11 @@
     /* training features' own mean), times exemplar_weight, joins the votes in clip classification */         \
     SCALAR(float, exemplar_weight, 0.0f, 0, 0)             /* 0 = none */                                 \
     SCALAR(float, exemplar_scale, 1.0f, 0, 0)                                                             \
+    /* the feature's leading coordinates a centre keeps and a distance reads; 0 = all (feature_dim) */    \
+    SCALAR(std::uint16_t, exemplar_dim, 0, 0, 65535)                                                      \
     COUNT(std::uint16_t, exemplar_count, exemplar_labels)                                                 \
     TABLE(LabelId, exemplar_labels, m.exemplar_count, 0, 65535) /* each centre's label */                 \
-    TABLE(float, exemplars, std::size_t{m.exemplar_count} * m.feature_dim, 0, 0) /* feature_dim each */   \
+    TABLE(float, exemplars, std::size_t{m.exemplar_count} * m.exemplar_dims(), 0, 0) /* exemplar_dims() each */ \
     /* --- online settings of the segmenter (design §1.8), chosen at training --- */                      \
     SCALAR(std::uint32_t, settle_delay_us, 2000000, 0, 600000000) /* a character's label is final then */ \
     SCALAR(float, segment_penalty, 3.0f, 0, 0)             /* cost of starting another segment */         \

@@ -351,7 +351,7 @@ private:
     // quarter of its coordinates (four lanes take four at a time).
     static constexpr std::size_t rep_overhead = 4;
     static constexpr std::size_t all_work = ~static_cast<std::size_t>(0);
-    static constexpr std::size_t centre_work(const ModelView& m) noexcept { return (std::size_t{m.feature_dim} + 3u) / 4u; }
+    static constexpr std::size_t centre_work(const ModelView& m) noexcept { return (m.exemplar_dims() + 3u) / 4u; }
 
     // Cells of the representatives before r.
     std::size_t cells_before(std::size_t r) const noexcept {

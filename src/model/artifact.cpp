@@ -163,6 +163,7 @@ std::string write_fields(const ModelData& m) {
 int field_since(std::string_view name) {
     if (name == "acceleration_weight") return 7;
     if (name == "min_action_us") return 8;
+    if (name == "exemplar_dim") return 9;
     return name.find("exemplar") != std::string_view::npos ? 6 : 0;
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 #include "actionstring/exemplars.hpp"
 #include "train/kmeans.hpp"
@@ -12,13 +13,19 @@ namespace actionstring {
 namespace host {
 
 void set_exemplars(ModelData& m, const std::vector<std::vector<float>>& features, const std::vector<LabelId>& labels,
-                   std::size_t per_label, double weight, std::uint32_t seed) {
+                   std::size_t per_label, std::size_t dims, double weight, std::uint32_t seed) {
     m.exemplar_weight = 0.0f;
     m.exemplar_scale = 1.0f;
+    m.exemplar_dim = 0;
     m.exemplar_labels.clear();
     m.exemplars.clear();
     if (per_label == 0 || !(weight > 0)) return;
-    const std::size_t L = m.label_names.size(), d = m.feature_dim;
+    if (dims > m.feature_dim)
+        throw std::invalid_argument("exemplars: " + std::to_string(dims) +
+                                    " dimensions asked for, but the feature has " + std::to_string(m.feature_dim));
+    // The features keep their stride (feature_dim); the centres keep the first k coordinates.
+    const std::size_t L = m.label_names.size(), d = m.feature_dim, k_dims = dims == 0 ? d : dims;
+    m.exemplar_dim = static_cast<std::uint16_t>(k_dims == d ? 0 : k_dims);
     // Each label's features, as the columns of a matrix (doubles, as k-means computes).
     std::vector<std::size_t> count(L, 0);
     for (std::size_t i = 0; i < features.size(); ++i)
@@ -31,12 +38,12 @@ void set_exemplars(ModelData& m, const std::vector<std::vector<float>>& features
         const LabelId l = slot < L ? static_cast<LabelId>(slot) : unknown_label;
         const std::size_t n_l = slot < L ? count[slot] : none;
         if (n_l == 0) continue;
-        Eigen::MatrixXd x(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(n_l));
+        Eigen::MatrixXd x(static_cast<Eigen::Index>(k_dims), static_cast<Eigen::Index>(n_l));
         Eigen::Index column = 0;
         for (std::size_t i = 0; i < features.size(); ++i) {
             if (labels[i] != l) continue;
             for (std::size_t at = 0; at + d <= features[i].size(); at += d, ++column)
-                for (std::size_t k = 0; k < d; ++k)
+                for (std::size_t k = 0; k < k_dims; ++k)
                     x(static_cast<Eigen::Index>(k), column) = static_cast<double>(features[i][at + k]);
         }
         Eigen::MatrixXd centres = x;
@@ -46,7 +53,7 @@ void set_exemplars(ModelData& m, const std::vector<std::vector<float>>& features
         }
         for (Eigen::Index c = 0; c < centres.cols(); ++c) {
             m.exemplar_labels.push_back(l);
-            for (std::size_t k = 0; k < d; ++k)
+            for (std::size_t k = 0; k < k_dims; ++k)
                 m.exemplars.push_back(static_cast<float>(centres(static_cast<Eigen::Index>(k), c)));
         }
     }

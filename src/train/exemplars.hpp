@@ -21,11 +21,13 @@ namespace host {
 /// to the nearest centre of another label). Features labelled unknown_label
 /// (stretches of no action) get at most `per_label` centres of their own
 /// (seed + label_count), after every label's; they take no part in the scale.
-/// `weight` 0 or `per_label` 0: none.
+/// `weight` 0 or `per_label` 0: none. `dims` (1 to feature_dim, 0 = all):
+/// the features' leading coordinates the centres are found in and keep
+/// (ModelView::exemplar_dim), the rest left out of every distance.
 /// Deterministic. Throws std::invalid_argument when a weight is set but no
-/// label has a feature.
+/// label has a feature, or `dims` exceeds feature_dim.
 void set_exemplars(ModelData& m, const std::vector<std::vector<float>>& features, const std::vector<LabelId>& labels,
-                   std::size_t per_label, double weight, std::uint32_t seed);
+                   std::size_t per_label, std::size_t dims, double weight, std::uint32_t seed);
 
 }  // namespace host
 }  // namespace actionstring

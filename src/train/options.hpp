@@ -81,6 +81,10 @@ struct TrainingOptions {
     /// (relative to the training features' own mean distance). 0: none.
     int exemplars = 0;
     double exemplar_weight = 0.0;
+    /// The features' leading coordinates the exemplars keep, 0 = all (at most
+    /// the feature's d): each centre costs this many multiply-adds per
+    /// character, and a PCA feature's first coordinates hold most of its variance.
+    int exemplar_dims = 0;
     /// With exemplars and a list of recordings: centres of "no action" too,
     /// from the unlabelled stretches (at most `exemplars` of them), which the
     /// segmenter weighs against the labels' (segment-exemplars).

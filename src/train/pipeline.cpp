@@ -77,6 +77,7 @@ void check_options(const TrainingOptions& o) {
     require(o.vote_smoothing >= 1e-6 && o.vote_smoothing <= 1e3, "the vote smoothing must be between 1e-6 and 1000");
     require(o.exemplars >= 0 && o.exemplars <= 4096, "exemplars per label must be between 0 and 4096");
     require(o.exemplar_weight >= 0 && o.exemplar_weight <= 1000, "the exemplar weight must be between 0 and 1000");
+    require(o.exemplar_dims >= 0 && o.exemplar_dims <= 65535, "the exemplars' dimensions must be between 0 and 65535");
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
             "the settle delay must be 0 to 60 s");
     require(o.min_action_us >= 0 && o.min_action_us <= 60000000, "the shortest action must be 0 to 60 s");
@@ -505,7 +506,7 @@ void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips, cons
                 fold.feature_dim = m.feature_dim;
                 fold.label_names = m.label_names;
                 set_exemplars(fold, features, fold_labels, static_cast<std::size_t>(options.exemplars),
-                              options.exemplar_weight, options.seed);
+                              static_cast<std::size_t>(options.exemplar_dims), options.exemplar_weight, options.seed);
                 folds.emplace(subject, std::move(fold));
             }
         auto rows_of = [&](const std::vector<float>& features, const std::string& subject) {
@@ -633,7 +634,7 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
             for (const EncodedClip& stretch : stretches)
                 labelled.push_back(stretch.features), feature_labels.push_back(unknown_label);
         set_exemplars(m, labelled, feature_labels, static_cast<std::size_t>(options.exemplars),
-                      options.exemplar_weight, options.seed);
+                      static_cast<std::size_t>(options.exemplar_dims), options.exemplar_weight, options.seed);
         stage.finish("exemplars");
     }
 

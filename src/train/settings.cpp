@@ -147,6 +147,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "vote-smoothing") o.vote_smoothing = num(1e-6, 1e3);
     else if (name == "exemplars") o.exemplars = static_cast<int>(num(0, 4096));
     else if (name == "exemplar-weight") o.exemplar_weight = num(0, 1000);
+    else if (name == "exemplar-dims") o.exemplar_dims = static_cast<int>(num(0, 65535));
     else if (name == "no-action-exemplars") o.no_action_exemplars = flag(name, value);
     else if (name == "window") o.window_seconds = num(0.01, 3600);
     else if (name == "step") o.step_seconds = num(0.01, 3600);
@@ -211,6 +212,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "vote-smoothing",
                                                 "exemplars",
                                                 "exemplar-weight",
+                                                "exemplar-dims",
                                                 "no-action-exemplars",
                                                 "window",
                                                 "step",

@@ -148,6 +148,7 @@ std::string options_as_config(const TrainingOptions& o) {
     if (o.max_representative_chars > 0) out << "max-representative-chars " << o.max_representative_chars << "\n";
     if (o.reject) out << "reject true\nreject-keep " << number(o.reject_keep) << "\n";
     if (o.exemplars > 0) out << "exemplars " << o.exemplars << "\nexemplar-weight " << number(o.exemplar_weight) << "\n";
+    if (o.exemplars > 0 && o.exemplar_dims > 0) out << "exemplar-dims " << o.exemplar_dims << "\n";
     if (o.exemplars > 0 && !o.no_action_exemplars) out << "no-action-exemplars false\n";
     if (o.online.exemplar_weight > 0) out << "segment-exemplars " << number(o.online.exemplar_weight) << "\n";
     if (!o.pose_joints.empty()) {
