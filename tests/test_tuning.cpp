@@ -53,7 +53,11 @@ TEST_CASE("self-tuning is deterministic and keeps a setting only when its folds 
         CHECK(a.steps[i].kept == b.steps[i].kept);
         if (a.steps[i].kept) {
             ++kept;
-            CHECK(a.steps[i].mean_accuracy > best);
+            // The exemplars' dimension only saves work: a tie keeps it too.
+            if (a.steps[i].setting.rfind("exemplar-dims", 0) == 0)
+                CHECK(a.steps[i].mean_accuracy >= best);
+            else
+                CHECK(a.steps[i].mean_accuracy > best);
             best = a.steps[i].mean_accuracy;
         } else {
             CHECK(a.steps[i].mean_accuracy <= best);
@@ -65,6 +69,9 @@ TEST_CASE("self-tuning is deterministic and keeps a setting only when its folds 
     const std::string config = options_as_config(a.options);
     for (const char* line : {"components 0\n", "keep-singletons true\n", "variant whole\n"})
         CHECK(config.find(line) != std::string::npos);
+    // Exemplars of half the feature's coordinates are tried only where there are exemplars.
+    CHECK(a.options.exemplars == 0);
+    for (const TuningStep& step : a.steps) CHECK(step.setting.rfind("exemplar-dims", 0) == std::string::npos);
     // The acceleration's weight is searched and echoed with the rest.
     bool tried_acceleration = false;
     for (const TuningStep& step : a.steps) tried_acceleration |= step.setting == "acceleration 0.5";
@@ -78,6 +85,38 @@ TEST_CASE("self-tuning is deterministic and keeps a setting only when its folds 
     std::vector<LabelledClip> flat = clips;
     for (LabelledClip& c : flat) c.clip.parents.clear();
     CHECK(tune_training(flat, tuning_start()).options.scale_mode == actionstring::ScaleMode::none);
+}
+
+TEST_CASE("self-tuning tries exemplars of half the feature's coordinates, and keeps them on a tie") {
+    ToyWorld world = make_toy_world();
+    const std::vector<LabelledClip> clips = noisy_clips(world, 2);
+    TrainingOptions start = tuning_start();
+    start.exemplars = 64;
+    start.exemplar_weight = 1.0;
+    const TuningResult a = tune_training(clips, start);
+    REQUIRE(a.options.exemplars > 0);
+    const TuningStep* dims = nullptr;
+    double best_before = -1.0;
+    for (const TuningStep& step : a.steps) {
+        if (step.setting.rfind("exemplar-dims", 0) == 0) {
+            dims = &step;
+            break;
+        }
+        if (step.kept) best_before = step.mean_accuracy;
+    }
+    REQUIRE(dims != nullptr);
+    // Half the feature's coordinates, rounded to a multiple of four (the toy's PCA is its input's 15: 8).
+    const long half = std::lround(a.options.pca_dim / 8.0) * 4;
+    CHECK(dims->setting == "exemplar-dims " + std::to_string(half));
+    // The toy's folds are at their ceiling, so the cheaper setting ties and is kept.
+    CHECK(dims->mean_accuracy == best_before);
+    CHECK(dims->kept);
+    CHECK(a.options.exemplar_dims == half);
+    CHECK(options_as_config(a.options).find("exemplar-dims " + std::to_string(a.options.exemplar_dims) + "\n") !=
+          std::string::npos);
+    // A model trained with the choice keeps that many coordinates per centre.
+    const ModelData model = train_model(clips, a.options);
+    CHECK(model.exemplar_dim == a.options.exemplar_dims);
 }
 
 TEST_CASE("cross-validation needs two subjects") {

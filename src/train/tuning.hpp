@@ -35,10 +35,11 @@ TrainingOptions tuning_start();
 
 /// Coordinate search from `start`: the velocity weight and span, mirroring,
 /// the string rate, ε, σ, the PCA dimension, the votes' weight and the exemplars' (64 per
-/// label; not with `reject`), one at a time, each value judged by
-/// cross_validate()'s fold mean averaged over the seeds seed, seed + 1 and
-/// seed + 2, and kept only when strictly higher (so ties keep the earlier,
-/// simpler choice). Deterministic. `folds` are those of the choice at its seed. `progress`, when
+/// label; not with `reject`), then the exemplars in half the feature's
+/// coordinates, one at a time, each value judged by cross_validate()'s fold
+/// mean averaged over the seeds seed, seed + 1 and seed + 2, and kept only when
+/// strictly higher (so ties keep the earlier, simpler choice), except the
+/// exemplars' dimension, which only saves work and is kept on a tie too. Deterministic. `folds` are those of the choice at its seed. `progress`, when
 /// set, is told each step. The fold mean of the choice is optimistic: it was
 /// chosen on those folds.
 ///
