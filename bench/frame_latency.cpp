@@ -587,6 +587,12 @@ int main(int argc, char** argv) {
             s.exemplars_per_label = M;
             points.push_back(measure_scaling("exemplars per label", s));
         }
+        {  // the same 64 centres per label in the feature's first 12 of 24 coordinates (exemplar_dim)
+            auto s = base;
+            s.exemplars_per_label = 64;
+            s.exemplar_dims = 12;
+            points.push_back(measure_scaling("exemplars in 12 of d's coordinates", s));
+        }
         for (double w : {1.0, 4.0}) {
             auto s = base;
             s.window_seconds = w;
@@ -657,7 +663,8 @@ int main(int argc, char** argv) {
                  << "\", \"components\": " << p.size.components << ", \"feature_dim\": " << p.size.feature_dim
                  << ", \"characters\": " << p.size.characters << ", \"representatives\": " << p.size.representatives
                  << ", \"window_seconds\": " << p.size.window_seconds
-                 << ", \"exemplars_per_label\": " << p.size.exemplars_per_label << ", \"median_ns\": " << p.every.median
+                 << ", \"exemplars_per_label\": " << p.size.exemplars_per_label
+                 << ", \"exemplar_dims\": " << p.size.exemplar_dims << ", \"median_ns\": " << p.every.median
                  << ", \"character_median_ns\": " << p.character.median << ", \"p99_9_ns\": " << p.every.p999
                  << ", \"own_character_median_ns\": " << p.own_character.median
                  << ", \"own_character_p99_ns\": " << p.own_character.p99

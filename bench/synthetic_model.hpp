@@ -24,6 +24,7 @@ struct ModelSize {
     double step_seconds = 0.5;
     actionstring::Covariance covariance = actionstring::Covariance::full;
     int exemplars_per_label = 0;  ///< random centres per label (10 labels), weighed by the segmenter too
+    int exemplar_dims = 0;        ///< the feature's leading coordinates the centres keep (0: all d)
 };
 
 // Balanced tree with `leaves` leaves and random probability-vector centroids.
@@ -98,10 +99,12 @@ inline void make_random_model(actionstring::host::ModelData& m, const ModelSize&
     m.neighbours = 1;
     if (size.exemplars_per_label > 0) {
         std::normal_distribution<float> centre(0.0f, 0.3f);
+        const int kept = size.exemplar_dims > 0 && size.exemplar_dims < d ? size.exemplar_dims : d;
+        m.exemplar_dim = static_cast<std::uint16_t>(kept < d ? kept : 0);
         for (int l = 0; l < 10; ++l)
             for (int e = 0; e < size.exemplars_per_label; ++e) {
                 m.exemplar_labels.push_back(static_cast<LabelId>(l));
-                for (int i = 0; i < d; ++i) m.exemplars.push_back(centre(rng));
+                for (int i = 0; i < kept; ++i) m.exemplars.push_back(centre(rng));
             }
         m.exemplar_weight = 1.0f;
         m.exemplar_scale = 1.0f;
