@@ -55,6 +55,21 @@ def test_motion_settings_reach_the_model(toy_clips):
         actionstring.train(toy_clips, **dict(TOY_SETTINGS, acceleration=-1.0))
 
 
+def test_exemplars_of_the_feature_s_leading_coordinates(toy_clips):
+    # 8 centres per label in all 8 coordinates, then in the first 4: half the floats.
+    every = actionstring.train(toy_clips, **dict(TOY_SETTINGS, exemplars=8, exemplar_weight=1.0))
+    leading = actionstring.train(toy_clips, **dict(TOY_SETTINGS, exemplars=8, exemplar_weight=1.0, exemplar_dims=4))
+    assert "\nexemplar_dim 0\n" in every._native.artifact()
+    assert "\nexemplar_dim 4\n" in leading._native.artifact()
+    centres = every._native.artifact().split("\nexemplar_labels ")[1].split(" ")[0]
+    assert every.table_bytes - leading.table_bytes == int(centres) * 4 * 4  # 4 floats fewer per centre
+    assert "exemplar-dims 4" in leading.training_report["settings"]
+    kept = sum(leading.classify(c).label == c.label for c in toy_clips)
+    assert kept >= 0.9 * len(toy_clips)
+    with pytest.raises(ValueError, match="dimensions"):
+        actionstring.train(toy_clips, **dict(TOY_SETTINGS, exemplars=8, exemplar_weight=1.0, exemplar_dims=9))
+
+
 def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     """With no settings, train() tunes as `actionstring train` does: clip settings, then online ones."""
     model = actionstring.train(toy_clips)
