@@ -185,7 +185,7 @@ int run_eval(int argc, char** argv) {
         else if (arg == "--json") json_path = args.value(arg);
         else if (arg == "--rate") read.frame_rate_hz = args.number(arg, 0.001, 1e6);
         else if (arg == "--online") online = true;
-        else if (arg == "--seed") seed = static_cast<std::uint32_t>(args.number(arg, 0, 4294967295.0));
+        else if (arg == "--seed") seed = static_cast<std::uint32_t>(args.whole(arg, 0, 4294967295.0));
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
         else if (arg == "--report") report_dir = args.value(arg);
         else if (arg == "--perturb") perturb_spec = args.value(arg);

@@ -46,7 +46,7 @@ int run_info(int argc, char** argv) {
         }
         if (parse_read_option(args, arg, options, skeleton)) continue;
         else if (arg == "--scale") options.length_scale = args.number(arg, 1e-9, 1e9);
-        else if (arg == "--up") options.up_axis = static_cast<int>(args.number(arg, 0, 2));
+        else if (arg == "--up") options.up_axis = static_cast<int>(args.whole(arg, 0, 2));
         else if (arg == "--joints") list_joints = true;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;

@@ -1,8 +1,8 @@
 // actionstring CLI — small argument reader shared by the subcommands.
 #pragma once
 
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
@@ -51,6 +51,15 @@ public:
     double number(const std::string& option, double low, double high) {
         const std::string text = value(option);
         return ok_ ? number_of(option, text, low, high) : 0.0;
+    }
+    /// The same for a count or an index: a fractional value is refused, not truncated.
+    double whole(const std::string& option, double low, double high) {
+        const std::string text = value(option);
+        if (!ok_) return 0.0;
+        const std::optional<double> v = parse_real(text, low, high);
+        if (!v || *v != std::floor(*v))
+            error("option " + option + " expects a whole number in " + range_text(low, high) + ", got '" + text + "'");
+        return ok_ ? *v : 0.0;
     }
     /// `text`, the value of `option` (from the command line or a config file), as a number in [low, high].
     double number_of(const std::string& option, const std::string& text, double low, double high) {
@@ -103,7 +112,7 @@ inline bool parse_read_option(ArgumentReader& args, const std::string& option, h
     else if (option == "--rate") read.frame_rate_hz = args.number(option, 0.001, 1e6);
     else if (option == "--roles") read.roles = parse_roles(args, args.value(option));
     else if (option == "--time-unit") read.time_unit_s = parse_time_unit(args, args.value(option));
-    else if (option == "--body") read.body = static_cast<int>(args.number(option, 0, 63));
+    else if (option == "--body") read.body = static_cast<int>(args.whole(option, 0, 63));
     else if (option == "--columns") read.columns = args.value(option);
     else return false;
     return true;

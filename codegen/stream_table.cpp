@@ -36,9 +36,9 @@ int run_stream_table(int argc, char** argv) {
             return 0;
         }
         if (arg == "--clips") list_path = args.value(arg);
-        else if (arg == "--first") first = args.number(arg, 0, 1e9);
-        else if (arg == "--count") count = args.number(arg, 1, 1e6);
-        else if (arg == "--stride") stride = args.number(arg, 1, 1e6);
+        else if (arg == "--first") first = args.whole(arg, 0, 1e9);
+        else if (arg == "--count") count = args.whole(arg, 1, 1e6);
+        else if (arg == "--stride") stride = args.whole(arg, 1, 1e6);
         else if (arg == "--max-seconds") max_seconds = args.number(arg, 0, 1e6);
         else if (arg == "--namespace") ns = args.value(arg);
         else if (arg == "--out") out_path = args.value(arg);

@@ -296,6 +296,28 @@ TEST_CASE("the events' shortest action: the shortest within one standard error o
     CHECK(one_standard_error_choice({step(250000, 0.70, 0.0), step(500000, 0.80, 0.0), step(750000, 0.80, 0.0)}) == 1);
 }
 
+TEST_CASE("counts and indices refuse a fraction rather than truncate it") {
+    TrainingOptions options;
+    ReadOptions read;
+    for (const char* name : {"components", "pca", "em-iterations", "em-restarts", "max-characters",
+                             "max-representative-chars", "neighbours", "exemplars", "exemplar-dims", "seed", "body"}) {
+        CAPTURE(name);
+        CHECK_THROWS_WITH_AS(apply_training_setting(name, "2.5", options, read),
+                             doctest::Contains("expects a whole number"), std::invalid_argument);
+        CHECK(apply_training_setting(name, "3", options, read));
+    }
+    CHECK(options.pca_dim == 3);
+    CHECK(options.exemplar_dims == 3);
+    CHECK(read.body == 3);
+    CHECK(apply_training_setting("pca", "16.0", options, read));  // a whole number written with a point
+    CHECK(options.pca_dim == 16);
+    CHECK_THROWS_WITH_AS(apply_training_setting("pca", "1e9", options, read), doctest::Contains("[0, 65535]"),
+                         std::invalid_argument);
+    // Real-valued settings keep their fractions.
+    CHECK(apply_training_setting("sigma", "0.75", options, read));
+    CHECK(options.sigma == 0.75);
+}
+
 TEST_CASE("yes/no settings take true/false (or on/off, yes/no, 1/0) and refuse anything else") {
     TrainingOptions options;
     ReadOptions read;

@@ -95,8 +95,10 @@ def test_self_tuning_chooses_the_online_settings_too(toy_clips):
 def test_settings_are_checked(toy_clips):
     with pytest.raises(ValueError, match="unknown training setting 'pcaa'"):
         actionstring.train(toy_clips, pcaa=3)
-    with pytest.raises(ValueError, match="option --pca expects a number"):
+    with pytest.raises(ValueError, match="option --pca expects a whole number"):
         actionstring.train(toy_clips, pca=-2)
+    with pytest.raises(ValueError, match=r"option --pca expects a whole number in \[0, 65535\], got '2.5'"):
+        actionstring.train(toy_clips, pca=2.5)
     with pytest.raises(ValueError, match="no clips"):
         actionstring.train([])
     assert "string_rate" in actionstring.training_settings()

@@ -35,6 +35,16 @@ double number(const std::string& name, const std::string& value, double low, dou
     return *v;
 }
 
+// A count or an index: a number as above that is also whole, so that "--pca 2.5"
+// is refused rather than read as 2.
+double whole_number(const std::string& name, const std::string& value, double low, double high) {
+    const std::optional<double> v = parse_real(value, low, high);
+    if (!v || *v != std::floor(*v))
+        throw std::invalid_argument("option --" + name + " expects a whole number in " + range_text(low, high) +
+                                    ", got '" + value + "'");
+    return *v;
+}
+
 int choice(const std::string& name, const std::string& value, std::initializer_list<const char*> names) {
     int i = 0;
     for (const char* n : names) {
@@ -115,14 +125,15 @@ std::vector<std::string> joint_list(const std::string& name, const std::string& 
 
 bool apply_training_setting(const std::string& name, const std::string& value, TrainingOptions& o, ReadOptions& read) {
     auto num = [&](double low, double high) { return number(name, value, low, high); };
-    if (name == "components") o.components = static_cast<int>(num(0, 256));
+    auto whole = [&](double low, double high) { return whole_number(name, value, low, high); };
+    if (name == "components") o.components = static_cast<int>(whole(0, 256));
     else if (name == "covariance") o.covariance = static_cast<Covariance>(choice(name, value, {"full", "diagonal"}));
     else if (name == "covariance-floor") o.covariance_floor = num(1e-12, 1e6);
-    else if (name == "pca") o.pca_dim = static_cast<int>(num(0, 65535));
+    else if (name == "pca") o.pca_dim = static_cast<int>(whole(0, 65535));
     else if (name == "feature-rate") o.feature_rate_hz = num(0.1, 10000);
-    else if (name == "em-iterations") o.em_max_iterations = static_cast<int>(num(1, 100000));
+    else if (name == "em-iterations") o.em_max_iterations = static_cast<int>(whole(1, 100000));
     else if (name == "em-tolerance") o.em_tolerance = num(0, 1);
-    else if (name == "em-restarts") o.em_restarts = static_cast<int>(num(1, 64));
+    else if (name == "em-restarts") o.em_restarts = static_cast<int>(whole(1, 64));
     else if (name == "scale")
         o.scale_mode = static_cast<ScaleMode>(choice(name, value, {"none", "hip-width", "bones", "torso"}));
     else if (name == "mirror") o.mirror = flag(name, value);
@@ -131,7 +142,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "velocity-span") o.velocity_span_s = num(0.01, 2);
     else if (name == "acceleration") o.acceleration_weight = num(0, 1000);
     else if (name == "epsilon") o.epsilon = num(1e-9, 1e9);
-    else if (name == "max-characters") o.max_characters = static_cast<int>(num(1, 4096));
+    else if (name == "max-characters") o.max_characters = static_cast<int>(whole(1, 4096));
     else if (name == "string-rate") o.string_rate_hz = num(1, 1000);
     else if (name == "variant")
         o.variant = static_cast<MatchVariant>(choice(name, value, {"paper", "whole", "subsequence"}));
@@ -139,26 +150,26 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
         o.normalization = static_cast<LengthNormalization>(choice(name, value, {"none", "path", "query"}));
     else if (name == "sigma") o.sigma = num(0, 1e9);
     else if (name == "keep-singletons") o.keep_singletons = flag(name, value);
-    else if (name == "max-representative-chars") o.max_representative_chars = static_cast<int>(num(0, 1e9));
+    else if (name == "max-representative-chars") o.max_representative_chars = static_cast<int>(whole(0, 1e9));
     else if (name == "reject") o.reject = flag(name, value);
     else if (name == "reject-keep") o.reject_keep = num(0.01, 1);
-    else if (name == "neighbours") o.neighbours = static_cast<int>(num(1, 64));
+    else if (name == "neighbours") o.neighbours = static_cast<int>(whole(1, 64));
     else if (name == "vote-weight") o.vote_weight = num(0, 1000);
     else if (name == "vote-smoothing") o.vote_smoothing = num(1e-6, 1e3);
-    else if (name == "exemplars") o.exemplars = static_cast<int>(num(0, 4096));
+    else if (name == "exemplars") o.exemplars = static_cast<int>(whole(0, 4096));
     else if (name == "exemplar-weight") o.exemplar_weight = num(0, 1000);
-    else if (name == "exemplar-dims") o.exemplar_dims = static_cast<int>(num(0, 65535));
+    else if (name == "exemplar-dims") o.exemplar_dims = static_cast<int>(whole(0, 65535));
     else if (name == "no-action-exemplars") o.no_action_exemplars = flag(name, value);
     else if (name == "window") o.window_seconds = num(0.01, 3600);
     else if (name == "step") o.step_seconds = num(0.01, 3600);
     else if (name == "unknown-distance") o.unknown_distance = num(0, 1e30);
-    else if (name == "seed") o.seed = static_cast<std::uint32_t>(num(0, 4294967295.0));
+    else if (name == "seed") o.seed = static_cast<std::uint32_t>(whole(0, 4294967295.0));
     else if (name == "min-action") o.min_action_us = std::llround(num(0, 60) * 1e6);
     else if (name == "latency-budget") o.latency_budget_s = num(0, 60);
     else if (apply_segmenter_setting(name, value, o.online)) return true;
     else if (name == "rate") read.frame_rate_hz = num(0.001, 1e6);
     else if (name == "time-unit") read.time_unit_s = parse_time_unit(value);
-    else if (name == "body") read.body = static_cast<int>(num(0, 63));
+    else if (name == "body") read.body = static_cast<int>(whole(0, 63));
     else if (name == "columns") read.columns = value;
     else if (name == "roles") read.roles = parse_role_names(value);
     else return false;

@@ -338,14 +338,26 @@ void probe_cli(const std::string& cli, const std::string& data, const std::strin
     write_file(work + "/list.tsv", "path\tlabel\tsubject\nmissing.csv\ta\ts\n");
     const std::string utk = data + "/utkinect/joints_s01_e01.txt";
     const std::vector<std::pair<std::string, std::string>> cases{
-        {"info", "info " + work}, {"info", "info " + work + "/absent.bvh"}, {"info", "info " + work + "/empty.csv"},
-        {"info", "info --rate -5 " + utk}, {"info", "info --rate abc " + utk}, {"info", "info"},
+        {"info", "info " + work},
+        {"info", "info " + work + "/absent.bvh"},
+        {"info", "info " + work + "/empty.csv"},
+        {"info", "info --rate -5 " + utk},
+        {"info", "info --rate abc " + utk},
+        {"info", "info"},
         {"train", "train --clips " + work + "/list.tsv --out " + work + "/m.model"},
         {"train", "train --clips " + data + "/hdm05/train.tsv --components 999 --out " + work + "/m.model"},
         {"train", "train --clips " + data + "/hdm05/train.tsv --epsilon -1 --out " + work + "/m.model"},
+        // A fraction where a count is due is refused, not truncated (it used to train with --pca 2).
+        {"train", "train --clips " + data + "/hdm05/train.tsv --no-tune --pca 2.5 --out " + work + "/m.model"},
+        {"train", "train --clips " + data +
+                      "/hdm05/train.tsv --no-tune --exemplars 4 --exemplar-weight 1 "
+                      "--exemplar-dims 99 --out " +
+                      work + "/m.model"},
         {"train", "train --clips " + data + "/hdm05/train.tsv --config " + work + " --out " + work + "/m.model"},
-        {"train", "train --clips " + data + "/hdm05/train.tsv --roles root,lhipjoint,lhipjoint --out " + work + "/m.model"},
-        {"train", "train --clips " + data + "/hdm05/train.tsv --out /nonexistent/dir/m.model --string-rate 1 --sigma 0"},
+        {"train",
+         "train --clips " + data + "/hdm05/train.tsv --roles root,lhipjoint,lhipjoint --out " + work + "/m.model"},
+        {"train",
+         "train --clips " + data + "/hdm05/train.tsv --out /nonexistent/dir/m.model --string-rate 1 --sigma 0"},
         {"codegen", "codegen " + work + "/bad.model --out " + work + "/h.hpp"},
         {"codegen", "codegen " + model_path + " --out " + work + "/h.hpp --namespace a:b"},
         {"codegen", "codegen " + model_path + " --out " + work + "/h.hpp --namespace int"},
@@ -356,15 +368,19 @@ void probe_cli(const std::string& cli, const std::string& data, const std::strin
         {"eval", "eval --model " + model_path + " --clips " + data + "/msr-action3d/test.tsv"},
         {"eval", "eval --model " + model_path + " --clips " + data + "/hdm05/val.tsv --settle 99"},
         {"eval", "eval --model " + model_path + " --clips " + data + "/hdm05/val.tsv --unknown-cost -1"},
+        {"eval", "eval --model " + model_path + " --clips " + data + "/hdm05/val.tsv --seed 1.5"},
         {"annotate", "annotate --model " + model_path + " " + utk},
         {"annotate", "annotate --model " + model_path + " " + work},
         {"annotate", "annotate --model " + model_path + " " + work + "/empty.csv"},
         {"annotate", "annotate --model " + model_path + " --segment-penalty nan " + utk},
         {"annotate", "annotate --model " + model_path},
         {"stream-table", "stream-table --clips " + data + "/hdm05/val.tsv --first 999 --out " + work + "/s.hpp"},
+        {"stream-table", "stream-table --clips " + data + "/hdm05/val.tsv --count 2.5 --out " + work + "/s.hpp"},
+        {"info", "info --up 1.5 " + utk},
         {"stream-table", "stream-table --clips " + data + "/hdm05/val.tsv --namespace 'a b' --out " + work + "/s.hpp"},
         {"interval-list", "interval-list --utkinect " + work + "/empty.csv --out " + work + "/l.tsv"},
-        {"interval-list", "interval-list --utkinect " + data + "/utkinect/actionLabel.txt --subjects s99 --out " + work + "/l.tsv"},
+        {"interval-list",
+         "interval-list --utkinect " + data + "/utkinect/actionLabel.txt --subjects s99 --out " + work + "/l.tsv"},
         {"nonsense", "frobnicate"},
     };
     for (const auto& [command, arguments] : cases) {
