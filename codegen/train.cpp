@@ -63,6 +63,8 @@ void print_train_usage(std::FILE* out) {
                  "  --max-representative-chars N  bound on all representatives' characters, which the\n"
                  "                          segmenter passes over once per character (its cost per\n"
                  "                          frame): clusters keep merging past sigma until they fit [none]\n"
+                 "  --max-representative-share F  the same bound as a share (0 < F < 1) of the characters\n"
+                 "                          sigma's clusters leave: it means the same on lists of any size [none]\n"
                  "  --mirror                also train on every clip mirrored (left and right swapped)\n"
                  "  --pose-joints A,B,...   the joints the model reads (root and hips added); default:\n"
                  "                          an engine rig's body joints (CC_Base, Mixamo, Unreal, Unity\n"
@@ -165,6 +167,7 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
     // settings: the folds train with them, so the choice fits within the bound.
     start.pose_joints = given.pose_joints;
     start.max_representative_chars = given.max_representative_chars;
+    start.max_representative_share = given.max_representative_share;
     start.reject = given.reject;  // the folds learn their bounds too, so the choice is made with them
     start.latency_budget_s = given.latency_budget_s;  // a constraint on the online search
     std::set<std::string> subjects;
@@ -321,7 +324,8 @@ int run_train(int argc, char** argv) {
             if (args.ok() && !apply(args, name, value, options, read)) return args.unknown(arg);
             // Reading, skeleton and cost choices are not tuned settings: self-tuning still runs.
             if (name != "rate" && name != "roles" && name != "pose-joints" && name != "max-representative-chars" &&
-                name != "reject" && name != "reject-keep" && name != "latency-budget")
+                name != "max-representative-share" && name != "reject" && name != "reject-keep" &&
+                name != "latency-budget")
                 settings_given = true;
         } else {
             return args.unknown(arg);
@@ -403,11 +407,14 @@ int run_train(int argc, char** argv) {
         std::printf("representatives:  %d of %d strings, %zu characters (sigma %g, %s, %s normalisation)\n",
                     report.representatives, report.strings, report.representative_chars, options.sigma,
                     variant_name(options.variant), normalization_name(options.normalization));
-        if (options.max_representative_chars > 0)
-            std::printf("                  bounded to %d characters: %s\n", options.max_representative_chars,
+        if (options.max_representative_chars > 0 || options.max_representative_share > 0)
+            std::printf("                  bounded to %zu characters%s: %s\n",
+                        options.max_representative_share > 0
+                            ? report.representative_budget
+                            : static_cast<std::size_t>(options.max_representative_chars),
+                        options.max_representative_share > 0 ? " (the share of sigma's)" : "",
                         report.budget_merge_distance > 0
-                            ? ("clusters merged up to distance " + std::to_string(report.budget_merge_distance))
-                                  .c_str()
+                            ? ("clusters merged up to distance " + std::to_string(report.budget_merge_distance)).c_str()
                             : "sigma already fits");
         for (std::size_t l = 0; l < model.label_names.size(); ++l)
             std::printf("  %-32s %d%s\n", model.label_names[l].c_str(), report.representatives_per_label[l],

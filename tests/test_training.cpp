@@ -340,6 +340,34 @@ TEST_CASE("max_representative_chars bounds the representatives' characters, dete
     options.max_representative_chars = 1;
     CHECK_THROWS_WITH_AS(train_model(train, options, nullptr), doctest::Contains("max-representative-chars 1 is below what one representative per label needs"),
                          std::invalid_argument);
+    // The same bound as a share of what σ leaves: the count it stands for is
+    // recorded, the medoids fit in it, and a count of its own is the same model.
+    options.max_representative_chars = 0;
+    options.max_representative_share = 0.8;
+    TrainingReport shared;
+    const ModelData by_share = train_model(train, options, &shared);
+    const auto allowed =
+        static_cast<std::size_t>(std::ceil(0.8 * static_cast<double>(free_report.representative_chars)));
+    CHECK(shared.representative_budget == allowed);
+    CHECK(shared.representative_chars <= allowed);
+    CHECK(shared.representatives < free_report.representatives);
+    for (int count : shared.representatives_per_label) CHECK(count >= 1);
+    CHECK(serialize_model(train_model(train, options, nullptr)) == serialize_model(by_share));
+    options.max_representative_share = 0.0;
+    options.max_representative_chars = static_cast<int>(allowed);
+    CHECK(serialize_model(train_model(train, options, nullptr)) == serialize_model(by_share));
+    // With both, the tighter binds.
+    options.max_representative_share = 0.8;
+    options.max_representative_chars = static_cast<int>(budget);
+    CHECK(serialize_model(train_model(train, options, nullptr)) ==
+          serialize_model(allowed < budget ? by_share : bounded));
+    // A share too small for one representative per label: a clear error that names it.
+    options.max_representative_chars = 0;
+    options.max_representative_share = 0.01;
+    CHECK_THROWS_WITH_AS(train_model(train, options, nullptr), doctest::Contains("max-representative-share 0.01"),
+                         std::invalid_argument);
+    options.max_representative_share = 1.0;
+    CHECK_THROWS_WITH_AS(train_model(train, options, nullptr), doctest::Contains("below 1"), std::invalid_argument);
 }
 
 TEST_CASE("a label's bound: the J-best bound keeping enough positives, halfway to the next distance") {

@@ -316,6 +316,9 @@ TEST_CASE("counts and indices refuse a fraction rather than truncate it") {
     // Real-valued settings keep their fractions.
     CHECK(apply_training_setting("sigma", "0.75", options, read));
     CHECK(options.sigma == 0.75);
+    CHECK(apply_training_setting("max-representative-share", "0.7", options, read));
+    CHECK(options.max_representative_share == 0.7);
+    CHECK(options_as_config(options).find("max-representative-share 0.7\n") != std::string::npos);
 }
 
 TEST_CASE("yes/no settings take true/false (or on/off, yes/no, 1/0) and refuse anything else") {

@@ -66,6 +66,12 @@ struct TrainingOptions {
     /// "Benchmarks"): clusters keep merging past σ, nearest first, until the
     /// medoids kept fit.
     int max_representative_chars = 0;
+    /// The same bound as a share of the characters σ's clusters leave (0 < F <
+    /// 1; 0: none): merging goes on past σ until the medoids fit in F times
+    /// those. Unlike a count, a share means the same on a list of any size, so
+    /// a config can carry it to other data (and a fold trains as the full list).
+    /// With both, the tighter one binds.
+    double max_representative_share = 0.0;
     // Labelling.
     /// λ: weight of the characters' label votes beside DTW in clip
     /// classification (vote_penalties() in classify.hpp); 0 = DTW alone. 1 was
@@ -124,6 +130,8 @@ struct TrainingReport {
     int characters = 0;
     int strings = 0, representatives = 0;
     std::size_t representative_chars = 0;  ///< Characters of all representatives (the segmenter's cells).
+    /// The characters max_representative_share allowed (0 without one).
+    std::size_t representative_budget = 0;
     /// Distance of the last merge past σ that max_representative_chars asked
     /// for (0: the bound, if any, needed none).
     double budget_merge_distance = 0;

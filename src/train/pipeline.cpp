@@ -27,6 +27,7 @@
 #include "train/pca.hpp"
 #include "train/exemplars.hpp"
 #include "train/rejection.hpp"
+#include "train/settings.hpp"
 
 namespace actionstring {
 namespace host {
@@ -78,6 +79,8 @@ void check_options(const TrainingOptions& o) {
     require(o.exemplars >= 0 && o.exemplars <= 4096, "exemplars per label must be between 0 and 4096");
     require(o.exemplar_weight >= 0 && o.exemplar_weight <= 1000, "the exemplar weight must be between 0 and 1000");
     require(o.exemplar_dims >= 0 && o.exemplar_dims <= 65535, "the exemplars' dimensions must be between 0 and 65535");
+    require(o.max_representative_share >= 0 && o.max_representative_share < 1,
+            "the representatives' share must be at least 0 and below 1");
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
             "the settle delay must be 0 to 60 s");
     require(o.min_action_us >= 0 && o.min_action_us <= 60000000, "the shortest action must be 0 to 60 s");
@@ -378,11 +381,23 @@ std::vector<long> choose_representatives(ModelData& m, const std::vector<Labelle
     // Past σ, the budget merges only clusters of one label, so every label
     // that has a representative keeps one (merging two clusters whose
     // majority is l leaves l the majority).
-    const std::size_t budget = static_cast<std::size_t>(options.max_representative_chars);
+    // A share is of what σ's clusters leave: fixed at the first look past σ
+    // (agglomerate() asks only once σ's merges are done), then a count like any.
+    std::size_t budget = static_cast<std::size_t>(options.max_representative_chars);
+    const double share = options.max_representative_share;
+    bool share_fixed = false;
     ClusterBudget bound;
-    if (budget > 0) {
-        bound.over = [&](const std::vector<std::vector<std::size_t>>& clusters, const std::vector<std::size_t>& medoids) {
-            return medoid_chars(clusters, medoids) > budget;
+    if (budget > 0 || share > 0) {
+        bound.over = [&](const std::vector<std::vector<std::size_t>>& clusters,
+                         const std::vector<std::size_t>& medoids) {
+            const std::size_t chars = medoid_chars(clusters, medoids);
+            if (share > 0 && !share_fixed) {
+                share_fixed = true;
+                const auto of_share = static_cast<std::size_t>(std::ceil(share * static_cast<double>(chars)));
+                budget = budget > 0 ? std::min(budget, of_share) : of_share;
+                r.representative_budget = budget;
+            }
+            return chars > budget;
         };
         bound.may_merge = [&](const std::vector<std::size_t>& a, const std::vector<std::size_t>& b) {
             return majority(a) == majority(b);
@@ -405,7 +420,9 @@ std::vector<long> choose_representatives(ModelData& m, const std::vector<Labelle
     r.representatives = static_cast<int>(m.representative_labels.size());
     r.representative_chars = m.representative_chars.size();
     if (budget > 0 && r.representative_chars > budget)
-        throw std::invalid_argument("max-representative-chars " + std::to_string(budget) +
+        throw std::invalid_argument((share_fixed ? "max-representative-share " + setting_value_text(share) + " (" +
+                                                       std::to_string(budget) + " characters)"
+                                                 : "max-representative-chars " + std::to_string(budget)) +
                                     " is below what one representative per label needs (" +
                                     std::to_string(r.representative_chars) + " characters): raise it");
     if (r.representatives == 0)

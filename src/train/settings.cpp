@@ -151,6 +151,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "sigma") o.sigma = num(0, 1e9);
     else if (name == "keep-singletons") o.keep_singletons = flag(name, value);
     else if (name == "max-representative-chars") o.max_representative_chars = static_cast<int>(whole(0, 1e9));
+    else if (name == "max-representative-share") o.max_representative_share = num(0, 1);
     else if (name == "reject") o.reject = flag(name, value);
     else if (name == "reject-keep") o.reject_keep = num(0.01, 1);
     else if (name == "neighbours") o.neighbours = static_cast<int>(whole(1, 64));
@@ -216,6 +217,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "sigma",
                                                 "keep-singletons",
                                                 "max-representative-chars",
+                                                "max-representative-share",
                                                 "reject",
                                                 "reject-keep",
                                                 "neighbours",

@@ -161,6 +161,8 @@ std::string options_as_config(const TrainingOptions& o) {
         << number(o.online.skip_penalty) << "\nunknown-cost " << number(o.online.unknown_cost) << "\nsegment-votes "
         << number(o.online.vote_weight) << "\nmin-action " << number(us_to_seconds(o.min_action_us)) << "\n";
     if (o.max_representative_chars > 0) out << "max-representative-chars " << o.max_representative_chars << "\n";
+    if (o.max_representative_share > 0)
+        out << "max-representative-share " << number(o.max_representative_share) << "\n";
     if (o.reject) out << "reject true\nreject-keep " << number(o.reject_keep) << "\n";
     if (o.exemplars > 0) out << "exemplars " << o.exemplars << "\nexemplar-weight " << number(o.exemplar_weight) << "\n";
     if (o.exemplars > 0 && o.exemplar_dims > 0) out << "exemplar-dims " << o.exemplar_dims << "\n";
