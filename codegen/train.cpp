@@ -169,6 +169,7 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
     start.max_representative_chars = given.max_representative_chars;
     start.max_representative_share = given.max_representative_share;
     start.reject = given.reject;  // the folds learn their bounds too, so the choice is made with them
+    start.reject_keep = given.reject_keep;
     start.latency_budget_s = given.latency_budget_s;  // a constraint on the online search
     std::set<std::string> subjects;
     for (const host::LabelledClip& c : clips) subjects.insert(c.subject);
