@@ -204,6 +204,12 @@ class Model:
                 f"{self.representative_count} representatives, {self.character_count} characters>")
 
 
+# What `actionstring train` does not count as a tuned setting (codegen/train.cpp): given
+# alone, self-tuning still runs, and its folds train with them.
+_NOT_TUNED = frozenset({"pose_joints", "max_representative_chars", "max_representative_share", "reject",
+                        "reject_keep", "latency_budget"})
+
+
 def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Optional[bool] = None,
           **settings: Any) -> Model:
     """Trains a model on labelled clips with the C++ training pipeline.
@@ -219,7 +225,10 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Opt
     model's ``training_report["online_tuning"]`` then holds that search's table.
     ``latency_budget=S`` (seconds) makes that search keep only online settings
     whose mean detection latency on the folds is at most S, trying shorter
-    settle delays too.
+    settle delays too. As on the command line, the choices that are not tuned
+    settings (``pose_joints``, the cost bounds ``max_representative_chars`` and
+    ``max_representative_share``, ``reject`` and ``reject_keep``, the latency
+    budget) leave self-tuning on: the folds train with them.
     """
     clips = list(clips)
     if not clips:
@@ -229,8 +238,8 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Opt
             raise ValueError(f"train expects Clip objects, got {type(clip).__name__}")
         if not clip.label:
             raise ValueError(f"{clip.source}: no label")
-    if tune is None:  # a latency budget constrains self-tuning: it does not replace it
-        tune = not (settings.keys() - {"latency_budget"}) and config is None
+    if tune is None:  # constraints on self-tuning (as `actionstring train` has them) do not replace it
+        tune = not (settings.keys() - _NOT_TUNED) and config is None
     native, report = _native._train(clips, settings, bool(tune), "" if config is None else os.fspath(config))
     return Model(native, report)
 

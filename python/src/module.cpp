@@ -253,6 +253,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
         py::gil_scoped_acquire acquire;
         report["representatives"] = training.representatives;
         report["representative_chars"] = training.representative_chars;
+        report["representative_budget"] = training.representative_budget;  // what a share allowed (0 without)
         report["characters"] = training.characters;
         report["frames_used"] = training.frames_used;
         report["frames_rejected"] = training.frames_rejected;

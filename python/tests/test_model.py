@@ -92,6 +92,17 @@ def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     assert all(row["detection_latency"] > 0 for row in budgeted["settings"])
 
 
+def test_a_cost_bound_alone_leaves_self_tuning_on(toy_clips):
+    """As on the command line: the bound constrains the search, the folds train with it."""
+    model = actionstring.train(toy_clips, max_representative_share=0.9)
+    report = model.training_report
+    assert "online_tuning" in report
+    assert "max-representative-share 0.9" in report["settings"]
+    assert 0 < report["representative_chars"] <= report["representative_budget"]
+    # A tuned setting given turns tuning off.
+    assert "online_tuning" not in actionstring.train(toy_clips, max_representative_share=0.9, pca=8).training_report
+
+
 def test_settings_are_checked(toy_clips):
     with pytest.raises(ValueError, match="unknown training setting 'pcaa'"):
         actionstring.train(toy_clips, pcaa=3)
