@@ -21,6 +21,7 @@ namespace actionstring {
 namespace cli {
 
 using host::parse_real;
+using host::parse_whole;
 using host::range_text;
 
 /// Runs a command's body; an exception becomes "actionstring CMD: what" on
@@ -56,8 +57,8 @@ public:
     double whole(const std::string& option, double low, double high) {
         const std::string text = value(option);
         if (!ok_) return 0.0;
-        const std::optional<double> v = parse_real(text, low, high);
-        if (!v || *v != std::floor(*v))
+        const std::optional<double> v = parse_whole(text, low, high);
+        if (!v)
             error("option " + option + " expects a whole number in " + range_text(low, high) + ", got '" + text + "'");
         return ok_ ? *v : 0.0;
     }

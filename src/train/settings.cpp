@@ -19,6 +19,12 @@ std::optional<double> parse_real(const std::string& text, double low, double hig
     return v;
 }
 
+std::optional<double> parse_whole(const std::string& text, double low, double high) {
+    const std::optional<double> v = parse_real(text, low, high);
+    if (!v || *v != std::floor(*v)) return std::nullopt;
+    return v;
+}
+
 std::string range_text(double low, double high) {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "[%g, %g]", low, high);
@@ -35,11 +41,10 @@ double number(const std::string& name, const std::string& value, double low, dou
     return *v;
 }
 
-// A count or an index: a number as above that is also whole, so that "--pca 2.5"
-// is refused rather than read as 2.
+// A count or an index (parse_whole()).
 double whole_number(const std::string& name, const std::string& value, double low, double high) {
-    const std::optional<double> v = parse_real(value, low, high);
-    if (!v || *v != std::floor(*v))
+    const std::optional<double> v = parse_whole(value, low, high);
+    if (!v)
         throw std::invalid_argument("option --" + name + " expects a whole number in " + range_text(low, high) +
                                     ", got '" + value + "'");
     return *v;

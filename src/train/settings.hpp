@@ -18,6 +18,9 @@ namespace host {
 
 /// The whole of `text` as a number in [low, high], or nothing.
 std::optional<double> parse_real(const std::string& text, double low, double high);
+/// The same for a count or an index: nothing too when the number has a
+/// fraction (so that "2.5" is refused where a count is due, not truncated).
+std::optional<double> parse_whole(const std::string& text, double low, double high);
 /// "[low, high]" as the messages print a range.
 std::string range_text(double low, double high);
 
