@@ -703,7 +703,8 @@ namespace {
 
 // A model's artifact as an earlier version wrote it: the version line, and
 // none of the fields added since (version 6: the exemplars; 7: the
-// acceleration's weight; 8: the events' shortest action).
+// acceleration's weight; 8: the events' shortest action; 9: the exemplars'
+// dimension; 10: the clip descriptor).
 std::string older_artifact(const ModelData& model, int version) {
     std::string body;
     const std::string fields = serialize_fields(model);
@@ -713,7 +714,8 @@ std::string older_artifact(const ModelData& model, int version) {
         const bool added = (version < 6 && line.find("exemplar") != std::string::npos) ||
                            (version < 7 && line.find("acceleration_weight") != std::string::npos) ||
                            (version < 8 && line.find("min_action_us") != std::string::npos) ||
-                           (version < 9 && line.find("exemplar_dim ") == 0);
+                           (version < 9 && line.find("exemplar_dim ") == 0) ||
+                           (version < 10 && line.find("descriptor") == 0);
         if (!added) body += line;
         at = end;
     }
@@ -725,13 +727,13 @@ std::string older_artifact(const ModelData& model, int version) {
 }  // namespace
 
 TEST_CASE(
-    "version-5 to 8 artifacts (before the exemplars, the acceleration, the shortest action, the exemplars' "
-    "dimension) are read") {
+    "version-5 to 9 artifacts (before the exemplars, the acceleration, the shortest action, the exemplars' "
+    "dimension, the clip descriptor) are read") {
     const ToyWorld world = make_toy_world();
     REQUIRE_FALSE(world.model.view().has_exemplars());
     REQUIRE_FALSE(world.model.view().has_acceleration());
     REQUIRE(world.model.min_action_us == 250000u);  // what a model without the field has
-    for (const int version : {5, 6, 7, 8}) {
+    for (const int version : {5, 6, 7, 8, 9}) {
         CAPTURE(version);
         const std::string old = older_artifact(world.model, version);
         CHECK(serialize_model(parse_model("old.model", old)) == serialize_model(world.model));
@@ -740,7 +742,9 @@ TEST_CASE(
         std::string current = old;
         current.replace(0, std::string("actionstring-model 5").size(),
                         "actionstring-model " + std::to_string(artifact_version));
-        const char* const missing = version < 7 ? "expected 'acceleration_weight'" : "expected 'exemplar_dim'";
+        const char* const missing = version < 7   ? "expected 'acceleration_weight'"
+                                    : version < 9 ? "expected 'exemplar_dim'"
+                                                  : "expected 'descriptor_weight'";
         CHECK_THROWS_WITH_AS(parse_model("new.model", current), doctest::Contains(missing), ReadError);
     }
     // A version-7 model's events keep the runtime's default shortest action.

@@ -20,5 +20,6 @@
 #include "actionstring/matcher.hpp"
 #include "actionstring/classify.hpp"
 #include "actionstring/exemplars.hpp"
+#include "actionstring/descriptor.hpp"
 #include "actionstring/annotator.hpp"
 #include "actionstring/blob.hpp"

@@ -140,6 +140,23 @@ struct ModelView {
     constexpr std::size_t exemplar_dims() const noexcept {
         return exemplar_dim == 0 ? std::size_t{feature_dim} : std::size_t{exemplar_dim};
     }
+    /// Whether clip classification adds the clip descriptor's penalties (descriptor.hpp).
+    constexpr bool has_descriptor() const noexcept {
+        return descriptor_weight > 0.0f && descriptor_levels > 0 && descriptor_weights != nullptr &&
+               descriptor_bias != nullptr;
+    }
+    /// Coordinates of the feature the clip descriptor reads: its first
+    /// descriptor_dim, or all of them.
+    constexpr std::size_t descriptor_dims() const noexcept {
+        return descriptor_dim == 0 ? std::size_t{feature_dim} : std::size_t{descriptor_dim};
+    }
+    /// Floats of one clip descriptor: per part of every level (1 + 2 + … +
+    /// descriptor_levels parts), the part's mean (K) and its covariance's upper
+    /// triangle (K (K + 1) / 2), K = descriptor_dims(); 0 without levels.
+    constexpr std::size_t descriptor_size() const noexcept {
+        return std::size_t{descriptor_levels} * (descriptor_levels + 1u) / 2u *
+               (descriptor_dims() + descriptor_dims() * (descriptor_dims() + 1u) / 2u);
+    }
     /// Whether the exemplars include centres of "no action" (labelled
     /// unknown_label, after every label's): the segmenter then weighs "no
     /// action" by its exemplars too. Learned from the unlabelled stretches of
@@ -212,6 +229,10 @@ constexpr CharacterWeights character_weights(const ModelView& m) noexcept {
 
 /// Most neighbours of the kNN vote (its scratch is on the stack and its work quadratic in k).
 constexpr std::size_t max_neighbours = 64;
+
+/// Most feature coordinates the clip descriptor reads (descriptor.hpp): its
+/// covariances take K (K + 1) / 2 floats a part, so 64 is already 2,080.
+constexpr std::size_t max_descriptor_dims = 64;
 
 /// Smallest string period a model may have (a 1 kHz string rate; the paper's is 12 Hz).
 constexpr std::uint32_t min_string_period_us = 1000;
@@ -436,6 +457,21 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     }
     if (m.exemplar_weight > 0.0f && !(m.exemplar_scale >= 1.0e-12f && m.exemplar_scale <= max_table_value))
         return refuse(problem, "exemplar_scale: not a positive finite mean squared distance");
+    // The clip descriptor: a linear classifier over at most 64 coordinates (its
+    // covariances grow with their square), finite weights.
+    if (!(m.descriptor_weight >= 0.0f && m.descriptor_weight <= 1000.0f))
+        return refuse(problem, "descriptor_weight: negative, non-finite or beyond 1000");
+    if (m.descriptor_levels > 8) return refuse(problem, "descriptor_levels: more than 8");
+    if (m.descriptor_dim > m.feature_dim) return refuse(problem, "descriptor_dim: more than feature_dim");
+    if (m.descriptor_levels > 0) {
+        if (m.descriptor_dims() == 0 || m.descriptor_dims() > max_descriptor_dims)
+            return refuse(problem, "descriptor_dim: the descriptor reads 1 to 64 coordinates");
+        if (!detail::all_within(m.descriptor_weights, std::size_t{m.label_count} * m.descriptor_size(),
+                                -max_table_value, max_table_value))
+            return refuse(problem, "descriptor_weights: missing, non-finite or beyond 1e6");
+        if (!detail::all_within(m.descriptor_bias, m.label_count, -max_table_value, max_table_value))
+            return refuse(problem, "descriptor_bias: missing, non-finite or beyond 1e6");
+    }
     // Matching.
     if (m.variant > MatchVariant::subsequence) return refuse(problem, "variant: unknown");
     if (m.normalization > LengthNormalization::query) return refuse(problem, "normalization: unknown");

@@ -107,6 +107,15 @@
     COUNT(std::uint16_t, exemplar_count, exemplar_labels)                                                 \
     TABLE(LabelId, exemplar_labels, m.exemplar_count, 0, 65535) /* each centre's label */                 \
     TABLE(float, exemplars, std::size_t{m.exemplar_count} * m.exemplar_dims(), 0, 0) /* exemplar_dims() each */ \
+    /* the clip descriptor (design §1.8): a temporal pyramid of the clip's feature means and        */ \
+    /* covariances (descriptor.hpp), scored per label by a linear classifier fitted by ridge        */ \
+    /* regression; descriptor_weight times each label's shortfall from the best score joins the votes */ \
+    SCALAR(float, descriptor_weight, 0.0f, 0, 0)           /* 0 = none */                                 \
+    SCALAR(std::uint8_t, descriptor_levels, 0, 0, 8)       /* level v cuts the clip in v parts; 0 = none */ \
+    SCALAR(std::uint16_t, descriptor_dim, 0, 0, 65535)     /* the feature's leading coordinates; 0 = all */ \
+    /* label by label, descriptor_size() weights each (the training standardisation folded in) */      \
+    TABLE(float, descriptor_weights, std::size_t{m.label_count} * m.descriptor_size(), 0, 0)               \
+    TABLE(float, descriptor_bias, (m.descriptor_levels > 0 ? m.label_count : 0u), 0, 0)                   \
     /* --- online settings of the segmenter (design §1.8), chosen at training --- */                      \
     SCALAR(std::uint32_t, settle_delay_us, 2000000, 0, 600000000) /* a character's label is final then */ \
     SCALAR(float, segment_penalty, 3.0f, 0, 0)             /* cost of starting another segment */         \

@@ -70,6 +70,27 @@ def test_exemplars_of_the_feature_s_leading_coordinates(toy_clips):
         actionstring.train(toy_clips, **dict(TOY_SETTINGS, exemplars=8, exemplar_weight=1.0, exemplar_dims=9))
 
 
+def test_the_clip_descriptor(toy_clips):
+    # A pyramid of two levels over 4 of the 8 coordinates: (1 + 2) parts of 4 + 10 floats, per label.
+    described = actionstring.train(
+        toy_clips, **dict(TOY_SETTINGS, descriptor_levels=2, descriptor_dims=4, descriptor_ridge=10.0,
+                          descriptor_weight=1.0))
+    plain = actionstring.train(toy_clips, **TOY_SETTINGS)
+    artifact = described._native.artifact()
+    assert "\ndescriptor_levels 2\n" in artifact and "\ndescriptor_dim 4\n" in artifact
+    labels = len(described.label_names)
+    assert described.table_bytes - plain.table_bytes == (labels * 3 * 14 + labels) * 4
+    assert "descriptor-levels 2" in described.training_report["settings"]
+    assert "descriptor-ridge 10" in described.training_report["settings"]
+    kept = sum(described.classify(c).label == c.label for c in toy_clips)
+    assert kept >= 0.9 * len(toy_clips)
+    with pytest.raises(ValueError, match="dimensions"):
+        actionstring.train(toy_clips, **dict(TOY_SETTINGS, descriptor_levels=2, descriptor_dims=9,
+                                              descriptor_weight=1.0))
+    with pytest.raises(ValueError, match="clip descriptor"):
+        actionstring.train(toy_clips, **dict(TOY_SETTINGS, descriptor_levels=2, descriptor_weight=1.0, reject=True))
+
+
 def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     """With no settings, train() tunes as `actionstring train` does: clip settings, then online ones."""
     model = actionstring.train(toy_clips)

@@ -3,6 +3,7 @@
 
 #include <limits>
 
+#include "actionstring/descriptor.hpp"
 #include "actionstring/exemplars.hpp"
 #include "run/encode.hpp"
 
@@ -10,7 +11,8 @@ namespace actionstring {
 namespace host {
 
 Classification classify_string(const ModelView& model, const std::vector<Character>& string,
-                               const std::vector<std::size_t>& excluded, const float* exemplar_sums) {
+                               const std::vector<std::size_t>& excluded, const float* exemplar_sums,
+                               const float* descriptor) {
     const std::size_t R = model.representative_count;
     std::vector<float> distances(R, detail::infinity());
     if (!string.empty()) {
@@ -34,7 +36,19 @@ Classification classify_string(const ModelView& model, const std::vector<Charact
         exemplar_penalties(model, exemplar_sums, string.size(), more.data());
         for (std::size_t l = 0; l < penalties.size(); ++l) penalties[l] += more[l];
     }
-    return classify_distances(model, distances.data(), model.has_votes() || exemplars ? penalties.data() : nullptr);
+    const bool described = model.has_descriptor() && descriptor != nullptr;
+    if (described)
+        for (std::size_t l = 0; l < penalties.size(); ++l) penalties[l] += descriptor[l];
+    return classify_distances(model, distances.data(),
+                              model.has_votes() || exemplars || described ? penalties.data() : nullptr);
+}
+
+std::vector<float> clip_descriptor_penalties(const ModelView& model, const std::vector<float>& features) {
+    std::vector<float> penalties(model.label_count, 0.0f);
+    if (!model.has_descriptor() || model.feature_dim == 0) return penalties;
+    std::vector<float> scratch(model.descriptor_size());
+    descriptor_penalties(model, features.data(), features.size() / model.feature_dim, scratch.data(), penalties.data());
+    return penalties;
 }
 
 std::vector<float> exemplar_rows(const ModelView& model, const std::vector<float>& features) {
@@ -63,9 +77,10 @@ std::vector<float> exemplar_sums(const ModelView& model, const std::vector<float
 }
 
 Classification classify_clip(const ModelView& model, const Clip& clip) {
-    const EncodedClip encoded = encode_clip(model, clip, model.has_exemplars());
+    const EncodedClip encoded = encode_clip(model, clip, model.has_exemplars() || model.has_descriptor());
     const std::vector<float> sums = exemplar_sums(model, encoded.features);
-    return classify_string(model, encoded.string, {}, sums.data());
+    const std::vector<float> described = clip_descriptor_penalties(model, encoded.features);
+    return classify_string(model, encoded.string, {}, sums.data(), described.data());
 }
 
 double clip_accuracy(const ModelView& model, const std::vector<LabelledClip>& clips) {

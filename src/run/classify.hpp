@@ -20,8 +20,15 @@ namespace host {
 /// clip against those made from other people's clips).
 /// `exemplar_sums`, when given, holds label_count floats: exemplar_sums()
 /// of the string's features, whose penalties (exemplars.hpp) join the votes.
+/// `descriptor`, when given, holds label_count floats: the clip descriptor's
+/// penalties of the string's features (clip_descriptor_penalties()), which join them too.
 Classification classify_string(const ModelView& model, const std::vector<Character>& string,
-                               const std::vector<std::size_t>& excluded = {}, const float* exemplar_sums = nullptr);
+                               const std::vector<std::size_t>& excluded = {}, const float* exemplar_sums = nullptr,
+                               const float* descriptor = nullptr);
+
+/// The runtime's descriptor_penalties() of a clip's features (feature_dim
+/// floats per character): label_count floats, all 0 without a descriptor.
+std::vector<float> clip_descriptor_penalties(const ModelView& model, const std::vector<float>& features);
 
 /// Per label, the sum over `features` (feature_dim floats each) of the
 /// runtime's exemplar_distances(): label_count floats, all 0 without exemplars.
@@ -37,7 +44,8 @@ std::vector<float> exemplar_rows(const ModelView& model, const std::vector<float
 /// exemplar_sums() of the features the rows came from, bit for bit.
 std::vector<float> sum_exemplar_rows(const std::vector<float>& rows, std::size_t label_count);
 
-/// A clip classified as a model says: its string, and with exemplars its features too.
+/// A clip classified as a model says: its string, and with exemplars or a
+/// clip descriptor its features too.
 Classification classify_clip(const ModelView& model, const Clip& clip);
 
 /// Fraction of clips whose predicted label name equals their label.

@@ -95,6 +95,15 @@ struct TrainingOptions {
     /// from the unlabelled stretches (at most `exemplars` of them), which the
     /// segmenter weighs against the labels' (segment-exemplars).
     bool no_action_exemplars = true;
+    /// The clip descriptor (descriptor.hpp): a temporal pyramid of
+    /// `descriptor_levels` levels over the features' first `descriptor_dims`
+    /// coordinates (0 = all, at most 64), scored by ridge regression with
+    /// penalty `descriptor_ridge`; its penalties join the votes in clip
+    /// classification with weight `descriptor_weight`. Levels 0: none.
+    int descriptor_levels = 0;
+    int descriptor_dims = 0;
+    double descriptor_ridge = 1000.0;
+    double descriptor_weight = 0.0;
     int neighbours = 1;
     double window_seconds = 2.0;
     double step_seconds = 0.5;

@@ -25,6 +25,7 @@
 #include "train/clustering.hpp"
 #include "train/gmm_order.hpp"
 #include "train/pca.hpp"
+#include "train/descriptor.hpp"
 #include "train/exemplars.hpp"
 #include "train/rejection.hpp"
 #include "train/settings.hpp"
@@ -79,6 +80,16 @@ void check_options(const TrainingOptions& o) {
     require(o.exemplars >= 0 && o.exemplars <= 4096, "exemplars per label must be between 0 and 4096");
     require(o.exemplar_weight >= 0 && o.exemplar_weight <= 1000, "the exemplar weight must be between 0 and 1000");
     require(o.exemplar_dims >= 0 && o.exemplar_dims <= 65535, "the exemplars' dimensions must be between 0 and 65535");
+    require(o.descriptor_levels >= 0 && o.descriptor_levels <= 8, "the descriptor's levels must be between 0 and 8");
+    require(o.descriptor_dims >= 0 && o.descriptor_dims <= 64, "the descriptor's dimensions must be between 0 and 64");
+    require(o.descriptor_ridge > 0 && o.descriptor_ridge <= 1e9, "the descriptor's ridge must be above 0, at most 1e9");
+    require(o.descriptor_weight >= 0 && o.descriptor_weight <= 1000,
+            "the descriptor weight must be between 0 and 1000");
+    // Learned rejection measures distances without the descriptor's penalties (its synthetic
+    // negatives splice strings and exemplar rows; a spliced clip's pyramid is another clip's).
+    require(!(o.reject && o.descriptor_levels > 0 && o.descriptor_weight > 0),
+            "learned rejection (reject) does not take the clip descriptor into account yet: "
+            "train with one or the other");
     require(o.max_representative_share >= 0 && o.max_representative_share < 1,
             "the representatives' share must be at least 0 and below 1");
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
@@ -613,10 +624,11 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
     stage.start("encoding the training strings");
     m.string_period_us = static_cast<std::uint32_t>(std::lround(1e6 / options.string_rate_hz));
     const bool exemplars = options.exemplars > 0 && options.exemplar_weight > 0;
+    const bool descriptor = options.descriptor_levels > 0 && options.descriptor_weight > 0;
     std::vector<std::vector<Character>> strings;
-    std::vector<std::vector<float>> string_features;  // with exemplars: each character's feature
+    std::vector<std::vector<float>> string_features;  // with exemplars or a descriptor: each character's feature
     for (const LabelledClip& c : clips) {
-        EncodedClip encoded = encode_clip(m.view(), c.clip, exemplars);
+        EncodedClip encoded = encode_clip(m.view(), c.clip, exemplars || descriptor);
         strings.push_back(std::move(encoded.string));
         string_features.push_back(std::move(encoded.features));
     }
@@ -653,6 +665,13 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
         set_exemplars(m, labelled, feature_labels, static_cast<std::size_t>(options.exemplars),
                       static_cast<std::size_t>(options.exemplar_dims), options.exemplar_weight, options.seed);
         stage.finish("exemplars");
+    }
+    if (descriptor) {
+        stage.start("fitting the clip descriptor");
+        set_descriptor(m, string_features, labels, static_cast<std::size_t>(options.descriptor_levels),
+                       static_cast<std::size_t>(options.descriptor_dims), options.descriptor_ridge,
+                       options.descriptor_weight);
+        stage.finish("descriptor");
     }
 
     set_matching(m, options, r.representatives);

@@ -166,6 +166,10 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "exemplar-weight") o.exemplar_weight = num(0, 1000);
     else if (name == "exemplar-dims") o.exemplar_dims = static_cast<int>(whole(0, 65535));
     else if (name == "no-action-exemplars") o.no_action_exemplars = flag(name, value);
+    else if (name == "descriptor-levels") o.descriptor_levels = static_cast<int>(whole(0, 8));
+    else if (name == "descriptor-dims") o.descriptor_dims = static_cast<int>(whole(0, 64));
+    else if (name == "descriptor-ridge") o.descriptor_ridge = num(1e-6, 1e9);
+    else if (name == "descriptor-weight") o.descriptor_weight = num(0, 1000);
     else if (name == "window") o.window_seconds = num(0.01, 3600);
     else if (name == "step") o.step_seconds = num(0.01, 3600);
     else if (name == "unknown-distance") o.unknown_distance = num(0, 1e30);
@@ -232,6 +236,10 @@ const std::vector<std::string>& training_setting_names() {
                                                 "exemplar-weight",
                                                 "exemplar-dims",
                                                 "no-action-exemplars",
+                                                "descriptor-levels",
+                                                "descriptor-dims",
+                                                "descriptor-ridge",
+                                                "descriptor-weight",
                                                 "window",
                                                 "step",
                                                 "unknown-distance",

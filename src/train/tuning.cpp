@@ -167,6 +167,11 @@ std::string options_as_config(const TrainingOptions& o) {
     if (o.exemplars > 0) out << "exemplars " << o.exemplars << "\nexemplar-weight " << number(o.exemplar_weight) << "\n";
     if (o.exemplars > 0 && o.exemplar_dims > 0) out << "exemplar-dims " << o.exemplar_dims << "\n";
     if (o.exemplars > 0 && !o.no_action_exemplars) out << "no-action-exemplars false\n";
+    if (o.descriptor_levels > 0 && o.descriptor_weight > 0) {
+        out << "descriptor-levels " << o.descriptor_levels << "\ndescriptor-weight " << number(o.descriptor_weight)
+            << "\ndescriptor-ridge " << number(o.descriptor_ridge) << "\n";
+        if (o.descriptor_dims > 0) out << "descriptor-dims " << o.descriptor_dims << "\n";
+    }
     if (o.online.exemplar_weight > 0) out << "segment-exemplars " << number(o.online.exemplar_weight) << "\n";
     if (!o.pose_joints.empty()) {
         out << "pose-joints ";

@@ -1,0 +1,30 @@
+// actionstring host library — training's clip descriptor: a linear classifier
+// over each training clip's temporal pyramid of feature means and covariances,
+// fitted by ridge regression (design.md §1.8, descriptor.hpp).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "model/model_data.hpp"
+
+namespace actionstring {
+namespace host {
+
+/// Sets the model's clip descriptor from the training clips' features:
+/// `features[i]` holds clip i's (feature_dim floats per character, from
+/// encode_clip()), `labels[i]` its label (clips labelled unknown_label are
+/// left out). Each clip's descriptor is the runtime's clip_descriptor() over
+/// `levels` levels and the features' first `dims` coordinates (0 = all, at
+/// most max_descriptor_dims); every coordinate is standardised over the
+/// clips, and one ridge regression per label (target +1 for its clips, −1
+/// for the others, an unpenalised intercept, penalty `ridge` on the squared
+/// weights) gives its scores. The standardisation is folded into the stored
+/// weights and bias. `levels` 0 or `weight` 0: none. Deterministic.
+/// Throws std::invalid_argument for dims beyond the feature or 64, levels
+/// beyond 8, a non-positive ridge, or fewer than two labelled clips.
+void set_descriptor(ModelData& m, const std::vector<std::vector<float>>& features, const std::vector<LabelId>& labels,
+                    std::size_t levels, std::size_t dims, double ridge, double weight);
+
+}  // namespace host
+}  // namespace actionstring
