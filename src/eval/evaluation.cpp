@@ -32,24 +32,35 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
     {  // The classifier's rejection of synthetic non-actions made from these clips
         // (with exemplars, each character's exemplar distances spliced and warped
         // with it, and summed as classify_clip() sums a clip's).
+        // With a clip descriptor, the same negatives' features (the same seed makes the same
+        // splices and warps) give their descriptor's penalties, as classify_clip() adds them.
         const std::size_t L = view.label_count;
-        const bool exemplars = view.has_exemplars();
+        const bool exemplars = view.has_exemplars(), described = view.has_descriptor();
         std::vector<std::vector<Character>> strings;
-        std::vector<std::vector<float>> rows;
+        std::vector<std::vector<float>> rows, features;
         std::vector<LabelId> labels;
         const std::vector<std::string> names = name_strings(view.label_names, view.label_count);
         for (const LabelledClip& c : e.clips) {
             const auto at = std::find(names.begin(), names.end(), c.label);
             if (at == names.end()) continue;
-            EncodedClip encoded = encode_clip(view, c.clip, exemplars);
+            EncodedClip encoded = encode_clip(view, c.clip, exemplars || described);
             strings.push_back(std::move(encoded.string));
             rows.push_back(exemplar_rows(view, encoded.features));
+            features.push_back(std::move(encoded.features));
             labels.push_back(static_cast<LabelId>(at - names.begin()));
         }
-        for (const SyntheticNegative& n :
-             synthetic_negatives(strings, labels, seed, exemplars ? &rows : nullptr, exemplars ? L : 0)) {
+        const std::vector<SyntheticNegative> negatives =
+            synthetic_negatives(strings, labels, seed, exemplars ? &rows : nullptr, exemplars ? L : 0);
+        const std::vector<SyntheticNegative> spliced_features =
+            described ? synthetic_negatives(strings, labels, seed, &features, view.feature_dim)
+                      : std::vector<SyntheticNegative>{};
+        for (std::size_t k = 0; k < negatives.size(); ++k) {
+            const SyntheticNegative& n = negatives[k];
             const std::vector<float> sums = sum_exemplar_rows(n.rows, L);
-            const Classification c = classify_string(view, n.string, {}, exemplars ? sums.data() : nullptr);
+            const std::vector<float> penalties =
+                described ? clip_descriptor_penalties(view, spliced_features[k].rows) : std::vector<float>{};
+            const Classification c = classify_string(view, n.string, {}, exemplars ? sums.data() : nullptr,
+                                                     described ? penalties.data() : nullptr);
             if (n.own != unknown_label && c.nearest_label == n.own) continue;  // still its own action
             ++e.synthetic_negatives;
             e.synthetic_unknown += c.label == unknown_label;
