@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,13 @@ TEST_CASE("self-tuning is deterministic and keeps a setting only when its folds 
     for (const TuningStep& step : a.steps) tried_acceleration |= step.setting == "acceleration 0.5";
     CHECK(tried_acceleration);
     CHECK(config.find("\nacceleration ") != std::string::npos);
+    // The clip descriptor is searched (two weights over three levels) and echoed when kept.
+    int descriptor_steps = 0;
+    for (const TuningStep& step : a.steps)
+        descriptor_steps +=
+            step.setting.rfind("descriptor-levels 3, descriptor-ridge 3000, descriptor-weight ", 0) == 0;
+    CHECK(descriptor_steps == 2);
+    CHECK((config.find("descriptor-levels 3\n") != std::string::npos) == (a.options.descriptor_levels == 3));
     // The toy skeleton has parents: size is normalised by the torso, never searched.
     CHECK(a.options.scale_mode == actionstring::ScaleMode::torso);
     CHECK(config.find("scale torso\n") != std::string::npos);
@@ -299,8 +307,9 @@ TEST_CASE("the events' shortest action: the shortest within one standard error o
 TEST_CASE("counts and indices refuse a fraction rather than truncate it") {
     TrainingOptions options;
     ReadOptions read;
-    for (const char* name : {"components", "pca", "em-iterations", "em-restarts", "max-characters",
-                             "max-representative-chars", "neighbours", "exemplars", "exemplar-dims", "seed", "body"}) {
+    for (const char* name :
+         {"components", "pca", "em-iterations", "em-restarts", "max-characters", "max-representative-chars",
+          "neighbours", "exemplars", "exemplar-dims", "descriptor-levels", "descriptor-dims", "seed", "body"}) {
         CAPTURE(name);
         CHECK_THROWS_WITH_AS(apply_training_setting(name, "2.5", options, read),
                              doctest::Contains("expects a whole number"), std::invalid_argument);
@@ -319,6 +328,26 @@ TEST_CASE("counts and indices refuse a fraction rather than truncate it") {
     CHECK(apply_training_setting("max-representative-share", "0.7", options, read));
     CHECK(options.max_representative_share == 0.7);
     CHECK(options_as_config(options).find("max-representative-share 0.7\n") != std::string::npos);
+    // The clip descriptor's settings go into the config a user keeps, and come back from it.
+    CHECK(apply_training_setting("descriptor-ridge", "3000", options, read));
+    CHECK(apply_training_setting("descriptor-weight", "24", options, read));
+    const std::string config = options_as_config(options);
+    for (const char* line :
+         {"descriptor-levels 3\n", "descriptor-dims 3\n", "descriptor-ridge 3000\n", "descriptor-weight 24\n"})
+        CHECK(config.find(line) != std::string::npos);
+    TrainingOptions back;
+    std::istringstream lines(config);
+    for (std::string line; std::getline(lines, line);) {
+        const std::size_t space = line.find(' ');
+        if (space != std::string::npos)
+            apply_training_setting(line.substr(0, space), line.substr(space + 1), back, read);
+    }
+    CHECK(back.descriptor_levels == 3);
+    CHECK(back.descriptor_dims == 3);
+    CHECK(back.descriptor_ridge == 3000.0);
+    CHECK(back.descriptor_weight == 24.0);
+    CHECK_THROWS_AS(apply_training_setting("descriptor-dims", "65", options, read), std::invalid_argument);
+    CHECK_THROWS_AS(apply_training_setting("descriptor-levels", "9", options, read), std::invalid_argument);
 }
 
 TEST_CASE("yes/no settings take true/false (or on/off, yes/no, 1/0) and refuse anything else") {
