@@ -355,7 +355,27 @@ TEST_CASE(
         if (with.label == without.label && with.representative == without.representative)
             CHECK(with.distance == doctest::Approx(without.distance + penalties[with.label]));
     }
-    // Learned rejection does not take the descriptor into account yet: refused, with the reason.
+    // Learned rejection with the descriptor: each sample's penalties measured by
+    // a descriptor fitted without its subjects, as its representatives leave
+    // them out. The positives are kept, held-out clips still recognised, and
+    // the bounds reach the distances classify_clip() compares (penalties included).
     options.reject = true;
-    CHECK_THROWS_WITH_AS(train_model(train, options), doctest::Contains("clip descriptor"), std::invalid_argument);
+    TrainingReport report;
+    const ModelData rejecting = train_model(train, options, &report);
+    const ModelView rview = rejecting.view();
+    REQUIRE(validate_model(rview) == Status::ok);
+    REQUIRE(rview.has_descriptor());
+    REQUIRE(rview.has_label_bounds == 1);
+    for (const LabelBoundReport& b : report.label_bounds) {
+        CHECK(b.positives > 0);
+        CHECK(b.negatives > 0);
+        CHECK(b.positives_kept >= options.reject_keep);
+    }
+    CHECK(serialize_model(train_model(train, options)) == serialize_model(rejecting));  // deterministic
+    CHECK(clip_accuracy(rview, held_out) >= 0.8);
+    // The same bounds learned without the descriptor's penalties differ: they take part.
+    TrainingOptions plain = options;
+    plain.descriptor_levels = 0;
+    const ModelData without = train_model(train, plain);
+    CHECK(without.label_bounds != rejecting.label_bounds);
 }

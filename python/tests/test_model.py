@@ -87,8 +87,11 @@ def test_the_clip_descriptor(toy_clips):
     with pytest.raises(ValueError, match="dimensions"):
         actionstring.train(toy_clips, **dict(TOY_SETTINGS, descriptor_levels=2, descriptor_dims=9,
                                               descriptor_weight=1.0))
-    with pytest.raises(ValueError, match="clip descriptor"):
-        actionstring.train(toy_clips, **dict(TOY_SETTINGS, descriptor_levels=2, descriptor_weight=1.0, reject=True))
+    # Learned rejection measures the descriptor's penalties too.
+    rejecting = actionstring.train(toy_clips, **dict(TOY_SETTINGS, descriptor_levels=2, descriptor_weight=1.0,
+                                                     reject=True))
+    assert "\nhas_label_bounds 1\n" in rejecting._native.artifact()
+    assert "\ndescriptor_levels 2\n" in rejecting._native.artifact()
 
 
 def test_self_tuning_chooses_the_online_settings_too(toy_clips):

@@ -85,11 +85,6 @@ void check_options(const TrainingOptions& o) {
     require(o.descriptor_ridge > 0 && o.descriptor_ridge <= 1e9, "the descriptor's ridge must be above 0, at most 1e9");
     require(o.descriptor_weight >= 0 && o.descriptor_weight <= 1000,
             "the descriptor weight must be between 0 and 1000");
-    // Learned rejection measures distances without the descriptor's penalties (its synthetic
-    // negatives splice strings and exemplar rows; a spliced clip's pyramid is another clip's).
-    require(!(o.reject && o.descriptor_levels > 0 && o.descriptor_weight > 0),
-            "learned rejection (reject) does not take the clip descriptor into account yet: "
-            "train with one or the other");
     require(o.max_representative_share >= 0 && o.max_representative_share < 1,
             "the representatives' share must be at least 0 and below 1");
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
@@ -545,9 +540,47 @@ void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips, cons
         for (std::size_t i = 0; i < stretches.size(); ++i)
             rows.no_action.push_back(rows_of(stretches[i].features, (*no_action)[i].subject));
     }
-    const std::vector<float> bounds =
-        learn_label_bounds(view, strings, labels, subjects, own_representative, stretch_strings, options.reject_keep,
-                           options.seed, &r.label_bounds, exemplars ? &rows : nullptr);
+    // With a clip descriptor, one fitted without the subjects a sample was made
+    // from (one subject for a clip or a stretch, two for a spliced pair), each
+    // fitted once, when first asked for.
+    const bool described = view.has_descriptor();
+    DescriptorSamples descriptor;
+    std::map<std::set<std::string>, ModelData> descriptor_folds;
+    if (described) {
+        const std::set<std::string> distinct(subjects.begin(), subjects.end());
+        auto penalties_without = [&](const std::vector<float>& features, std::set<std::string> left) {
+            if (distinct.size() < 2) return clip_descriptor_penalties(view, features);  // one subject: its own
+            auto fold = descriptor_folds.find(left);
+            if (fold == descriptor_folds.end()) {
+                std::vector<std::vector<float>> kept;
+                std::vector<LabelId> kept_labels;
+                for (std::size_t i = 0; i < clips.size(); ++i)
+                    if (left.count(subjects[i]) == 0)
+                        kept.push_back(string_features[i]), kept_labels.push_back(labels[i]);
+                ModelData fitted;
+                fitted.feature_dim = m.feature_dim;
+                fitted.label_names = m.label_names;
+                if (kept.size() >= 2)  // else none: no opinion
+                    set_descriptor(fitted, kept, kept_labels, static_cast<std::size_t>(options.descriptor_levels),
+                                   static_cast<std::size_t>(options.descriptor_dims), options.descriptor_ridge,
+                                   options.descriptor_weight);
+                fold = descriptor_folds.emplace(std::move(left), std::move(fitted)).first;
+            }
+            return clip_descriptor_penalties(fold->second.view(), features);
+        };
+        descriptor.strings = string_features;
+        for (const EncodedClip& stretch : stretches) descriptor.no_action.push_back(stretch.features);
+        descriptor.width = m.feature_dim;
+        descriptor.of_strings = [&](const std::vector<float>& features, std::size_t first, std::size_t second) {
+            return penalties_without(features, {subjects[first], subjects[second]});
+        };
+        descriptor.of_stretch = [&](const std::vector<float>& features, std::size_t stretch) {
+            return penalties_without(features, {(*no_action)[stretch].subject});
+        };
+    }
+    const std::vector<float> bounds = learn_label_bounds(
+        view, strings, labels, subjects, own_representative, stretch_strings, options.reject_keep, options.seed,
+        &r.label_bounds, exemplars ? &rows : nullptr, described ? &descriptor : nullptr);
     m.label_bounds = bounds;
     m.has_label_bounds = 1;
 }
@@ -640,7 +673,7 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
         for (const LabelledClip& stretch : *no_action) {
             Clip clip = stretch.clip;
             conform_to_model(m.view(), clip);
-            stretches.push_back(encode_clip(m.view(), clip, exemplars));
+            stretches.push_back(encode_clip(m.view(), clip, exemplars || descriptor));
         }
     stage.finish("training strings");
 

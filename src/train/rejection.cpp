@@ -74,6 +74,7 @@ std::vector<T> slower(const std::vector<T>& a, std::size_t n, std::size_t w) {
 struct Sample {
     std::vector<Character> string;
     std::vector<float> rows;            // its exemplar rows (with exemplars)
+    std::vector<float> descriptor;      // its descriptor's penalties (with a clip descriptor)
     std::vector<std::size_t> excluded;  // representatives left out (its subjects')
     LabelId own = unknown_label;        // positives: the true label; warped clips: the label they may land on
     bool positive = false;
@@ -121,7 +122,7 @@ std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<
                                       const std::vector<long>& own_representative,
                                       const std::vector<std::vector<Character>>& no_action, double keep,
                                       std::uint32_t seed, std::vector<LabelBoundReport>* report,
-                                      const ExemplarRows* rows) {
+                                      const ExemplarRows* rows, const DescriptorSamples* descriptor) {
     if (strings.size() != labels.size() || strings.size() != subjects.size() ||
         strings.size() != own_representative.size())
         throw std::invalid_argument("learn_label_bounds: one label, subject and representative per string");
@@ -136,6 +137,16 @@ std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<
                 throw std::invalid_argument(
                     "learn_label_bounds: a stretch's exemplar rows are not label_count per character");
     }
+    const bool described = descriptor != nullptr && model.has_descriptor();
+    if (described) {
+        if (descriptor->strings.size() != strings.size() || descriptor->no_action.size() != no_action.size() ||
+            !descriptor->of_strings || !descriptor->of_stretch)
+            throw std::invalid_argument("learn_label_bounds: one set of features per string, and what measures them");
+        for (std::size_t i = 0; i < strings.size(); ++i)
+            if (descriptor->strings[i].size() != strings[i].size() * descriptor->width)
+                throw std::invalid_argument(
+                    "learn_label_bounds: a string's features are not feature_dim per character");
+    }
     // What a string made from clip i is measured without: the representatives
     // made from its subject's clips, or with one subject only its own.
     const bool one_subject = std::all_of(subjects.begin(), subjects.end(),
@@ -148,30 +159,49 @@ std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<
     std::vector<Sample> samples;
     for (std::size_t i = 0; i < strings.size(); ++i) {
         if (strings[i].empty()) continue;
-        samples.push_back({strings[i], exemplars ? rows->strings[i] : std::vector<float>{}, {}, labels[i], true});
+        samples.push_back({strings[i],
+                           exemplars ? rows->strings[i] : std::vector<float>{},
+                           described ? descriptor->of_strings(descriptor->strings[i], i, i) : std::vector<float>{},
+                           {},
+                           labels[i],
+                           true});
         left_out(i, samples.back().excluded);
     }
-    for (SyntheticNegative& n :
-         synthetic_negatives(strings, labels, seed, exemplars ? &rows->strings : nullptr, exemplars ? L : 0)) {
-        samples.push_back({std::move(n.string), std::move(n.rows), {}, n.own, false});
+    // The negatives' features are cut and repeated as their characters are (the
+    // same seed gives the same splices, so the k-th of each list is one negative).
+    std::vector<SyntheticNegative> synthetic =
+        synthetic_negatives(strings, labels, seed, exemplars ? &rows->strings : nullptr, exemplars ? L : 0);
+    const std::vector<SyntheticNegative> negative_features =
+        described ? synthetic_negatives(strings, labels, seed, &descriptor->strings, descriptor->width)
+                  : std::vector<SyntheticNegative>{};
+    for (std::size_t k = 0; k < synthetic.size(); ++k) {
+        SyntheticNegative& n = synthetic[k];
+        samples.push_back(
+            {std::move(n.string),
+             std::move(n.rows),
+             described ? descriptor->of_strings(negative_features[k].rows, n.first, n.second) : std::vector<float>{},
+             {},
+             n.own,
+             false});
         left_out(n.first, samples.back().excluded);
         if (n.second != n.first) left_out(n.second, samples.back().excluded);
     }
     for (std::size_t i = 0; i < no_action.size(); ++i)
         if (!no_action[i].empty())
-            samples.push_back(
-                {no_action[i], exemplars ? rows->no_action[i] : std::vector<float>{}, {}, unknown_label, false});
+            samples.push_back({no_action[i],
+                               exemplars ? rows->no_action[i] : std::vector<float>{},
+                               described ? descriptor->of_stretch(descriptor->no_action[i], i) : std::vector<float>{},
+                               {},
+                               unknown_label,
+                               false});
 
     // Classify every sample with the runtime's code, bounds off; each on its own, so any order gives the same.
     // With exemplars, a sample's rows summed in order (as exemplar_sums() sums a clip's distances).
     std::vector<Classification> results(samples.size());
     parallel_for(samples.size(), hardware_workers(), [&](std::size_t k) {
-        if (!exemplars) {
-            results[k] = classify_string(model, samples[k].string, samples[k].excluded);
-            return;
-        }
-        const std::vector<float> sums = sum_exemplar_rows(samples[k].rows, L);
-        results[k] = classify_string(model, samples[k].string, samples[k].excluded, sums.data());
+        const std::vector<float> sums = exemplars ? sum_exemplar_rows(samples[k].rows, L) : std::vector<float>{};
+        results[k] = classify_string(model, samples[k].string, samples[k].excluded, exemplars ? sums.data() : nullptr,
+                                     described ? samples[k].descriptor.data() : nullptr);
     });
     std::vector<std::vector<float>> positives(L), negatives(L);
     for (std::size_t k = 0; k < samples.size(); ++k) {

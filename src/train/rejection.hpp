@@ -25,6 +25,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <functional>
 #include <vector>
 
 #include "actionstring/model.hpp"
@@ -50,20 +51,39 @@ struct ExemplarRows {
     std::vector<std::vector<float>> no_action;  ///< per string of no action, likewise
 };
 
+/// With a clip descriptor (descriptor.hpp): each string's features, so that a
+/// synthetic negative splices and warps them with its characters, and what
+/// measures a sample's descriptor penalties. Training fits the descriptor
+/// without the subjects a sample was made from (as the representatives it is
+/// compared with leave them out).
+struct DescriptorSamples {
+    std::vector<std::vector<float>> strings;    ///< per training string: its features, feature_dim per character
+    std::vector<std::vector<float>> no_action;  ///< per string of no action, likewise
+    std::size_t width = 0;                      ///< feature_dim
+    /// label_count penalties of `features`, made from training strings `first`
+    /// and `second` (the same for one string's), fitted without their subjects.
+    std::function<std::vector<float>(const std::vector<float>& features, std::size_t first, std::size_t second)>
+        of_strings;
+    /// The same for stretch `stretch` of no action, fitted without its subject.
+    std::function<std::vector<float>(const std::vector<float>& features, std::size_t stretch)> of_stretch;
+};
+
 /// Learns label_count bounds for `model` (complete but for the bounds; its own
 /// has_label_bounds is ignored). `strings[i]` is training clip i's string,
 /// `labels[i]` its label, `subjects[i]` its performer, `own_representative[i]`
 /// the representative made from it (or −1); `no_action` holds strings of
 /// stretches that are no action (may be empty). `keep` in (0, 1]. With
 /// `rows` (a model with exemplars), each sample's summed rows join its
-/// classification as the exemplars' penalties, as classify_clip() does.
+/// classification as the exemplars' penalties, as classify_clip() does; with
+/// `descriptor` (a model with a clip descriptor), its descriptor's penalties do too.
 /// Deterministic for a seed, on any number of cores.
 std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<std::vector<Character>>& strings,
                                       const std::vector<LabelId>& labels, const std::vector<std::string>& subjects,
                                       const std::vector<long>& own_representative,
                                       const std::vector<std::vector<Character>>& no_action, double keep,
                                       std::uint32_t seed, std::vector<LabelBoundReport>* report = nullptr,
-                                      const ExemplarRows* rows = nullptr);
+                                      const ExemplarRows* rows = nullptr,
+                                      const DescriptorSamples* descriptor = nullptr);
 
 /// A synthetic string that is no performance of a label: a spliced pair of
 /// halves (`own` unknown_label: no label fits it), or a clip at twice or half
