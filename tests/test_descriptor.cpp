@@ -23,6 +23,7 @@
 #include "toy_options.hpp"
 #include "train/descriptor.hpp"
 #include "train/pipeline.hpp"
+#include "train/rejection.hpp"
 
 using namespace actionstring;
 using namespace actionstring::host;
@@ -71,6 +72,12 @@ TEST_CASE("descriptor: each part's mean and covariance, by hand") {
     expected.insert(expected.end(), first.begin(), first.end());
     expected.insert(expected.end(), second.begin(), second.end());
     CHECK(out == expected);  // exact: every value is a small integer over a power of two
+    // A negative covariance keeps its sign: x rising while y falls.
+    const std::vector<float> opposed = {0, 2, 0,  //
+                                        2, 0, 0};
+    std::vector<float> one_part(descriptor_part_size(2));
+    clip_descriptor(opposed.data(), 2, 3, 2, 1, one_part.data());
+    CHECK(one_part == std::vector<float>{1, 1, 1, -1, 1});  // covariance xx 1, xy −1, yy 1
     // The coordinates past `dims` are never read.
     std::vector<float> changed = features;
     for (std::size_t t = 0; t < 4; ++t) changed[t * 3 + 2] = std::numeric_limits<float>::quiet_NaN();
@@ -373,9 +380,43 @@ TEST_CASE(
     }
     CHECK(serialize_model(train_model(train, options)) == serialize_model(rejecting));  // deterministic
     CHECK(clip_accuracy(rview, held_out) >= 0.8);
-    // The same bounds learned without the descriptor's penalties differ: they take part.
-    TrainingOptions plain = options;
-    plain.descriptor_levels = 0;
-    const ModelData without = train_model(train, plain);
-    CHECK(without.label_bounds != rejecting.label_bounds);
+    // Each sample's descriptor penalties reach its distance: the same strings with
+    // penalties that only push the synthetic negatives (spliced pairs and warped
+    // clips) further away give bounds at least as large, and larger for some label.
+    std::vector<std::vector<Character>> strings;
+    std::vector<LabelId> labels;
+    std::vector<std::string> subjects;
+    DescriptorSamples samples;
+    samples.width = rview.feature_dim;
+    for (const LabelledClip& c : train) {
+        EncodedClip encoded = encode_clip(rview, c.clip, true);
+        strings.push_back(encoded.string);
+        samples.strings.push_back(encoded.features);
+        labels.push_back(
+            static_cast<LabelId>(std::find(rejecting.label_names.begin(), rejecting.label_names.end(), c.label) -
+                                 rejecting.label_names.begin()));
+        subjects.push_back(c.subject);
+    }
+    const std::vector<long> none(strings.size(), -1);
+    std::size_t calls = 0;
+    samples.of_stretch = [&](const std::vector<float>&, std::size_t) { return std::vector<float>(rview.label_count); };
+    samples.of_strings = [&](const std::vector<float>& features, std::size_t first, std::size_t) {
+        ++calls;
+        const bool own = features == samples.strings[first];  // a training clip as it is: a positive
+        return std::vector<float>(rview.label_count, own ? 0.0f : 50.0f);
+    };
+    const std::vector<float> pushed =
+        learn_label_bounds(rview, strings, labels, subjects, none, {}, 0.95, 1, nullptr, nullptr, &samples);
+    samples.of_strings = [&](const std::vector<float>&, std::size_t, std::size_t) {
+        return std::vector<float>(rview.label_count, 0.0f);
+    };
+    const std::vector<float> flat =
+        learn_label_bounds(rview, strings, labels, subjects, none, {}, 0.95, 1, nullptr, nullptr, &samples);
+    CHECK(calls >= 3 * strings.size());  // every positive and every negative (one spliced, two warped per string)
+    bool larger = false;
+    for (std::size_t l = 0; l < flat.size(); ++l) {
+        CHECK(pushed[l] >= flat[l]);
+        larger |= pushed[l] > flat[l];
+    }
+    CHECK(larger);
 }
