@@ -1,6 +1,7 @@
 // Writes the fuzz_model seeds: the toy world's model artifact, whole and as a
 // bare body (which the target gives a valid checksum), with full and diagonal
-// covariance, and one with the characters' votes; with BLOB_DIR also the fuzz_blob seeds, the same models as blobs.
+// covariance, one with the characters' votes and one with a clip descriptor; with BLOB_DIR also the
+// fuzz_blob seeds, the same models as blobs.
 //   actionstring_fuzz_model_seed OUT_DIR [BLOB_DIR]
 #include <cmath>
 #include <cstdio>
@@ -39,5 +40,18 @@ int main(int argc, char** argv) {
     write_file(out + "/votes.model", serialize_model(voting.model));
     write_file(out + "/votes_body.txt", serialize_fields(voting.model));
     if (argc == 3) write_file(std::string(argv[2]) + "/votes.blob", write_blob(voting.model));
+    // With a clip descriptor (two levels over three coordinates; weights small and varied), so
+    // the fuzzers reach its fields and the sizes its tables derive from them.
+    ToyWorld described = make_toy_world();
+    described.model.descriptor_weight = 1.0f;
+    described.model.descriptor_levels = 2;
+    described.model.descriptor_dim = 3;
+    const std::size_t size = described.model.view().descriptor_size();
+    for (std::size_t k = 0; k < described.model.label_names.size() * size; ++k)
+        described.model.descriptor_weights.push_back(static_cast<float>(k % 7) * 0.125f - 0.375f);
+    described.model.descriptor_bias.assign(described.model.label_names.size(), 0.5f);
+    write_file(out + "/descriptor.model", serialize_model(described.model));
+    write_file(out + "/descriptor_body.txt", serialize_fields(described.model));
+    if (argc == 3) write_file(std::string(argv[2]) + "/descriptor.blob", write_blob(described.model));
     return 0;
 }
