@@ -543,31 +543,31 @@ void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips, cons
     // With a clip descriptor, one fitted without the subjects a sample was made
     // from (one subject for a clip or a stretch, two for a spliced pair), each
     // fitted once, when first asked for.
+    // Everything the callbacks below refer to lives until learn_label_bounds() returns.
     const bool described = view.has_descriptor();
     DescriptorSamples descriptor;
     std::map<std::set<std::string>, ModelData> descriptor_folds;
+    const std::set<std::string> distinct(subjects.begin(), subjects.end());
+    auto penalties_without = [&](const std::vector<float>& features, std::set<std::string> left) {
+        if (distinct.size() < 2) return clip_descriptor_penalties(view, features);  // one subject: its own
+        auto fold = descriptor_folds.find(left);
+        if (fold == descriptor_folds.end()) {
+            std::vector<std::vector<float>> kept;
+            std::vector<LabelId> kept_labels;
+            for (std::size_t i = 0; i < clips.size(); ++i)
+                if (left.count(subjects[i]) == 0) kept.push_back(string_features[i]), kept_labels.push_back(labels[i]);
+            ModelData fitted;
+            fitted.feature_dim = m.feature_dim;
+            fitted.label_names = m.label_names;
+            if (kept.size() >= 2)  // else none: no opinion
+                set_descriptor(fitted, kept, kept_labels, static_cast<std::size_t>(options.descriptor_levels),
+                               static_cast<std::size_t>(options.descriptor_dims), options.descriptor_ridge,
+                               options.descriptor_weight);
+            fold = descriptor_folds.emplace(std::move(left), std::move(fitted)).first;
+        }
+        return clip_descriptor_penalties(fold->second.view(), features);
+    };
     if (described) {
-        const std::set<std::string> distinct(subjects.begin(), subjects.end());
-        auto penalties_without = [&](const std::vector<float>& features, std::set<std::string> left) {
-            if (distinct.size() < 2) return clip_descriptor_penalties(view, features);  // one subject: its own
-            auto fold = descriptor_folds.find(left);
-            if (fold == descriptor_folds.end()) {
-                std::vector<std::vector<float>> kept;
-                std::vector<LabelId> kept_labels;
-                for (std::size_t i = 0; i < clips.size(); ++i)
-                    if (left.count(subjects[i]) == 0)
-                        kept.push_back(string_features[i]), kept_labels.push_back(labels[i]);
-                ModelData fitted;
-                fitted.feature_dim = m.feature_dim;
-                fitted.label_names = m.label_names;
-                if (kept.size() >= 2)  // else none: no opinion
-                    set_descriptor(fitted, kept, kept_labels, static_cast<std::size_t>(options.descriptor_levels),
-                                   static_cast<std::size_t>(options.descriptor_dims), options.descriptor_ridge,
-                                   options.descriptor_weight);
-                fold = descriptor_folds.emplace(std::move(left), std::move(fitted)).first;
-            }
-            return clip_descriptor_penalties(fold->second.view(), features);
-        };
         descriptor.strings = string_features;
         for (const EncodedClip& stretch : stretches) descriptor.no_action.push_back(stretch.features);
         descriptor.width = m.feature_dim;
