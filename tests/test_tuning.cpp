@@ -78,12 +78,12 @@ TEST_CASE("self-tuning is deterministic and keeps a setting only when its folds 
     for (const TuningStep& step : a.steps) tried_acceleration |= step.setting == "acceleration 0.5";
     CHECK(tried_acceleration);
     CHECK(config.find("\nacceleration ") != std::string::npos);
-    // The clip descriptor is searched (two weights over three levels) and echoed when kept.
+    // The clip descriptor is searched (three weights over three levels) and echoed when kept.
     int descriptor_steps = 0;
     for (const TuningStep& step : a.steps)
         descriptor_steps +=
             step.setting.rfind("descriptor-levels 3, descriptor-ridge 3000, descriptor-weight ", 0) == 0;
-    CHECK(descriptor_steps == 2);
+    CHECK(descriptor_steps == 3);
     CHECK((config.find("descriptor-levels 3\n") != std::string::npos) == (a.options.descriptor_levels == 3));
     // The toy skeleton has parents: size is normalised by the torso, never searched.
     CHECK(a.options.scale_mode == actionstring::ScaleMode::torso);
