@@ -41,6 +41,7 @@
 #include "train/gmm_em.hpp"
 #include "train/pca.hpp"
 #include "train/pipeline.hpp"
+#include "train/settings.hpp"
 #include "actionstring_port.hpp"
 #include "hdm05_model.hpp"
 #include "synthetic_model.hpp"
@@ -556,6 +557,52 @@ int main(int argc, char** argv) {
     measure_model("committed hdm05 (no GMM)", actionstring_hdm05::kModel, stream, passes, report, memory_md, tables_md);
     measure_model("hdm05 J=20", model20.view(), stream, passes, report, memory_md, tables_md);
     measure_model("hdm05 J=40", model40.view(), stream, passes, report, memory_md, tables_md);
+    {
+        // The clip descriptor (descriptor.hpp), which only whole-clip classification
+        // pays: hdm05-accurate.config's model (no GMM, PCA 24, its descriptor: three
+        // levels over 24 coordinates, 11 labels), each validation clip's pyramid and
+        // penalties timed once per pass from its characters' features.
+        host::TrainingOptions accurate;
+        host::ReadOptions read;
+        host::read_training_config(std::string(ACTIONSTRING_SOURCE_DIR) + "/models/hdm05-accurate.config", accurate,
+                                   read);
+        const host::ModelData described = host::train_model(training, accurate, nullptr);
+        const ModelView view = described.view();
+        std::vector<std::vector<float>> features;
+        std::size_t characters = 0;
+        for (const host::Clip& clip : clips) {
+            features.push_back(host::encode_clip(view, clip, true).features);
+            characters += features.back().size() / view.feature_dim;
+        }
+        std::vector<float> scratch(view.descriptor_size()), penalties(view.label_count);
+        std::vector<std::int64_t> per_clip;
+        long allocations = 0;
+        for (int pass = 0; pass <= passes; ++pass) {
+            g_allocations = 0;
+            for (const std::vector<float>& f : features) {
+                const std::int64_t ns = timed([&] {
+                    g_counting.store(true, std::memory_order_relaxed);
+                    descriptor_penalties(view, f.data(), f.size() / view.feature_dim, scratch.data(), penalties.data());
+                    g_counting.store(false, std::memory_order_relaxed);
+                });
+                g_sink = static_cast<std::uint32_t>(penalties[0] > 1.0f);
+                if (pass > 0) per_clip.push_back(ns);
+            }
+            if (pass > 0) allocations += g_allocations.load();
+        }
+        char what[160];
+        std::snprintf(what, sizeof what,
+                      "stage: clip descriptor, pyramid and penalties (per clip, %zu floats, %zu labels)",
+                      view.descriptor_size(), static_cast<std::size_t>(view.label_count));
+        report.latency.push_back({"hdm05, hdm05-accurate.config", what, summarize(per_clip)});
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "hdm05-accurate.config's clip descriptor: the %zu validation clips average %.1f characters; heap "
+                      "allocations during %d timed passes: %ld",
+                      clips.size(), static_cast<double>(characters) / static_cast<double>(clips.size()), passes,
+                      allocations);
+        report.notes.push_back(line);
+    }
 
     std::vector<ScalingPoint> points;
     if (scaling) {
