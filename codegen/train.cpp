@@ -428,6 +428,15 @@ int run_train(int argc, char** argv) {
                         report.representatives_per_label[l] == 0
                             ? "   <- no representative: this class cannot be recognised"
                             : "");
+        if (view.has_exemplars())
+            std::printf("exemplars:        %u centres in %zu of the feature's coordinates, weight %g\n",
+                        view.exemplar_count, view.exemplar_dims(), static_cast<double>(view.exemplar_weight));
+        if (view.has_descriptor())
+            std::printf(
+                "clip descriptor:  %u levels over %zu coordinates, %zu weights per label (ridge %g), "
+                "weight %g\n",
+                view.descriptor_levels, view.descriptor_dims(), view.descriptor_size(), options.descriptor_ridge,
+                static_cast<double>(view.descriptor_weight));
         if (!report.label_bounds.empty()) {
             std::printf("rejection:        each label's bound, from its held-out training clips (positives) and\n"
                         "                  what lands on it but is not it (negatives; keep >= %g of positives):\n",
