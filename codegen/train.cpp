@@ -190,8 +190,8 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
                  "%zu subjects (--no-tune to skip)\n",
                  subjects.size());
     const host::TuningResult tuned = host::tune_training(clips, start, [](const host::TuningStep& step) {
-        std::fprintf(stderr, "train:   %-28s fold mean %.3f%s\n", step.setting.c_str(), step.mean_accuracy,
-                     step.kept ? "  <- kept" : "");
+        std::fprintf(stderr, "train:   %-28s fold mean %.3f  margin %+.3f%s\n", step.setting.c_str(),
+                     step.mean_accuracy, step.mean_margin, step.kept ? "  <- kept" : "");
     });
     std::printf(
         "tuning:           %zu settings tried in %.0f s; folds of the choice (chosen on them, so optimistic):\n",

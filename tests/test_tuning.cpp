@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "eval/online.hpp"
+#include "run/classify.hpp"
 #include "toy/toy.hpp"
 #include "train/cross_validation.hpp"
 #include "train/online_tuning.hpp"
@@ -46,22 +47,28 @@ TEST_CASE("self-tuning is deterministic and keeps a setting only when its folds 
     CHECK(options_as_config(a.options) == options_as_config(b.options));
     REQUIRE(a.steps.size() == b.steps.size());
     REQUIRE(a.steps.size() > 10);
-    double best = -1.0;
+    double best = -1.0, best_margin = -2.0;
     int kept = 0;
     for (std::size_t i = 0; i < a.steps.size(); ++i) {
         CAPTURE(a.steps[i].setting);
         CHECK(a.steps[i].mean_accuracy == b.steps[i].mean_accuracy);
+        CHECK(a.steps[i].mean_margin == b.steps[i].mean_margin);
         CHECK(a.steps[i].kept == b.steps[i].kept);
+        // A signed margin: within [−1, 1], and positive when every clip is right.
+        CHECK(a.steps[i].mean_margin >= -1.0);
+        CHECK(a.steps[i].mean_margin <= 1.0);
+        if (a.steps[i].mean_accuracy == 1.0) CHECK(a.steps[i].mean_margin > 0.0);
+        const bool ties = std::fabs(a.steps[i].mean_accuracy - best) <= 1e-9;
         if (a.steps[i].kept) {
             ++kept;
-            // The exemplars' dimension only saves work: a tie keeps it too.
-            if (a.steps[i].setting.rfind("exemplar-dims", 0) == 0)
-                CHECK(a.steps[i].mean_accuracy >= best);
-            else
-                CHECK(a.steps[i].mean_accuracy > best);
+            // Better folds, or folds as good by a wider margin; the exemplars'
+            // dimension only saves work, and a tie keeps it too.
+            if (a.steps[i].setting.rfind("exemplar-dims", 0) == 0) CHECK((a.steps[i].mean_accuracy > best || ties));
+            else CHECK((a.steps[i].mean_accuracy > best + 1e-9 || (ties && a.steps[i].mean_margin > best_margin)));
             best = a.steps[i].mean_accuracy;
+            best_margin = a.steps[i].mean_margin;
         } else {
-            CHECK(a.steps[i].mean_accuracy <= best);
+            CHECK((a.steps[i].mean_accuracy < best - 1e-9 || (ties && a.steps[i].mean_margin <= best_margin)));
         }
     }
     CHECK(kept >= 2);  // the search moved off its starting point
@@ -71,8 +78,12 @@ TEST_CASE("self-tuning is deterministic and keeps a setting only when its folds 
     for (const char* line : {"components 0\n", "keep-singletons true\n", "variant whole\n"})
         CHECK(config.find(line) != std::string::npos);
     // Exemplars of half the feature's coordinates are tried only where there are exemplars.
-    CHECK(a.options.exemplars == 0);
-    for (const TuningStep& step : a.steps) CHECK(step.setting.rfind("exemplar-dims", 0) == std::string::npos);
+    bool exemplars_kept = false, dims_tried = false;
+    for (const TuningStep& step : a.steps) {
+        if (step.setting.rfind("exemplars 64", 0) == 0) exemplars_kept |= step.kept;
+        dims_tried |= step.setting.rfind("exemplar-dims", 0) == 0;
+    }
+    CHECK(dims_tried == exemplars_kept);
     // The acceleration's weight is searched and echoed with the rest.
     bool tried_acceleration = false;
     for (const TuningStep& step : a.steps) tried_acceleration |= step.setting == "acceleration 0.5";
@@ -125,6 +136,47 @@ TEST_CASE("self-tuning tries exemplars of half the feature's coordinates, and ke
     // A model trained with the choice keeps that many coordinates per centre.
     const ModelData model = train_model(clips, a.options);
     CHECK(model.exemplar_dim == a.options.exemplar_dims);
+}
+
+TEST_CASE("a fold's margin: its held-out clips' confidence, signed by whether each is right") {
+    ToyWorld world = make_toy_world();
+    const std::vector<LabelledClip> clips = noisy_clips(world, 2);
+    TrainingOptions options = tuning_start();
+    options.pca_dim = 8;  // the toy's pose has 15 coordinates
+    const std::vector<FoldResult> folds = cross_validate(clips, options);
+    REQUIRE(folds.size() == 2);
+    std::vector<LabelledClip> train, held;
+    for (const LabelledClip& c : clips) (c.subject == "toy0" ? held : train).push_back(c);
+    const ModelData model = train_model(train, options);
+    const actionstring::ModelView view = model.view();
+    double signed_sum = 0;
+    std::size_t right = 0;
+    for (const LabelledClip& c : held) {
+        const actionstring::Classification k = classify_clip(view, c.clip);
+        const bool correct = k.label != actionstring::unknown_label && view.label_names[k.label] == c.label;
+        right += correct;
+        signed_sum += correct ? k.confidence : -static_cast<double>(k.confidence);
+    }
+    const ClipScore score = clip_score(view, held);
+    CHECK(score.accuracy == doctest::Approx(static_cast<double>(right) / static_cast<double>(held.size())));
+    CHECK(score.accuracy == clip_accuracy(view, held));
+    CHECK(score.margin == doctest::Approx(signed_sum / static_cast<double>(held.size())));
+    CHECK(folds[0].subject == "toy0");
+    CHECK(folds[0].margin == doctest::Approx(score.margin));
+    CHECK(mean_margin(folds) == doctest::Approx((folds[0].margin + folds[1].margin) / 2));
+    // Every clip given a label the model does not predict: nothing right, and
+    // the margin is minus the mean confidence of the (wrong) winners.
+    std::vector<LabelledClip> wrong = held;
+    double confidence_sum = 0;
+    for (LabelledClip& c : wrong) {
+        const actionstring::Classification k = classify_clip(view, c.clip);
+        c.label = "not an action of the model";
+        confidence_sum += k.confidence;
+    }
+    const ClipScore none_right = clip_score(view, wrong);
+    CHECK(none_right.accuracy == 0.0);
+    CHECK(none_right.margin == doctest::Approx(-confidence_sum / static_cast<double>(wrong.size())));
+    CHECK(none_right.margin < 0.0);
 }
 
 TEST_CASE("cross-validation needs two subjects") {

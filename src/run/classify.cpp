@@ -83,14 +83,24 @@ Classification classify_clip(const ModelView& model, const Clip& clip) {
     return classify_string(model, encoded.string, {}, sums.data(), described.data());
 }
 
-double clip_accuracy(const ModelView& model, const std::vector<LabelledClip>& clips) {
-    if (clips.empty()) return 0.0;
+ClipScore clip_score(const ModelView& model, const std::vector<LabelledClip>& clips) {
+    ClipScore score;
+    if (clips.empty()) return score;
     std::size_t right = 0;
+    double margin = 0;
     for (const LabelledClip& c : clips) {
         const Classification result = classify_clip(model, c.clip);
-        right += result.label != unknown_label && c.label == model.label_names[result.label];
+        const bool correct = result.label != unknown_label && c.label == model.label_names[result.label];
+        right += correct;
+        margin += correct ? result.confidence : -static_cast<double>(result.confidence);
     }
-    return static_cast<double>(right) / static_cast<double>(clips.size());
+    score.accuracy = static_cast<double>(right) / static_cast<double>(clips.size());
+    score.margin = margin / static_cast<double>(clips.size());
+    return score;
+}
+
+double clip_accuracy(const ModelView& model, const std::vector<LabelledClip>& clips) {
+    return clip_score(model, clips).accuracy;
 }
 
 long nearest_string(const std::vector<Character>& query, const std::vector<std::vector<Character>>& references,

@@ -48,6 +48,16 @@ std::vector<float> sum_exemplar_rows(const std::vector<float>& rows, std::size_t
 /// clip descriptor its features too.
 Classification classify_clip(const ModelView& model, const Clip& clip);
 
+/// How a model does on labelled clips: the fraction right, and the mean
+/// signed margin, a clip's Classification::confidence when it is right and
+/// minus it when it is wrong (0 when unknown). The margin tells settings apart
+/// where every clip is right (self-tuning at a list's ceiling).
+struct ClipScore {
+    double accuracy = 0;
+    double margin = 0;
+};
+ClipScore clip_score(const ModelView& model, const std::vector<LabelledClip>& clips);
+
 /// Fraction of clips whose predicted label name equals their label.
 double clip_accuracy(const ModelView& model, const std::vector<LabelledClip>& clips);
 

@@ -39,7 +39,8 @@ std::vector<FoldResult> cross_validate(const std::vector<LabelledClip>& clips, c
         const ModelData model = train_model(train, quiet, &report);
         std::string name;
         for (const std::string& s : held) name += (name.empty() ? "" : "+") + s;
-        folds[k] = {name, held_out.size(), clip_accuracy(model.view(), held_out), report.representatives};
+        const ClipScore score = clip_score(model.view(), held_out);
+        folds[k] = {name, held_out.size(), score.accuracy, report.representatives, score.margin};
     });
     return folds;
 }
@@ -47,6 +48,12 @@ std::vector<FoldResult> cross_validate(const std::vector<LabelledClip>& clips, c
 double mean_accuracy(const std::vector<FoldResult>& folds) {
     double sum = 0;
     for (const FoldResult& f : folds) sum += f.clip_accuracy;
+    return folds.empty() ? 0.0 : sum / static_cast<double>(folds.size());
+}
+
+double mean_margin(const std::vector<FoldResult>& folds) {
+    double sum = 0;
+    for (const FoldResult& f : folds) sum += f.margin;
     return folds.empty() ? 0.0 : sum / static_cast<double>(folds.size());
 }
 

@@ -19,6 +19,7 @@ struct FoldResult {
     std::size_t clips = 0;
     double clip_accuracy = 0;
     int representatives = 0;
+    double margin = 0;  ///< Mean signed margin of the held-out clips (ClipScore).
 };
 
 /// The subjects of `clips` in folds: one fold per subject, or with more
@@ -40,6 +41,9 @@ std::vector<FoldResult> cross_validate(const std::vector<LabelledClip>& clips, c
 
 /// Mean clip accuracy over the folds (each fold weighs the same).
 double mean_accuracy(const std::vector<FoldResult>& folds);
+
+/// Mean signed margin over the folds (each fold weighs the same).
+double mean_margin(const std::vector<FoldResult>& folds);
 
 }  // namespace host
 }  // namespace actionstring
