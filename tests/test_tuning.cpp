@@ -211,8 +211,20 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     options.pca_dim = 6;
     const OnlineTuningResult a = tune_online(clips, options);
     const OnlineTuningResult b = tune_online(clips, options);
-    REQUIRE(a.steps.size() == 6);  // segment votes 0 / 0.1 / 0.25 × segment penalty 1 / 3; no recordings
+    // Stay and skip penalties 0.3 (the options') / 0.1 × segment votes 0 / 0.1 / 0.25
+    // × segment penalty 1 / 3; no recordings.
+    REQUIRE(a.steps.size() == 12);
     REQUIRE(b.steps.size() == a.steps.size());
+    for (std::size_t i = 0; i < a.steps.size(); ++i) {
+        const float warp = i < 6 ? options.online.stay_penalty : online_tuning_warp;
+        CHECK(a.steps[i].config.stay_penalty == warp);
+        CHECK(a.steps[i].config.skip_penalty == (i < 6 ? options.online.skip_penalty : online_tuning_warp));
+        CHECK((a.steps[i].settings.find("stay-penalty ") != std::string::npos));
+    }
+    // Options already at the second warp try it once.
+    TrainingOptions warped = options;
+    warped.online.stay_penalty = warped.online.skip_penalty = online_tuning_warp;
+    CHECK(tune_online(clips, warped).steps.size() == 6);
     std::size_t kept = 0;
     for (std::size_t i = 0; i < a.steps.size(); ++i) {
         CHECK(a.steps[i].segment_f1 == b.steps[i].segment_f1);
@@ -222,6 +234,8 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
         ++kept;
         CHECK(a.chosen.vote_weight == a.steps[i].config.vote_weight);
         CHECK(a.chosen.segment_penalty == a.steps[i].config.segment_penalty);
+        CHECK(a.chosen.stay_penalty == a.steps[i].config.stay_penalty);
+        CHECK(a.chosen.skip_penalty == a.steps[i].config.skip_penalty);
         for (const OnlineTuningStep& other : a.steps) CHECK(other.segment_f1 <= a.steps[i].segment_f1);
     }
     CHECK(kept == 1);

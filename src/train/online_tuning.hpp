@@ -59,6 +59,10 @@ constexpr std::int64_t min_action_candidates_us[] = {250000, 500000, 750000, 100
 /// the folds can tell from noise. Returns its index (0 when `steps` is empty).
 std::size_t one_standard_error_choice(const std::vector<MinActionStep>& steps);
 
+/// The stay and skip penalties tried beside the options' own (both at once):
+/// the explanation's time warping made cheaper.
+constexpr float online_tuning_warp = 0.1f;
+
 /// Orders in which a held-out subject's clips are joined (evaluate_online()'s
 /// seeds 1, 2, …): which actions end up side by side moves a stream's segment
 /// F1 by a few hundredths, as much as the settings compared do, so each
@@ -73,7 +77,8 @@ constexpr int online_tuning_orders = 3;
 /// and centres, and "no action" needs no flat cost).
 /// Tries the characters' votes in the explanation (segment-votes 0, 0.1, 0.25),
 /// the segment penalty (1, 3), with exemplars in `options` their weight in the
-/// explanation (segment-exemplars 0, 0.1, and 0.2 with recordings) and, with
+/// explanation (segment-exemplars 0, 0.1, and 0.2 with recordings), the stay
+/// and skip penalties (options.online's, and online_tuning_warp each) and, with
 /// recordings, the flat unknown cost (0, 0.2; with exemplars 0, 0.05, 0.2), the
 /// rest as in `options.online`; keeps the best mean segment F1 (ties: frame
 /// accuracy, then the earlier, simpler settings). Then, with those settings on
