@@ -403,15 +403,34 @@ TEST_CASE("synthetic negatives: spliced halves of two labels, each clip faster a
         rows.emplace_back();
         for (const Character c : string) rows.back().insert(rows.back().end(), {static_cast<float>(c), -1.0f});
     }
-    for (const SyntheticNegative& n : synthetic_negatives(strings, labels, 7, &rows, 2)) {
-        REQUIRE(n.rows.size() == 2 * n.string.size());
+    // Several sets of rows (three floats each in the second), each cut as the characters are.
+    std::vector<std::vector<float>> wide;
+    for (const auto& string : strings) {
+        wide.emplace_back();
+        for (const Character c : string)
+            wide.back().insert(wide.back().end(), {-static_cast<float>(c), 0.5f, static_cast<float>(c) * 2.0f});
+    }
+    const auto with_rows = synthetic_negatives(strings, labels, 7, {{&rows, 2}, {&wide, 3}});
+    REQUIRE(with_rows.size() == negatives.size());
+    for (std::size_t k = 0; k < with_rows.size(); ++k) {
+        const SyntheticNegative& n = with_rows[k];
+        CHECK(n.string == negatives[k].string);  // the same cuts with rows or without
+        CHECK(negatives[k].rows.empty());
+        REQUIRE(n.rows.size() == 2);
+        REQUIRE(n.rows[0].size() == 2 * n.string.size());
+        REQUIRE(n.rows[1].size() == 3 * n.string.size());
         for (std::size_t t = 0; t < n.string.size(); ++t) {
-            CHECK(n.rows[2 * t] == static_cast<float>(n.string[t]));
-            CHECK(n.rows[2 * t + 1] == -1.0f);
+            CHECK(n.rows[0][2 * t] == static_cast<float>(n.string[t]));
+            CHECK(n.rows[0][2 * t + 1] == -1.0f);
+            CHECK(n.rows[1][3 * t] == -static_cast<float>(n.string[t]));
+            CHECK(n.rows[1][3 * t + 1] == 0.5f);
+            CHECK(n.rows[1][3 * t + 2] == static_cast<float>(n.string[t]) * 2.0f);
         }
     }
+    CHECK_THROWS_AS(synthetic_negatives(strings, labels, 7, {{&rows, 3}}), std::invalid_argument);
+    CHECK_THROWS_AS(synthetic_negatives(strings, labels, 7, {{nullptr, 2}}), std::invalid_argument);
     rows[1].pop_back();
-    CHECK_THROWS_AS(synthetic_negatives(strings, labels, 7, &rows, 2), std::invalid_argument);
+    CHECK_THROWS_AS(synthetic_negatives(strings, labels, 7, {{&rows, 2}}), std::invalid_argument);
 }
 
 TEST_CASE("learned rejection: the toy world's performances kept, what is none of them unknown, deterministic") {

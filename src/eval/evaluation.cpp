@@ -32,8 +32,8 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
     {  // The classifier's rejection of synthetic non-actions made from these clips
         // (with exemplars, each character's exemplar distances spliced and warped
         // with it, and summed as classify_clip() sums a clip's).
-        // With a clip descriptor, the same negatives' features (the same seed makes the same
-        // splices and warps) give their descriptor's penalties, as classify_clip() adds them.
+        // With a clip descriptor, the negatives' features, cut with them, give their
+        // descriptor's penalties, as classify_clip() adds them.
         const std::size_t L = view.label_count;
         const bool exemplars = view.has_exemplars(), described = view.has_descriptor();
         std::vector<std::vector<Character>> strings;
@@ -49,16 +49,13 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
             features.push_back(std::move(encoded.features));
             labels.push_back(static_cast<LabelId>(at - names.begin()));
         }
-        const std::vector<SyntheticNegative> negatives =
-            synthetic_negatives(strings, labels, seed, exemplars ? &rows : nullptr, exemplars ? L : 0);
-        const std::vector<SyntheticNegative> spliced_features =
-            described ? synthetic_negatives(strings, labels, seed, &features, view.feature_dim)
-                      : std::vector<SyntheticNegative>{};
-        for (std::size_t k = 0; k < negatives.size(); ++k) {
-            const SyntheticNegative& n = negatives[k];
-            const std::vector<float> sums = sum_exemplar_rows(n.rows, L);
+        std::vector<PerCharacterRows> per_character;
+        if (exemplars) per_character.push_back({&rows, L});
+        if (described) per_character.push_back({&features, view.feature_dim});
+        for (const SyntheticNegative& n : synthetic_negatives(strings, labels, seed, per_character)) {
+            const std::vector<float> sums = exemplars ? sum_exemplar_rows(n.rows.front(), L) : std::vector<float>{};
             const std::vector<float> penalties =
-                described ? clip_descriptor_penalties(view, spliced_features[k].rows) : std::vector<float>{};
+                described ? clip_descriptor_penalties(view, n.rows.back()) : std::vector<float>{};
             const Classification c = classify_string(view, n.string, {}, exemplars ? sums.data() : nullptr,
                                                      described ? penalties.data() : nullptr);
             if (n.own != unknown_label && c.nearest_label == n.own) continue;  // still its own action

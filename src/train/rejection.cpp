@@ -84,15 +84,21 @@ struct Sample {
 
 std::vector<SyntheticNegative> synthetic_negatives(const std::vector<std::vector<Character>>& strings,
                                                    const std::vector<LabelId>& labels, std::uint32_t seed,
-                                                   const std::vector<std::vector<float>>* rows, std::size_t row_width) {
+                                                   const std::vector<PerCharacterRows>& per_character) {
     if (strings.size() != labels.size()) throw std::invalid_argument("synthetic_negatives: one label per string");
-    if (rows != nullptr) {
-        if (rows->size() != strings.size()) throw std::invalid_argument("synthetic_negatives: one row set per string");
+    for (const PerCharacterRows& set : per_character) {
+        if (set.rows == nullptr || set.rows->size() != strings.size())
+            throw std::invalid_argument("synthetic_negatives: one row set per string");
         for (std::size_t i = 0; i < strings.size(); ++i)
-            if ((*rows)[i].size() != strings[i].size() * row_width)
-                throw std::invalid_argument("synthetic_negatives: a string's rows are not row_width per character");
+            if ((*set.rows)[i].size() != strings[i].size() * set.width)
+                throw std::invalid_argument("synthetic_negatives: a string's rows are not `width` per character");
     }
-    auto rows_of = [&](std::size_t i) -> const std::vector<float>& { return (*rows)[i]; };
+    // Every row set cut as `cut` cuts the characters (w = 1).
+    auto cut_rows = [&per_character](auto cut) {
+        std::vector<std::vector<float>> out;
+        for (const PerCharacterRows& set : per_character) out.push_back(cut(*set.rows, set.width));
+        return out;
+    };
     std::vector<SyntheticNegative> negatives;
     std::mt19937 rng(seed);
     for (std::size_t i = 0; i < strings.size(); ++i) {
@@ -103,16 +109,24 @@ std::vector<SyntheticNegative> synthetic_negatives(const std::vector<std::vector
         const std::size_t j = others[std::uniform_int_distribution<std::size_t>(0, others.size() - 1)(rng)];
         const std::size_t n = strings[i].size(), m = strings[j].size();
         negatives.push_back({spliced(strings[i], n, strings[j], m, 1),
-                             rows != nullptr ? spliced(rows_of(i), n, rows_of(j), m, row_width) : std::vector<float>{},
+                             cut_rows([&](const std::vector<std::vector<float>>& rows, std::size_t w) {
+                                 return spliced(rows[i], n, rows[j], m, w);
+                             }),
                              unknown_label, i, j});
     }
     for (std::size_t i = 0; i < strings.size(); ++i) {
         const std::size_t n = strings[i].size();
         if (n < 2) continue;
-        std::vector<float> fast_rows, slow_rows;
-        if (rows != nullptr) fast_rows = faster(rows_of(i), n, row_width), slow_rows = slower(rows_of(i), n, row_width);
-        negatives.push_back({faster(strings[i], n, 1), std::move(fast_rows), labels[i], i, i});
-        negatives.push_back({slower(strings[i], n, 1), std::move(slow_rows), labels[i], i, i});
+        negatives.push_back({faster(strings[i], n, 1),
+                             cut_rows([&](const std::vector<std::vector<float>>& rows, std::size_t w) {
+                                 return faster(rows[i], n, w);
+                             }),
+                             labels[i], i, i});
+        negatives.push_back({slower(strings[i], n, 1),
+                             cut_rows([&](const std::vector<std::vector<float>>& rows, std::size_t w) {
+                                 return slower(rows[i], n, w);
+                             }),
+                             labels[i], i, i});
     }
     return negatives;
 }
@@ -167,22 +181,18 @@ std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<
                            true});
         left_out(i, samples.back().excluded);
     }
-    // The negatives' features are cut and repeated as their characters are (the
-    // same seed gives the same splices, so the k-th of each list is one negative).
-    std::vector<SyntheticNegative> synthetic =
-        synthetic_negatives(strings, labels, seed, exemplars ? &rows->strings : nullptr, exemplars ? L : 0);
-    const std::vector<SyntheticNegative> negative_features =
-        described ? synthetic_negatives(strings, labels, seed, &descriptor->strings, descriptor->width)
-                  : std::vector<SyntheticNegative>{};
-    for (std::size_t k = 0; k < synthetic.size(); ++k) {
-        SyntheticNegative& n = synthetic[k];
-        samples.push_back(
-            {std::move(n.string),
-             std::move(n.rows),
-             described ? descriptor->of_strings(negative_features[k].rows, n.first, n.second) : std::vector<float>{},
-             {},
-             n.own,
-             false});
+    // The negatives' exemplar rows and features, cut and repeated as their characters are.
+    std::vector<PerCharacterRows> per_character;
+    if (exemplars) per_character.push_back({&rows->strings, L});
+    if (described) per_character.push_back({&descriptor->strings, descriptor->width});
+    std::vector<SyntheticNegative> synthetic = synthetic_negatives(strings, labels, seed, per_character);
+    for (SyntheticNegative& n : synthetic) {
+        samples.push_back({std::move(n.string),
+                           exemplars ? std::move(n.rows.front()) : std::vector<float>{},
+                           described ? descriptor->of_strings(n.rows.back(), n.first, n.second) : std::vector<float>{},
+                           {},
+                           n.own,
+                           false});
         left_out(n.first, samples.back().excluded);
         if (n.second != n.first) left_out(n.second, samples.back().excluded);
     }

@@ -85,13 +85,23 @@ std::vector<float> learn_label_bounds(const ModelView& model, const std::vector<
                                       const ExemplarRows* rows = nullptr,
                                       const DescriptorSamples* descriptor = nullptr);
 
+/// Floats that belong to each character of each string, to be cut and
+/// repeated with the characters: `(*rows)[i]` holds `width` floats per
+/// character of string i (its exemplar distances, or its features).
+struct PerCharacterRows {
+    const std::vector<std::vector<float>>* rows = nullptr;
+    std::size_t width = 0;
+};
+
 /// A synthetic string that is no performance of a label: a spliced pair of
 /// halves (`own` unknown_label: no label fits it), or a clip at twice or half
 /// its speed (`own` its label: landing there, it is still that action, so it
 /// counts as a negative only against the others).
 struct SyntheticNegative {
     std::vector<Character> string;
-    std::vector<float> rows;  ///< its exemplar rows, when the strings' were given
+    /// One per PerCharacterRows given, in order: its rows cut and repeated as
+    /// the characters were, so `rows[k]` has that set's width per character.
+    std::vector<std::vector<float>> rows;
     LabelId own = unknown_label;
     std::size_t first = 0, second = 0;  ///< The strings it was made from (the same one when warped).
 };
@@ -100,12 +110,11 @@ struct SyntheticNegative {
 /// of two characters or more, its first half joined to the second half of a
 /// string of another label (picked by a generator seeded with `seed`), then
 /// the string sped up (every other character) and slowed down (each twice).
-/// `rows`, when given, holds `row_width` floats per character of each string,
-/// cut and repeated with its characters.
+/// Each of `per_character` is cut and repeated with the characters.
+/// Throws std::invalid_argument when a row set does not match the strings.
 std::vector<SyntheticNegative> synthetic_negatives(const std::vector<std::vector<Character>>& strings,
                                                    const std::vector<LabelId>& labels, std::uint32_t seed,
-                                                   const std::vector<std::vector<float>>* rows = nullptr,
-                                                   std::size_t row_width = 0);
+                                                   const std::vector<PerCharacterRows>& per_character = {});
 
 /// The bound for one label's positive and negative distances (the rule above).
 float choose_label_bound(std::vector<float> positives, std::vector<float> negatives, double keep);
