@@ -222,7 +222,10 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Opt
     clip settings that matter most by leave-one-subject-out cross-validation over
     the clips' subjects, then the online ones (the segmenter's and the events'
     shortest action) by streaming each held-out subject's clips joined. The
-    model's ``training_report["online_tuning"]`` then holds that search's table.
+    model's ``training_report["tuning"]`` then holds the clip search's table
+    (each setting tried with its fold mean, the folds' mean signed margin that
+    breaks ties, and whether it was kept) and the folds of the choice, and
+    ``training_report["online_tuning"]`` the online search's.
     ``latency_budget=S`` (seconds) makes that search keep only online settings
     whose mean detection latency on the folds is at most S, trying shorter
     settle delays too. As on the command line, the choices that are not tuned

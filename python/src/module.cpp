@@ -238,11 +238,12 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
     py::dict report;
     std::shared_ptr<ModelData> model;
     host::OnlineTuningResult online;
+    host::TuningResult tuned;
     {
         py::gil_scoped_release release;
         if (tune) {
             // As `actionstring train` with no settings: the clip settings, then the online ones.
-            const host::TuningResult tuned = host::tune_training(clips, options);
+            tuned = host::tune_training(clips, options);
             options = tuned.options;
             online = host::tune_online(clips, options);
             options.online = online.chosen;
@@ -259,6 +260,31 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
         report["frames_rejected"] = training.frames_rejected;
     }
     report["settings"] = host::options_as_config(options);
+    if (!tuned.steps.empty()) {
+        // The clip search's table and the folds of its choice, as `train` prints them.
+        py::list steps, folds;
+        for (const host::TuningStep& step : tuned.steps) {
+            py::dict row;
+            row["settings"] = step.setting;
+            row["fold_mean"] = step.mean_accuracy;
+            row["margin"] = step.mean_margin;
+            row["kept"] = step.kept;
+            steps.append(row);
+        }
+        for (const host::FoldResult& fold : tuned.folds) {
+            py::dict row;
+            row["held_out"] = fold.subject;
+            row["clips"] = fold.clips;
+            row["accuracy"] = fold.clip_accuracy;
+            row["margin"] = fold.margin;
+            folds.append(row);
+        }
+        py::dict tuning;
+        tuning["settings"] = steps;
+        tuning["folds"] = folds;
+        tuning["seconds"] = tuned.seconds;
+        report["tuning"] = tuning;
+    }
     if (!online.steps.empty()) {
         // The online search's table (means over the held-out subjects' streams), as `train` prints it.
         py::list settings_tried, min_actions;

@@ -107,8 +107,24 @@ def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     assert len(shortest) == 1
     assert model.online_settings["min_action"] == pytest.approx(shortest[0]["min_action"])
     assert "min-action %g" % shortest[0]["min_action"] in model.training_report["settings"]
+    # The clip search's table: the starting settings kept first, then each setting tried;
+    # a kept one raised the fold mean or, on a tie, the margin.
+    clip_tuning = model.training_report["tuning"]
+    steps = clip_tuning["settings"]
+    assert steps[0]["settings"] == "(the starting settings)" and steps[0]["kept"]
+    best = steps[0]
+    for row in steps[1:]:
+        assert -1.0 <= row["margin"] <= 1.0
+        if row["kept"]:
+            assert row["fold_mean"] >= best["fold_mean"]
+            best = row
+    held_out = [s for fold in clip_tuning["folds"] for s in fold["held_out"].split("+")]
+    assert sorted(held_out) == sorted({c.subject for c in toy_clips})  # each subject held out once
+    assert all(0.0 <= fold["accuracy"] <= 1.0 and fold["clips"] > 0 for fold in clip_tuning["folds"])
+    assert clip_tuning["seconds"] > 0
     # Given settings, nothing is tuned.
     assert "online_tuning" not in actionstring.train(toy_clips, **TOY_SETTINGS).training_report
+    assert "tuning" not in actionstring.train(toy_clips, **TOY_SETTINGS).training_report
     # A latency budget constrains self-tuning (it still runs) and tries shorter settle delays.
     budgeted = actionstring.train(toy_clips, latency_budget=60).training_report["online_tuning"]
     assert budgeted["latency_budget_met"]
