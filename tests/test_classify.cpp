@@ -73,6 +73,15 @@ TEST_CASE("a single label has full confidence; NaN distances are ignored") {
     CHECK(c.confidence == 1.0f);
     const float all_nan[] = {nan, nan};
     CHECK(classify_distances(reps.view, all_nan).label == unknown_label);
+    // Nothing compared (an empty string: every distance +inf): unknown with no
+    // confidence, not the first label at full confidence.
+    const float inf = std::numeric_limits<float>::infinity();
+    const float all_inf[] = {inf, inf};
+    const Classification none = classify_distances(reps.view, all_inf);
+    CHECK(none.label == unknown_label);
+    CHECK(none.confidence == 0.0f);
+    const float one_finite[] = {inf, 4.0f};
+    CHECK(classify_distances(reps.view, one_finite).label == 1);
 }
 
 TEST_CASE("the characters' votes: penalties relative to the favoured label, and they can decide") {

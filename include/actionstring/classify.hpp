@@ -57,7 +57,8 @@ inline void vote_penalties(const ModelView& model, const Character* string, std:
 /// k-nearest-neighbour vote over representative distances (k = model.neighbours,
 /// at most max_neighbours). The label with most votes among the k nearest
 /// wins; on a tie, the label of the nearer neighbour. Equal distances keep
-/// representative order.
+/// representative order. Unknown when the winner's distance is not finite
+/// (nothing could be compared: an empty string).
 /// @param distances representative_count floats; read only during the call
 /// @param penalties null, or label_count floats added to the distance of each
 ///                  label's representatives (vote_penalties()); read only during the call
@@ -103,6 +104,9 @@ inline Classification classify_distances(const ModelView& model, const float* di
     float other = detail::infinity();
     for (std::size_t r = 0; r < R; ++r)
         if (model.representative_labels[r] != result.nearest_label && distance(r) < other) other = distance(r);
+    // No representative at a finite distance (an empty clip, strings that
+    // cannot be compared): no evidence for any label, so unknown, not the first.
+    if (!detail::is_finite(result.distance)) return result;
     if (!(result.distance <= model.unknown_distance)) return result;  // unknown
     if (model.has_label_bounds != 0 && !(result.distance <= model.label_bounds[result.nearest_label]))
         return result;  // unknown: further than this label's positives go
