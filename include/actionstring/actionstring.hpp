@@ -21,5 +21,6 @@
 #include "actionstring/classify.hpp"
 #include "actionstring/exemplars.hpp"
 #include "actionstring/descriptor.hpp"
+#include "actionstring/clip.hpp"
 #include "actionstring/annotator.hpp"
 #include "actionstring/blob.hpp"

@@ -3,6 +3,7 @@
 
 #include <limits>
 
+#include "actionstring/clip.hpp"
 #include "actionstring/descriptor.hpp"
 #include "actionstring/exemplars.hpp"
 #include "run/encode.hpp"
@@ -13,34 +14,17 @@ namespace host {
 Classification classify_string(const ModelView& model, const std::vector<Character>& string,
                                const std::vector<std::size_t>& excluded, const float* exemplar_sums,
                                const float* descriptor) {
-    const std::size_t R = model.representative_count;
-    std::vector<float> distances(R, detail::infinity());
-    if (!string.empty()) {
-        std::vector<detail::Cell> workspace;
-        for (std::size_t r = 0; r < R; ++r) {
-            const Character* rep = model.representative_chars + model.representative_offsets[r];
-            const std::size_t length = model.representative_length(r);
-            workspace.resize(string_distance_cells(string.size(), length));
-            string_distance(string.data(), string.size(), rep, length, character_weights(model),
-                            MatchOptions{model.variant, model.normalization}, workspace.data(), &distances[r]);
-        }
-    }
+    // The runtime's stages (clip.hpp), with training's exclusions between them.
+    std::vector<float> distances(model.representative_count);
+    std::vector<detail::Cell> cells(clip_cells(model, string.size()));
+    representative_distances(model, string.data(), string.size(), cells.data(), distances.data());
     // classify_distances() passes over NaN distances.
     for (const std::size_t r : excluded)
-        if (r < R) distances[r] = std::numeric_limits<float>::quiet_NaN();
-    std::vector<float> penalties(model.label_count, 0.0f);
-    vote_penalties(model, string.data(), string.size(), penalties.data());
-    const bool exemplars = model.has_exemplars() && exemplar_sums != nullptr;
-    if (exemplars) {
-        std::vector<float> more(model.label_count, 0.0f);
-        exemplar_penalties(model, exemplar_sums, string.size(), more.data());
-        for (std::size_t l = 0; l < penalties.size(); ++l) penalties[l] += more[l];
-    }
-    const bool described = model.has_descriptor() && descriptor != nullptr;
-    if (described)
-        for (std::size_t l = 0; l < penalties.size(); ++l) penalties[l] += descriptor[l];
-    return classify_distances(model, distances.data(),
-                              model.has_votes() || exemplars || described ? penalties.data() : nullptr);
+        if (r < distances.size()) distances[r] = std::numeric_limits<float>::quiet_NaN();
+    std::vector<float> row(model.label_count), penalties(model.label_count);
+    const bool any =
+        clip_penalties(model, string.data(), string.size(), exemplar_sums, descriptor, row.data(), penalties.data());
+    return classify_distances(model, distances.data(), any ? penalties.data() : nullptr);
 }
 
 std::vector<float> clip_descriptor_penalties(const ModelView& model, const std::vector<float>& features) {
@@ -73,14 +57,19 @@ std::vector<float> sum_exemplar_rows(const std::vector<float>& rows, std::size_t
 }
 
 std::vector<float> exemplar_sums(const ModelView& model, const std::vector<float>& features) {
-    return sum_exemplar_rows(exemplar_rows(model, features), model.label_count);
+    std::vector<float> sums(model.label_count, 0.0f), row(model.label_count);
+    if (model.feature_dim == 0) return sums;
+    actionstring::exemplar_sums(model, features.data(), features.size() / model.feature_dim, row.data(), sums.data());
+    return sums;
 }
 
 Classification classify_clip(const ModelView& model, const Clip& clip) {
     const EncodedClip encoded = encode_clip(model, clip, model.has_exemplars() || model.has_descriptor());
-    const std::vector<float> sums = exemplar_sums(model, encoded.features);
-    const std::vector<float> described = clip_descriptor_penalties(model, encoded.features);
-    return classify_string(model, encoded.string, {}, sums.data(), described.data());
+    std::vector<float> scratch(clip_scratch_floats(model));
+    std::vector<detail::Cell> cells(clip_cells(model, encoded.string.size()));
+    return actionstring::classify_clip(model, encoded.string.data(),
+                                       encoded.features.empty() ? nullptr : encoded.features.data(),
+                                       encoded.string.size(), scratch.data(), cells.data());
 }
 
 ClipScore clip_score(const ModelView& model, const std::vector<LabelledClip>& clips) {

@@ -1,0 +1,166 @@
+// A whole clip's label in the runtime (clip.hpp): the same as its stages
+// composed by hand, bit for bit, from characters and features a
+// StringEncoder gives; what the host's classify_clip() returns.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "actionstring/clip.hpp"
+#include "actionstring/encoder.hpp"
+#include "hdm05_model.hpp"
+#include "run/classify.hpp"
+#include "run/state.hpp"
+#include "toy/toy.hpp"
+#include "toy_options.hpp"
+#include "train/pipeline.hpp"
+
+using namespace actionstring;
+using namespace actionstring::host;
+
+namespace {
+
+// A model with votes, exemplars and a clip descriptor, so every stage adds something.
+ModelData described_model(const std::vector<LabelledClip>& train) {
+    TrainingOptions options = test::toy_options();
+    options.components = 0;
+    options.pca_dim = 6;
+    options.epsilon = 0.5;
+    options.sigma = 0.5;
+    options.exemplars = 4;
+    options.exemplar_weight = 1.0;
+    options.descriptor_levels = 2;
+    options.descriptor_ridge = 100.0;
+    options.descriptor_weight = 1.0;
+    return train_model(train, options);
+}
+
+// The clip's characters and their features, as a device collects them from a StringEncoder.
+struct Collected {
+    std::vector<Character> string;
+    std::vector<float> features;
+};
+
+Collected collect(const ModelView& model, const Clip& clip) {
+    Stateful<StringEncoder> encoder;
+    REQUIRE(encoder.init(model, EncoderConfig{}) == Status::ok);
+    Collected out;
+    const std::size_t d = model.feature_dim;
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        const EncodedFrame e = encoder->push_frame(static_cast<std::int64_t>(clip.times[f] * 1e6), clip.frame(f));
+        for (std::uint32_t k = 0; k < e.from_previous; ++k) {
+            out.string.push_back(e.previous);
+            out.features.insert(out.features.end(), e.previous_feature, e.previous_feature + d);
+        }
+        for (std::uint32_t k = 0; k < e.from_current; ++k) {
+            out.string.push_back(e.current);
+            out.features.insert(out.features.end(), e.current_feature, e.current_feature + d);
+        }
+    }
+    return out;
+}
+
+// The stages one after another, each with its own buffers: the reference.
+Classification by_hand(const ModelView& model, const Collected& c, bool with_features) {
+    const std::size_t L = model.label_count, n = c.string.size();
+    std::vector<float> distances(model.representative_count, detail::infinity());
+    for (std::size_t r = 0; r < model.representative_count; ++r) {
+        std::vector<detail::Cell> cells(string_distance_cells(n, model.representative_length(r)));
+        if (n > 0)
+            (void)string_distance(c.string.data(), n, model.representative_chars + model.representative_offsets[r],
+                                  model.representative_length(r), character_weights(model),
+                                  MatchOptions{model.variant, model.normalization}, cells.data(), &distances[r]);
+    }
+    std::vector<float> penalties(L);
+    vote_penalties(model, c.string.data(), n, penalties.data());
+    bool any = model.has_votes();
+    if (with_features && model.has_exemplars()) {
+        std::vector<float> sums(L, 0.0f), row(L);
+        for (std::size_t k = 0; k < n; ++k) {
+            exemplar_distances(model, &c.features[k * model.feature_dim], row.data());
+            for (std::size_t l = 0; l < L; ++l) sums[l] += row[l];
+        }
+        exemplar_penalties(model, sums.data(), n, row.data());
+        for (std::size_t l = 0; l < L; ++l) penalties[l] += row[l];
+        any = true;
+    }
+    if (with_features && model.has_descriptor()) {
+        std::vector<float> scratch(model.descriptor_size()), described(L);
+        descriptor_penalties(model, c.features.data(), n, scratch.data(), described.data());
+        for (std::size_t l = 0; l < L; ++l) penalties[l] += described[l];
+        any = true;
+    }
+    return classify_distances(model, distances.data(), any ? penalties.data() : nullptr);
+}
+
+void check_same(const Classification& a, const Classification& b) {
+    CHECK(a.label == b.label);
+    CHECK(a.nearest_label == b.nearest_label);
+    CHECK(a.representative == b.representative);
+    // Bit for bit (both +inf for an empty clip).
+    CHECK(std::memcmp(&a.distance, &b.distance, sizeof(float)) == 0);
+    CHECK(std::memcmp(&a.confidence, &b.confidence, sizeof(float)) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("clip: the runtime's whole-clip label is its stages composed, bit for bit, and the host's") {
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 6, 100);
+    const auto held_out = toy_clips(world, 5, 9000, 30.0);
+    const ModelData model = described_model(train);
+    const ModelView view = model.view();
+    REQUIRE(view.has_votes());
+    REQUIRE(view.has_exemplars());
+    REQUIRE(view.has_descriptor());
+    CHECK(clip_scratch_floats(view) == view.representative_count + 4u * view.label_count + view.descriptor_size());
+    std::uint32_t longest = 0;
+    for (std::size_t r = 0; r < view.representative_count; ++r)
+        longest = std::max(longest, view.representative_length(r));
+    CHECK(longest_representative(view) == longest);
+    CHECK(clip_cells(view, 7) == string_distance_cells(7, longest));
+
+    std::size_t right = 0;
+    for (const LabelledClip& c : held_out) {
+        const Collected collected = collect(view, c.clip);
+        REQUIRE(collected.features.size() == collected.string.size() * view.feature_dim);
+        // Scratch filled with garbage first: every float is written before it is read.
+        std::vector<float> scratch(clip_scratch_floats(view), 12345.0f);
+        std::vector<detail::Cell> cells(clip_cells(view, collected.string.size()));
+        const Classification runtime = classify_clip(view, collected.string.data(), collected.features.data(),
+                                                     collected.string.size(), scratch.data(), cells.data());
+        check_same(runtime, by_hand(view, collected, true));
+        check_same(runtime, host::classify_clip(view, c.clip));
+        right += runtime.label != unknown_label && view.label_names[runtime.label] == c.label;
+        // Without features: the strings and the votes alone.
+        std::fill(scratch.begin(), scratch.end(), -7.0f);
+        check_same(classify_clip(view, collected.string.data(), nullptr, collected.string.size(), scratch.data(),
+                                 cells.data()),
+                   by_hand(view, collected, false));
+    }
+    CHECK(static_cast<double>(right) >= 0.9 * static_cast<double>(held_out.size()));
+
+    // Nothing to classify: unknown, and nothing read past what was given.
+    std::vector<float> scratch(clip_scratch_floats(view));
+    const Classification empty = classify_clip(view, nullptr, nullptr, 0, scratch.data(), nullptr);
+    CHECK(empty.label == unknown_label);
+    CHECK(classify_clip(view, nullptr, nullptr, 0, nullptr, nullptr).label == unknown_label);
+    // A string too long for a path is compared with nothing, as string_distance() refuses it.
+    std::vector<Character> too_long(0x10000, 0);
+    std::vector<detail::Cell> one_cell(1);
+    CHECK(classify_clip(view, too_long.data(), nullptr, too_long.size(), scratch.data(), one_cell.data()).label ==
+          unknown_label);
+}
+
+TEST_CASE("clip: the scratch a generated header's model needs is known at compile time") {
+    namespace model = actionstring_hdm05;
+    constexpr std::size_t floats = clip_scratch_floats(model::kModel);
+    constexpr std::size_t cells = clip_cells(model::kModel, 64);
+    static_assert(floats >= model::kModel.representative_count, "one distance per representative");
+    static_assert(cells >= 65, "a 64-character clip needs more than its own row");
+    CHECK(floats == model::kModel.representative_count + 4u * model::kModel.label_count +
+                        model::kModel.descriptor_size());
+    CHECK(cells == string_distance_cells(64, longest_representative(model::kModel)));
+}
