@@ -26,12 +26,16 @@ void note_eigen_violation() { ++g_eigen_violations; }
 #include <doctest/doctest.h>
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
 #include "actionstring/actionstring.hpp"
 #include "run/state.hpp"
 #include "toy/toy.hpp"
+#include "toy_options.hpp"
+#include "train/pipeline.hpp"
 
 extern "C" {
 void* __libc_malloc(std::size_t);
@@ -143,4 +147,57 @@ TEST_CASE("streaming thousands of frames through the annotator allocates nothing
             CHECK(after.news == before.news);
             CHECK(after.eigen == before.eigen);
         }
+}
+
+TEST_CASE("classifying whole clips with votes, exemplars and a clip descriptor allocates nothing") {
+    actionstring::host::ToyWorld world = actionstring::host::make_toy_world();
+    const auto train = actionstring::host::toy_clips(world, 6, 100);
+    actionstring::host::TrainingOptions options = test::toy_options();
+    options.components = 0;
+    options.pca_dim = 6;
+    options.exemplars = 4;
+    options.exemplar_weight = 1.0;
+    options.descriptor_levels = 2;
+    options.descriptor_weight = 1.0;
+    const actionstring::host::ModelData model = actionstring::host::train_model(train, options);
+    const actionstring::ModelView view = model.view();
+    REQUIRE(view.has_exemplars());
+    REQUIRE(view.has_descriptor());
+    // Each clip's characters and features, collected before the measurement.
+    std::vector<std::vector<actionstring::Character>> strings;
+    std::vector<std::vector<float>> features;
+    std::size_t longest = 0;
+    for (const auto& c : actionstring::host::toy_clips(world, 2, 9000, 30.0)) {
+        actionstring::host::Stateful<actionstring::StringEncoder> encoder;
+        REQUIRE(encoder.init(view, actionstring::EncoderConfig{}) == actionstring::Status::ok);
+        strings.emplace_back();
+        features.emplace_back();
+        for (std::size_t f = 0; f < c.clip.frame_count(); ++f) {
+            const auto e = encoder->push_frame(static_cast<std::int64_t>(c.clip.times[f] * 1e6), c.clip.frame(f));
+            for (std::uint32_t k = 0; k < e.count(); ++k) {
+                const bool previous = k < e.from_previous;
+                strings.back().push_back(previous ? e.previous : e.current);
+                const float* x = previous ? e.previous_feature : e.current_feature;
+                features.back().insert(features.back().end(), x, x + view.feature_dim);
+            }
+        }
+        longest = std::max(longest, strings.back().size());
+    }
+    std::vector<float> scratch(actionstring::clip_scratch_floats(view));
+    std::vector<actionstring::detail::Cell> cells(actionstring::clip_cells(view, longest));
+
+    Eigen::internal::set_is_malloc_allowed(false);
+    const Counts before = snapshot();
+    std::size_t labelled = 0;
+    for (std::size_t i = 0; i < strings.size(); ++i)
+        labelled += actionstring::classify_clip(view, strings[i].data(), features[i].data(), strings[i].size(),
+                                                scratch.data(), cells.data())
+                        .label != actionstring::unknown_label;
+    const Counts after = snapshot();
+    Eigen::internal::set_is_malloc_allowed(true);
+
+    CHECK(labelled > 0);
+    CHECK(after.mallocs == before.mallocs);
+    CHECK(after.news == before.news);
+    CHECK(after.eigen == before.eigen);
 }
