@@ -164,3 +164,66 @@ TEST_CASE("clip: the scratch a generated header's model needs is known at compil
                         model::kModel.descriptor_size());
     CHECK(cells == string_distance_cells(64, longest_representative(model::kModel)));
 }
+
+TEST_CASE("clip: a recorder collects what an encoder gives and labels it as classify_clip() does") {
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 6, 100);
+    const auto held_out = toy_clips(world, 2, 9000, 30.0);
+    const ModelData model = described_model(train);
+    const ModelView view = model.view();
+    const std::size_t capacity = 256;
+    const std::size_t bytes = ClipRecorder::required_bytes(view, capacity);
+    REQUIRE(bytes != unsatisfiable_bytes);
+    std::vector<std::uint64_t> storage_words(bytes / 8 + 2);  // 16-byte aligned by the allocator
+    void* storage = storage_words.data();
+    ClipRecorder recorder;
+    CHECK(recorder.push_frame(0, nullptr) == Status::not_initialized);
+    CHECK(recorder.classify().label == unknown_label);
+    CHECK(recorder.init(view, capacity, EncoderConfig{}, nullptr, bytes) == Status::storage_too_small);
+    CHECK(recorder.init(view, capacity, EncoderConfig{}, storage, bytes - 1) == Status::storage_too_small);
+    CHECK(recorder.init(view, 0, EncoderConfig{}, storage, bytes) == Status::invalid_argument);
+    CHECK(ClipRecorder::required_bytes(view, unsatisfiable_bytes / 2) == unsatisfiable_bytes);
+    REQUIRE(recorder.init(view, capacity, EncoderConfig{}, storage, bytes) == Status::ok);
+    CHECK(recorder.classify().label == unknown_label);  // nothing yet
+    for (const LabelledClip& c : held_out) {
+        recorder.reset();
+        for (std::size_t f = 0; f < c.clip.frame_count(); ++f) {
+            const Status s = recorder.push_frame(static_cast<std::int64_t>(c.clip.times[f] * 1e6), c.clip.frame(f));
+            CHECK((s == Status::ok || s == Status::stream_restarted));
+        }
+        const Collected collected = collect(view, c.clip);
+        REQUIRE(recorder.length() == collected.string.size());
+        CHECK(std::equal(collected.string.begin(), collected.string.end(), recorder.characters()));
+        CHECK(std::equal(collected.features.begin(), collected.features.end(), recorder.features()));
+        CHECK_FALSE(recorder.overflowed());
+        check_same(recorder.classify(), by_hand(view, collected, true));
+    }
+    // A clip longer than the room keeps its beginning and says so.
+    const LabelledClip& c = held_out.front();
+    const Collected all = collect(view, c.clip);
+    REQUIRE(all.string.size() > 6);
+    const std::size_t small = all.string.size() / 2;
+    std::vector<std::uint64_t> small_words(ClipRecorder::required_bytes(view, small) / 8 + 2);
+    ClipRecorder short_one;
+    REQUIRE(short_one.init(view, small, EncoderConfig{}, small_words.data(), small_words.size() * 8) == Status::ok);
+    std::size_t refused = 0;
+    for (std::size_t f = 0; f < c.clip.frame_count(); ++f)
+        refused += short_one.push_frame(static_cast<std::int64_t>(c.clip.times[f] * 1e6), c.clip.frame(f)) ==
+                   Status::storage_too_small;
+    CHECK(refused > 0);
+    CHECK(short_one.overflowed());
+    REQUIRE(short_one.length() == small);
+    Collected first;
+    first.string.assign(all.string.begin(), all.string.begin() + static_cast<long>(small));
+    first.features.assign(all.features.begin(), all.features.begin() + static_cast<long>(small * view.feature_dim));
+    check_same(short_one.classify(), by_hand(view, first, true));
+    short_one.reset();
+    CHECK(short_one.length() == 0);
+    CHECK_FALSE(short_one.overflowed());
+    // A frame that is not a pose changes nothing.
+    std::vector<float> lost(view.joint_count * 3u, 0.0f);
+    CHECK(short_one.push_frame(0, lost.data()) != Status::ok);
+    CHECK(short_one.length() == 0);
+    // Sized at compile time for a generated header's model.
+    static_assert(ClipRecorder::required_bytes(actionstring_hdm05::kModel, 64) > 0, "constexpr");
+}

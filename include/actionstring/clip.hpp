@@ -16,6 +16,8 @@
 //
 // Nothing is allocated: the scratch is the caller's, clip_scratch_floats()
 // floats and clip_cells() DTW cells, read and written only during a call.
+// ClipRecorder does the collecting too, in one block of storage the caller
+// owns (storage.hpp), sized by the model and the longest clip it must hold.
 #pragma once
 
 #include <cstddef>
@@ -23,8 +25,11 @@
 
 #include "actionstring/classify.hpp"
 #include "actionstring/descriptor.hpp"
+#include "actionstring/encoder.hpp"
 #include "actionstring/exemplars.hpp"
 #include "actionstring/model.hpp"
+#include "actionstring/status.hpp"
+#include "actionstring/storage.hpp"
 #include "actionstring/string_distance.hpp"
 
 namespace actionstring {
@@ -141,5 +146,127 @@ inline Classification classify_clip(const ModelView& model, const Character* str
                                     with_descriptor ? described : nullptr, row, penalties);
     return classify_distances(model, distances, any ? penalties : nullptr);
 }
+
+/// Records a clip from frames and labels it when asked: a gesture between two
+/// events. The frames go through its own StringEncoder; the characters and
+/// their features are kept, up to `max_characters` (the first ones: a longer
+/// clip keeps its beginning and push_frame() says so), and classify() runs
+/// classify_clip() over them. Works in caller-owned storage of
+/// required_bytes(model, max_characters) bytes (storage.hpp); keeps pointers
+/// to the ModelView given to init() and to the storage: both must outlive it.
+class ClipRecorder {
+public:
+    /// Bytes of storage init() needs (constexpr when the model is), or
+    /// unsatisfiable_bytes when no storage could hold that many characters.
+    static constexpr std::size_t required_bytes(const ModelView& model, std::size_t max_characters,
+                                                const EncoderConfig& config = {}) noexcept {
+        return plan(model, max_characters, config).bytes;
+    }
+
+    /// @return ok, invalid_argument (no room for a character, or times the
+    ///         encoder refuses), storage_too_small, or what the encoder's init() returns
+    Status init(const ModelView& model, std::size_t max_characters, const EncoderConfig& config, void* storage,
+                std::size_t bytes) noexcept {
+        model_ = nullptr;
+        if (max_characters == 0) return Status::invalid_argument;
+        EncoderConfig plain = config;
+        plain.deferred = false;  // every character and its feature as its frame comes
+        const Plan p = plan(model, max_characters, plain);
+        if (!detail::storage_fits(storage, bytes, p.bytes)) return Status::storage_too_small;
+        detail::clear_storage(storage, p.bytes);
+        const Status status =
+            encoder_.init(model, plain, detail::storage_at<unsigned char>(storage, p.encoder), p.encoder_bytes);
+        if (status != Status::ok) return status;
+        characters_ = detail::storage_at<Character>(storage, p.characters);
+        features_ = detail::storage_at<float>(storage, p.features);
+        scratch_ = detail::storage_at<float>(storage, p.scratch);
+        cells_ = detail::storage_at<detail::Cell>(storage, p.cells);
+        capacity_ = max_characters;
+        model_ = &model;
+        reset();
+        return Status::ok;
+    }
+
+    /// A new clip: the characters are forgotten and the encoder starts a new stream.
+    void reset() noexcept {
+        length_ = 0;
+        overflowed_ = false;
+        if (model_ != nullptr) encoder_.reset();
+    }
+
+    /// One frame: `positions` holds joint_count × 3 floats (metres, the model's
+    /// joint order), read only during the call. Returns the encoder's status
+    /// (a frame that is not a pose is skipped and changes nothing), or
+    /// storage_too_small when the clip is full and this frame's characters
+    /// were dropped; not_initialized before a successful init().
+    Status push_frame(std::int64_t time_us, const float* positions) noexcept {
+        if (model_ == nullptr) return Status::not_initialized;
+        const EncodedFrame e = encoder_.push_frame(time_us, positions);
+        if (!e.accepted()) return e.status;
+        const std::size_t d = model_->feature_dim;
+        bool dropped = false;
+        for (std::uint32_t k = 0; k < e.count(); ++k) {
+            if (length_ == capacity_) {
+                dropped = true;
+                break;
+            }
+            const bool previous = k < e.from_previous;
+            characters_[length_] = previous ? e.previous : e.current;
+            const float* feature = previous ? e.previous_feature : e.current_feature;
+            for (std::size_t i = 0; i < d; ++i) features_[length_ * d + i] = feature[i];
+            ++length_;
+        }
+        overflowed_ = overflowed_ || dropped;
+        return dropped ? Status::storage_too_small : e.status;
+    }
+
+    /// The clip's label so far (classify_clip(): unknown before its first
+    /// character). Reads the characters, writes only the scratch; the clip
+    /// goes on recording.
+    Classification classify() noexcept {
+        if (model_ == nullptr) return Classification{};
+        return classify_clip(*model_, characters_, features_, length_, scratch_, cells_);
+    }
+
+    std::size_t length() const noexcept { return length_; }
+    std::size_t capacity() const noexcept { return capacity_; }
+    /// Whether characters were dropped since the last reset() (the clip was longer than capacity()).
+    bool overflowed() const noexcept { return overflowed_; }
+    /// The clip's characters, length() of them.
+    const Character* characters() const noexcept { return characters_; }
+    /// Their features, feature_dim floats each.
+    const float* features() const noexcept { return features_; }
+
+private:
+    struct Plan {
+        std::size_t encoder = 0, encoder_bytes = 0, characters = 0, features = 0, scratch = 0, cells = 0, bytes = 0;
+    };
+    static constexpr Plan plan(const ModelView& model, std::size_t max_characters,
+                               const EncoderConfig& config) noexcept {
+        Plan p;
+        detail::StorageLayout layout;
+        p.encoder_bytes = StringEncoder::required_bytes(model, config);
+        p.encoder = layout.add_bytes(p.encoder_bytes, 1);
+        p.characters = layout.add<Character>(max_characters);
+        const std::size_t d = model.feature_dim;
+        // Counts whose product would wrap are no storage at all.
+        const bool too_many = (d != 0 && max_characters > unsatisfiable_bytes / d) ||
+                              max_characters >= unsatisfiable_bytes / (longest_representative(model) + 1u);
+        p.features = layout.add<float>(too_many ? unsatisfiable_bytes : max_characters * d);
+        p.scratch = layout.add<float>(clip_scratch_floats(model));
+        p.cells = layout.add<detail::Cell>(too_many ? unsatisfiable_bytes : clip_cells(model, max_characters));
+        p.bytes = p.encoder_bytes == unsatisfiable_bytes ? unsatisfiable_bytes : layout.bytes();
+        return p;
+    }
+
+    const ModelView* model_ = nullptr;
+    StringEncoder encoder_;
+    Character* characters_ = nullptr;
+    float* features_ = nullptr;
+    float* scratch_ = nullptr;
+    detail::Cell* cells_ = nullptr;
+    std::size_t capacity_ = 0, length_ = 0;
+    bool overflowed_ = false;
+};
 
 }  // namespace actionstring
