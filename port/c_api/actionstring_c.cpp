@@ -9,6 +9,7 @@
 
 #include "actionstring/annotator.hpp"
 #include "actionstring/blob.hpp"
+#include "actionstring/clip.hpp"
 #include "actionstring/storage.hpp"
 #if defined(ACTIONSTRING_C_MODEL_HEADER)
 #include ACTIONSTRING_C_MODEL_HEADER
@@ -27,6 +28,7 @@ using actionstring::Status;
 // before it, or a state given less memory than it claims).
 constexpr std::uint32_t kModelMagic = 0x4153544Du;  // "ASTM"
 constexpr std::uint32_t kStateMagic = 0x41535452u;  // "ASTR"
+constexpr std::uint32_t kClipMagic = 0x41535443u;   // "ASTC"
 constexpr unsigned char kGuardByte = 0xA5;
 constexpr std::size_t kGuardBytes = 16;
 
@@ -49,6 +51,16 @@ struct State {
 constexpr std::size_t kHeaderBytes =
     (sizeof(State) + actionstring::state_alignment - 1) / actionstring::state_alignment * actionstring::state_alignment;
 
+struct ClipState {
+    std::uint32_t magic = 0;
+    const void* self = nullptr;
+    const Model* model = nullptr;
+    std::size_t total = 0;  // bytes from the recorder's start to the end of its guard
+    actionstring::ClipRecorder recorder;
+};
+constexpr std::size_t kClipHeaderBytes = (sizeof(ClipState) + actionstring::state_alignment - 1) /
+                                         actionstring::state_alignment * actionstring::state_alignment;
+
 static_assert(ACTIONSTRING_OK == static_cast<int>(Status::ok), "status values match");
 static_assert(ACTIONSTRING_TIME_WENT_BACKWARDS == static_cast<int>(Status::time_went_backwards), "status values match");
 static_assert(ACTIONSTRING_NOT_INITIALIZED == static_cast<int>(Status::not_initialized), "status values match");
@@ -64,21 +76,38 @@ const Model* checked_model(const actionstring_model* handle) {
 
 // The state behind a handle, or null when the handle is not one
 // actionstring_init() returned (misaligned, never initialised, overwritten, moved).
-const State* checked(const void* handle) {
+// (T is State or ClipState, each with its magic and header size.)
+template <class T>
+const T* checked_block(const void* handle, std::uint32_t magic, std::size_t header_bytes) {
     if (handle == nullptr || reinterpret_cast<std::uintptr_t>(handle) % actionstring::state_alignment != 0)
         return nullptr;
-    const auto* state = static_cast<const State*>(handle);
-    if (state->magic != kStateMagic || state->self != state ||
+    const auto* state = static_cast<const T*>(handle);
+    if (state->magic != magic || state->self != state ||
         checked_model(reinterpret_cast<const actionstring_model*>(state->model)) == nullptr)
         return nullptr;
-    if (state->total < kHeaderBytes + kGuardBytes) return nullptr;
+    if (state->total < header_bytes + kGuardBytes) return nullptr;
     const auto* guard = reinterpret_cast<const unsigned char*>(state) + state->total - kGuardBytes;
     for (std::size_t i = 0; i < kGuardBytes; ++i)
         if (guard[i] != kGuardByte) return nullptr;
     return state;
 }
+const State* checked(const void* handle) { return checked_block<State>(handle, kStateMagic, kHeaderBytes); }
 State* live(actionstring_state* handle) { return const_cast<State*>(checked(handle)); }
 const State* live(const actionstring_state* handle) { return checked(handle); }
+const ClipState* checked_clip(const void* handle) {
+    return checked_block<ClipState>(handle, kClipMagic, kClipHeaderBytes);
+}
+ClipState* live_clip(actionstring_clip* handle) { return const_cast<ClipState*>(checked_clip(handle)); }
+
+// Bytes a recorder of `max_characters` needs in all, or 0 when none could hold it.
+std::size_t clip_bytes(const ModelView& model, std::uint32_t max_characters) {
+    if (max_characters == 0) return 0;
+    const std::size_t recorder = actionstring::ClipRecorder::required_bytes(model, max_characters);
+    if (recorder == actionstring::unsatisfiable_bytes ||
+        recorder > actionstring::unsatisfiable_bytes - kClipHeaderBytes - kGuardBytes)
+        return 0;
+    return kClipHeaderBytes + recorder + kGuardBytes;
+}
 
 AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) {
     AnnotatorConfig config = actionstring::annotator_config(model);
@@ -376,6 +405,68 @@ const char* actionstring_label_name(const actionstring_state* handle) {
 const actionstring_model* actionstring_state_model(const actionstring_state* handle) {
     const State* state = live(handle);
     return state == nullptr ? nullptr : reinterpret_cast<const actionstring_model*>(state->model);
+}
+
+size_t actionstring_clip_size(const actionstring_model* handle, uint32_t max_characters) {
+    const Model* model = checked_model(handle);
+    return model == nullptr ? 0 : clip_bytes(model->view, max_characters);
+}
+
+actionstring_status actionstring_clip_init(const actionstring_model* handle, uint32_t max_characters, void* memory,
+                                           size_t size, actionstring_clip** out) {
+    if (out != nullptr) *out = nullptr;
+    const Model* model = checked_model(handle);
+    if (model == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    if (out == nullptr || max_characters == 0) return ACTIONSTRING_INVALID_ARGUMENT;
+    const std::size_t needed = clip_bytes(model->view, max_characters);
+    if (needed == 0 || memory == nullptr || size < needed ||
+        reinterpret_cast<std::uintptr_t>(memory) % actionstring::state_alignment != 0)
+        return ACTIONSTRING_STORAGE_TOO_SMALL;
+    auto* clip = new (memory) ClipState();
+    auto* bytes = static_cast<unsigned char*>(memory);
+    const Status status = clip->recorder.init(model->view, max_characters, actionstring::EncoderConfig{},
+                                              bytes + kClipHeaderBytes, size - kClipHeaderBytes - kGuardBytes);
+    if (status != Status::ok) return code(status);
+    clip->total = size;
+    std::memset(bytes + size - kGuardBytes, kGuardByte, kGuardBytes);
+    clip->model = model;
+    clip->self = clip;
+    clip->magic = kClipMagic;
+    *out = reinterpret_cast<actionstring_clip*>(clip);
+    return ACTIONSTRING_OK;
+}
+
+actionstring_status actionstring_clip_push_frame(actionstring_clip* handle, int64_t time_us, const float* positions,
+                                                 size_t position_count) {
+    ClipState* clip = live_clip(handle);
+    if (clip == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    if (positions == nullptr || position_count != static_cast<size_t>(clip->model->view.joint_count) * 3u)
+        return ACTIONSTRING_INVALID_ARGUMENT;
+    return code(clip->recorder.push_frame(time_us, positions));
+}
+
+uint32_t actionstring_clip_length(const actionstring_clip* handle) {
+    const ClipState* clip = checked_clip(handle);
+    return clip == nullptr ? 0u : static_cast<uint32_t>(clip->recorder.length());
+}
+
+actionstring_status actionstring_clip_classify(actionstring_clip* handle, int32_t* label, float* confidence) {
+    if (label != nullptr) *label = -1;
+    if (confidence != nullptr) *confidence = 0.0f;
+    ClipState* clip = live_clip(handle);
+    if (clip == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    const actionstring::Classification c = clip->recorder.classify();
+    if (c.label == actionstring::unknown_label) return ACTIONSTRING_OK;
+    if (label != nullptr) *label = static_cast<int32_t>(c.label);
+    if (confidence != nullptr) *confidence = c.confidence;
+    return ACTIONSTRING_OK;
+}
+
+actionstring_status actionstring_clip_reset(actionstring_clip* handle) {
+    ClipState* clip = live_clip(handle);
+    if (clip == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    clip->recorder.reset();
+    return ACTIONSTRING_OK;
 }
 
 const char* actionstring_status_name(actionstring_status status) {

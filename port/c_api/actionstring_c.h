@@ -213,6 +213,41 @@ ACTIONSTRING_C_API int32_t actionstring_settled_label(const actionstring_state* 
 /** The model a state runs, or NULL for a bad state. */
 ACTIONSTRING_C_API const actionstring_model* actionstring_state_model(const actionstring_state* state);
 
+/* ---- whole clips: a gesture between two events --------------------------------------- */
+
+/** A clip recorder: the characters of a clip's frames, kept in caller memory,
+ *  labelled as a whole when asked (the same label `actionstring eval` gives the
+ *  clip). Like a state, it lives in memory of actionstring_clip_size() bytes,
+ *  aligned to actionstring_state_alignment(), and its model must outlive it. */
+typedef struct actionstring_clip actionstring_clip;
+
+/** Bytes a recorder of up to `max_characters` characters (the model's string rate
+ *  times the longest gesture, in seconds) needs, or 0 for a bad handle, 0
+ *  characters or a size no memory could hold. */
+ACTIONSTRING_C_API size_t actionstring_clip_size(const actionstring_model* model, uint32_t max_characters);
+
+/** Sets up a recorder in `memory` (`size` bytes, aligned) and stores its handle in *clip. */
+ACTIONSTRING_C_API actionstring_status actionstring_clip_init(const actionstring_model* model, uint32_t max_characters,
+                                                              void* memory, size_t size, actionstring_clip** clip);
+
+/** Feeds one frame of the clip (as actionstring_push_frame()). Returns the frame's
+ *  status, or STORAGE_TOO_SMALL when the clip already holds max_characters and this
+ *  frame's characters were dropped (the clip keeps its beginning). */
+ACTIONSTRING_C_API actionstring_status actionstring_clip_push_frame(actionstring_clip* clip, int64_t time_us,
+                                                                    const float* positions, size_t position_count);
+
+/** Characters recorded since the last reset (0 for a bad handle). */
+ACTIONSTRING_C_API uint32_t actionstring_clip_length(const actionstring_clip* clip);
+
+/** Labels the clip recorded so far: *label the label index or -1 for unknown (no
+ *  characters yet, or nothing near enough), *confidence in [0, 1] (either may be
+ *  NULL). The clip goes on recording. NOT_INITIALIZED for a bad handle. */
+ACTIONSTRING_C_API actionstring_status actionstring_clip_classify(actionstring_clip* clip, int32_t* label,
+                                                                  float* confidence);
+
+/** Forgets the recorded clip: the next frame begins a new one. */
+ACTIONSTRING_C_API actionstring_status actionstring_clip_reset(actionstring_clip* clip);
+
 /** Short stable name of a status code; static storage; never NULL. */
 ACTIONSTRING_C_API const char* actionstring_status_name(actionstring_status status);
 

@@ -306,6 +306,88 @@ static unsigned char* read_blob(const char* path, size_t* size) {
 enum { kMaxBlobs = 4 };
 
 /* Models read from blobs at run time, several at once, each with its own state. */
+/* Whole clips: a recorder in caller memory, its errors, and a clip labelled as a whole. */
+static void clip_checks(const actionstring_model* model) {
+    static alignas(16) unsigned char clip_memory[512 * 1024];
+    const uint32_t joints = actionstring_model_joint_count(model);
+    const int32_t labels = (int32_t)actionstring_model_label_count(model);
+    float frame[3 * kMaxJoints];
+    actionstring_clip* clip = NULL;
+    const size_t size = actionstring_clip_size(model, 64);
+    CHECK(size > 0 && size <= sizeof clip_memory);
+    CHECK(actionstring_clip_size(model, 128) > size); /* room grows with the characters */
+    CHECK(actionstring_clip_size(model, 0) == 0);
+    CHECK(actionstring_clip_size(NULL, 64) == 0);
+    CHECK(actionstring_clip_size(model, UINT32_MAX) == 0 || actionstring_clip_size(model, UINT32_MAX) > size);
+    CHECK(actionstring_clip_init(model, 64, NULL, size, &clip) == ACTIONSTRING_STORAGE_TOO_SMALL && clip == NULL);
+    CHECK(actionstring_clip_init(model, 64, clip_memory, size - 1, &clip) == ACTIONSTRING_STORAGE_TOO_SMALL);
+    CHECK(actionstring_clip_init(model, 64, clip_memory + 1, size, &clip) == ACTIONSTRING_STORAGE_TOO_SMALL);
+    CHECK(actionstring_clip_init(model, 0, clip_memory, size, &clip) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_clip_init(model, 64, clip_memory, size, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_clip_init(NULL, 64, clip_memory, size, &clip) == ACTIONSTRING_NOT_INITIALIZED);
+    int32_t label = 7;
+    float confidence = 7.0f;
+    CHECK(actionstring_clip_classify(NULL, &label, &confidence) == ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(label == -1 && confidence == 0.0f);
+    CHECK(actionstring_clip_push_frame(NULL, 0, frame, 3 * joints) == ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_clip_reset(NULL) == ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_clip_length(NULL) == 0);
+    /* A state's handle is not a clip's. */
+    actionstring_state* state = NULL;
+    CHECK(actionstring_init(model, NULL, state_memory, actionstring_state_size(model, NULL), &state) ==
+          ACTIONSTRING_OK);
+    CHECK(actionstring_clip_reset((actionstring_clip*)(void*)state) == ACTIONSTRING_NOT_INITIALIZED);
+
+    CHECK(actionstring_clip_init(model, 64, clip_memory, size, &clip) == ACTIONSTRING_OK && clip != NULL);
+    CHECK(actionstring_clip_classify(clip, &label, &confidence) == ACTIONSTRING_OK);
+    CHECK(label == -1); /* nothing recorded yet */
+    CHECK(actionstring_clip_push_frame(clip, 0, frame, 3 * joints - 1) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_clip_push_frame(clip, 0, NULL, 3 * joints) == ACTIONSTRING_INVALID_ARGUMENT);
+    /* Two seconds at 60 Hz: characters, and a label or unknown with a confidence in [0, 1]. */
+    for (int f = 0; f < 120; ++f) {
+        synthetic_frame(joints, f, frame);
+        CHECK(actionstring_clip_push_frame(clip, (int64_t)f * 16667, frame, 3 * joints) == ACTIONSTRING_OK);
+    }
+    const uint32_t length = actionstring_clip_length(clip);
+    CHECK(length > 0 && length <= 64);
+    CHECK(actionstring_clip_classify(clip, &label, &confidence) == ACTIONSTRING_OK);
+    CHECK(label >= -1 && label < labels);
+    CHECK(confidence >= 0.0f && confidence <= 1.0f);
+    CHECK(label >= 0 || confidence == 0.0f);
+    CHECK(actionstring_clip_classify(clip, NULL, NULL) == ACTIONSTRING_OK);
+    CHECK(actionstring_clip_length(clip) == length); /* classifying does not end the clip */
+    /* The same frames again after a reset: the same clip, the same label. */
+    CHECK(actionstring_clip_reset(clip) == ACTIONSTRING_OK);
+    CHECK(actionstring_clip_length(clip) == 0);
+    for (int f = 0; f < 120; ++f) {
+        synthetic_frame(joints, f, frame);
+        CHECK(actionstring_clip_push_frame(clip, (int64_t)f * 16667, frame, 3 * joints) == ACTIONSTRING_OK);
+    }
+    int32_t again = -2;
+    float again_confidence = -1.0f;
+    CHECK(actionstring_clip_classify(clip, &again, &again_confidence) == ACTIONSTRING_OK);
+    CHECK(actionstring_clip_length(clip) == length && again == label && again_confidence == confidence);
+    /* A frame that is not a pose changes nothing. */
+    memset(frame, 0, sizeof frame);
+    CHECK(actionstring_clip_push_frame(clip, 2100000, frame, 3 * joints) == ACTIONSTRING_TRACKING_LOST);
+    CHECK(actionstring_clip_length(clip) == length);
+    /* Longer than its room: the clip keeps its beginning and the frame says so. */
+    int full = 0;
+    for (int f = 0; f < 60 * 30 && !full; ++f) {
+        synthetic_frame(joints, f, frame);
+        full = actionstring_clip_push_frame(clip, 3000000 + (int64_t)f * 16667, frame, 3 * joints) ==
+               ACTIONSTRING_STORAGE_TOO_SMALL;
+    }
+    CHECK(full);
+    CHECK(actionstring_clip_length(clip) == 64);
+    /* Overwritten after init, or overrun at its end: refused. */
+    memset(clip_memory + size - 16, 0, 16);
+    CHECK(actionstring_clip_classify(clip, &label, NULL) == ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_clip_init(model, 64, clip_memory, size, &clip) == ACTIONSTRING_OK);
+    memset(clip_memory, 0, 8);
+    CHECK(actionstring_clip_reset(clip) == ACTIONSTRING_NOT_INITIALIZED);
+}
+
 static void blob_checks(const char* const* paths, int count) {
     static actionstring_model models[kMaxBlobs];
     static alignas(16) unsigned char memory[kMaxBlobs][128 * 1024];
@@ -444,6 +526,7 @@ int main(int argc, char** argv) {
     if (actionstring_model_builtin(&builtin) == ACTIONSTRING_OK) {
         contract_checks(&builtin);
         spread_checks(&builtin);
+        clip_checks(&builtin);
     } else CHECK(blob_count > 0); /* a library without a built-in model is tested through blobs */
     blob_checks(blobs, blob_count);
     if (stream != NULL && replay_file(stream) != 0) return 1;
