@@ -99,6 +99,18 @@ const ClipState* checked_clip(const void* handle) {
 }
 ClipState* live_clip(actionstring_clip* handle) { return const_cast<ClipState*>(checked_clip(handle)); }
 
+// Marks a block set up in `size` bytes as live: the guard at the very end of
+// the caller's memory (everything before it is the block's), then its model,
+// its own address and its magic word, which checked_block() reads back.
+template <class T>
+void seal(T& block, const Model* model, std::size_t size, std::uint32_t magic) {
+    block.total = size;
+    std::memset(reinterpret_cast<unsigned char*>(&block) + size - kGuardBytes, kGuardByte, kGuardBytes);
+    block.model = model;
+    block.self = &block;
+    block.magic = magic;
+}
+
 // Bytes a recorder of `max_characters` needs in all, or 0 when none could hold it.
 std::size_t clip_bytes(const ModelView& model, std::uint32_t max_characters) {
     if (max_characters == 0) return 0;
@@ -242,12 +254,7 @@ actionstring_status actionstring_init(const actionstring_model* handle, const ac
     const Status status =
         state->annotator.init(model->view, config, bytes + kHeaderBytes, size - kHeaderBytes - kGuardBytes);
     if (status != Status::ok) return code(status);
-    // The guard at the very end of the caller's memory: everything before it is the state's.
-    state->total = size;
-    std::memset(bytes + size - kGuardBytes, kGuardByte, kGuardBytes);
-    state->model = model;
-    state->self = state;
-    state->magic = kStateMagic;
+    seal(*state, model, size, kStateMagic);
     *out = reinterpret_cast<actionstring_state*>(state);
     return ACTIONSTRING_OK;
 }
@@ -427,11 +434,7 @@ actionstring_status actionstring_clip_init(const actionstring_model* handle, uin
     const Status status = clip->recorder.init(model->view, max_characters, actionstring::EncoderConfig{},
                                               bytes + kClipHeaderBytes, size - kClipHeaderBytes - kGuardBytes);
     if (status != Status::ok) return code(status);
-    clip->total = size;
-    std::memset(bytes + size - kGuardBytes, kGuardByte, kGuardBytes);
-    clip->model = model;
-    clip->self = clip;
-    clip->magic = kClipMagic;
+    seal(*clip, model, size, kClipMagic);
     *out = reinterpret_cast<actionstring_clip*>(clip);
     return ACTIONSTRING_OK;
 }
