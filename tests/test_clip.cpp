@@ -95,6 +95,15 @@ Classification by_hand(const ModelView& model, const Collected& c, bool with_fea
     return classify_distances(model, distances.data(), any ? penalties.data() : nullptr);
 }
 
+// The toy world, the described model trained on it, and `held` held-out clips per action.
+struct Fixture {
+    explicit Fixture(int held) : held_out(toy_clips(world, held, 9000, 30.0)), model(described_model(train)) {}
+    ToyWorld world = make_toy_world();
+    std::vector<LabelledClip> train = toy_clips(world, 6, 100);
+    std::vector<LabelledClip> held_out;
+    ModelData model;
+};
+
 void check_same(const Classification& a, const Classification& b) {
     CHECK(a.label == b.label);
     CHECK(a.nearest_label == b.nearest_label);
@@ -107,11 +116,9 @@ void check_same(const Classification& a, const Classification& b) {
 }  // namespace
 
 TEST_CASE("clip: the runtime's whole-clip label is its stages composed, bit for bit, and the host's") {
-    ToyWorld world = make_toy_world();
-    const auto train = toy_clips(world, 6, 100);
-    const auto held_out = toy_clips(world, 5, 9000, 30.0);
-    const ModelData model = described_model(train);
-    const ModelView view = model.view();
+    const Fixture fixture(5);
+    const std::vector<LabelledClip>& held_out = fixture.held_out;
+    const ModelView view = fixture.model.view();
     REQUIRE(view.has_votes());
     REQUIRE(view.has_exemplars());
     REQUIRE(view.has_descriptor());
@@ -166,11 +173,9 @@ TEST_CASE("clip: the scratch a generated header's model needs is known at compil
 }
 
 TEST_CASE("clip: a recorder collects what an encoder gives and labels it as classify_clip() does") {
-    ToyWorld world = make_toy_world();
-    const auto train = toy_clips(world, 6, 100);
-    const auto held_out = toy_clips(world, 2, 9000, 30.0);
-    const ModelData model = described_model(train);
-    const ModelView view = model.view();
+    const Fixture fixture(2);
+    const std::vector<LabelledClip>& held_out = fixture.held_out;
+    const ModelView view = fixture.model.view();
     const std::size_t capacity = 256;
     const std::size_t bytes = ClipRecorder::required_bytes(view, capacity);
     REQUIRE(bytes != unsatisfiable_bytes);
