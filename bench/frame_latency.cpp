@@ -569,10 +569,14 @@ int main(int argc, char** argv) {
         const host::ModelData described = host::train_model(training, accurate, nullptr);
         const ModelView view = described.view();
         std::vector<std::vector<float>> features;
-        std::size_t characters = 0;
+        std::vector<std::vector<Character>> strings;
+        std::size_t characters = 0, longest = 0;
         for (const host::Clip& clip : clips) {
-            features.push_back(host::encode_clip(view, clip, true).features);
-            characters += features.back().size() / view.feature_dim;
+            host::EncodedClip encoded = host::encode_clip(view, clip, true);
+            features.push_back(std::move(encoded.features));
+            strings.push_back(std::move(encoded.string));
+            characters += strings.back().size();
+            longest = std::max(longest, strings.back().size());
         }
         std::vector<float> scratch(view.descriptor_size()), penalties(view.label_count);
         std::vector<std::int64_t> per_clip;
@@ -601,6 +605,37 @@ int main(int argc, char** argv) {
                       "allocations during %d timed passes: %ld",
                       clips.size(), static_cast<double>(characters) / static_cast<double>(clips.size()), passes,
                       allocations);
+        report.notes.push_back(line);
+
+        // The whole clip's label (clip.hpp's classify_clip(): the strings to every
+        // representative, the votes, the exemplars and the descriptor), what a
+        // gesture between two events costs when it ends, from the same characters.
+        std::vector<float> clip_scratch(clip_scratch_floats(view));
+        std::vector<detail::Cell> cells(clip_cells(view, longest));
+        std::vector<std::int64_t> per_label;
+        long label_allocations = 0;
+        for (int pass = 0; pass <= passes; ++pass) {
+            g_allocations = 0;
+            for (std::size_t i = 0; i < strings.size(); ++i) {
+                const std::int64_t ns = timed([&] {
+                    g_counting.store(true, std::memory_order_relaxed);
+                    const Classification c = classify_clip(view, strings[i].data(), features[i].data(),
+                                                           strings[i].size(), clip_scratch.data(), cells.data());
+                    g_counting.store(false, std::memory_order_relaxed);
+                    g_sink = c.label;
+                });
+                if (pass > 0) per_label.push_back(ns);
+            }
+            if (pass > 0) label_allocations += g_allocations.load();
+        }
+        std::snprintf(what, sizeof what,
+                      "whole clip's label, classify_clip() (per clip, %zu representatives of %u characters)",
+                      static_cast<std::size_t>(view.representative_count), view.total_representative_chars());
+        report.latency.push_back({"hdm05, hdm05-accurate.config", what, summarize(per_label)});
+        std::snprintf(line, sizeof line,
+                      "hdm05-accurate.config's whole-clip labels (classify_clip()): heap allocations during %d timed "
+                      "passes: %ld",
+                      passes, label_allocations);
         report.notes.push_back(line);
     }
 
