@@ -187,6 +187,9 @@ TEST_CASE("clip: a recorder collects what an encoder gives and labels it as clas
     CHECK(recorder.init(view, capacity, EncoderConfig{}, nullptr, bytes) == Status::storage_too_small);
     CHECK(recorder.init(view, capacity, EncoderConfig{}, storage, bytes - 1) == Status::storage_too_small);
     CHECK(recorder.init(view, 0, EncoderConfig{}, storage, bytes) == Status::invalid_argument);
+    ModelView broken = view;
+    broken.descriptor_levels = 9;  // more than the runtime's 8
+    CHECK(recorder.init(broken, capacity, EncoderConfig{}, storage, bytes) == Status::invalid_model);
     CHECK(ClipRecorder::required_bytes(view, unsatisfiable_bytes / 2) == unsatisfiable_bytes);
     REQUIRE(recorder.init(view, capacity, EncoderConfig{}, storage, bytes) == Status::ok);
     CHECK(recorder.classify().label == unknown_label);  // nothing yet

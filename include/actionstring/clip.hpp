@@ -163,11 +163,15 @@ public:
         return plan(model, max_characters, config).bytes;
     }
 
-    /// @return ok, invalid_argument (no room for a character, or times the
-    ///         encoder refuses), storage_too_small, or what the encoder's init() returns
+    /// @return ok, invalid_model (validate_model() names the field),
+    ///         invalid_argument (no room for a character, or times the encoder
+    ///         refuses), storage_too_small, or what the encoder's init() returns
     Status init(const ModelView& model, std::size_t max_characters, const EncoderConfig& config, void* storage,
                 std::size_t bytes) noexcept {
         model_ = nullptr;
+        // Every table classify() reads, checked once here (as Annotator::init() does).
+        const Status valid = validate_model(model);
+        if (valid != Status::ok) return valid;
         if (max_characters == 0) return Status::invalid_argument;
         EncoderConfig plain = config;
         plain.deferred = false;  // every character and its feature as its frame comes
