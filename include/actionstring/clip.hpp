@@ -173,9 +173,8 @@ public:
         const Status valid = validate_model(model);
         if (valid != Status::ok) return valid;
         if (max_characters == 0) return Status::invalid_argument;
-        EncoderConfig plain = config;
-        plain.deferred = false;  // every character and its feature as its frame comes
-        const Plan p = plan(model, max_characters, plain);
+        const EncoderConfig plain = immediate(config);
+        const Plan p = plan(model, max_characters, config);
         if (!detail::storage_fits(storage, bytes, p.bytes)) return Status::storage_too_small;
         detail::clear_storage(storage, p.bytes);
         const Status status =
@@ -245,11 +244,17 @@ private:
     struct Plan {
         std::size_t encoder = 0, encoder_bytes = 0, characters = 0, features = 0, scratch = 0, cells = 0, bytes = 0;
     };
+    // Every character and its feature as its frame comes: never deferred, so
+    // required_bytes() and init() size the encoder alike whatever is asked.
+    static constexpr EncoderConfig immediate(EncoderConfig config) noexcept {
+        config.deferred = false;
+        return config;
+    }
     static constexpr Plan plan(const ModelView& model, std::size_t max_characters,
                                const EncoderConfig& config) noexcept {
         Plan p;
         detail::StorageLayout layout;
-        p.encoder_bytes = StringEncoder::required_bytes(model, config);
+        p.encoder_bytes = StringEncoder::required_bytes(model, immediate(config));
         p.encoder = layout.add_bytes(p.encoder_bytes, 1);
         p.characters = layout.add<Character>(max_characters);
         const std::size_t d = model.feature_dim;
