@@ -32,7 +32,7 @@ int run_annotate(int argc, char** argv) {
                 "                             [--columns time=COL,JOINT=X:Y:Z,...]\n"
                 "                             [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
                 "                             [--skip-penalty X] [--unknown-cost X] [--segment-votes X]\n"
-                "                             [--segment-exemplars X] [--spread-work]\n\n"
+                "                             [--segment-exemplars X] [--label-lead S] [--spread-work]\n\n"
                 "Streams FILE frame by frame through the annotator, as a device would, and prints\n"
                 "the timeline of settled labels: start and end time in seconds, label (or\n"
                 "'unknown') and the confidence, the share of the span's frames whose live label\n"

@@ -187,7 +187,7 @@ int run_live(const host::ModelData& model, const AnnotatorConfig& config, const 
                 host::JsonWriter out;
                 out.begin_object()
                     .field("settled", label_name(label))
-                    .field("time", host::us_to_seconds(annotator->character_time_us(annotator->settled_character())))
+                    .field("time", host::us_to_seconds(annotator->label_time_us(annotator->settled_character())))
                     .end_object();
                 print_line(out);
                 wrote = true;

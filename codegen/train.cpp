@@ -90,6 +90,9 @@ void print_train_usage(std::FILE* out) {
                  "                          devices, eval and annotate [2, 3, 0.3, 0.3, inf]\n"
                  "  --min-action S          the events' shortest action, stored in the model: a\n"
                  "                          shorter settled run is flicker, never reported [0.25]\n"
+                 "  --label-lead S          stored in the model: each character's label applies S\n"
+                 "                          seconds before its tick, as the feature's motion looks\n"
+                 "                          back and actions show in it late [0]\n"
                  "  --seed N                [%u]\n"
                  "  --rate HZ               frame rate of files without timing (AMC 120, MSR 15)\n"
                  "  --roles R,L,R           root, left hip, right hip joint names\n"
@@ -211,8 +214,7 @@ void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::Tr
     std::fprintf(stderr, "train: choosing the online settings by streaming each held-out subject's %s\n",
                  recordings != nullptr ? "recordings" : "clips joined");
     const host::OnlineTuningResult tuned = host::tune_online(clips, options, recordings);
-    options.online = tuned.chosen;
-    options.min_action_us = tuned.chosen_min_action_us;
+    host::adopt_online_tuning(tuned, options);
     if (tuned.steps.empty()) return;
     std::printf("online tuning:    %zu settings in %.0f s; mean over the held-out subjects' streams:\n",
                 tuned.steps.size(), tuned.seconds);
@@ -229,6 +231,11 @@ void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::Tr
         std::printf("  min-action %-6g events' segment F1 %.3f (standard error %.3f)  detection latency %.2f s%s\n",
                     host::us_to_seconds(step.min_action_us), step.event_segment_f1, step.standard_error,
                     step.detection_latency_s, step.kept ? "  <- chosen" : "");
+    std::printf("the label lead with both (the best settled frames):\n");
+    for (const host::LabelLeadStep& step : tuned.label_lead_steps)
+        std::printf("  label-lead %-6g settled frames %.3f  segment F1 %.3f%s\n",
+                    host::us_to_seconds(step.label_lead_us), step.frame_accuracy, step.segment_f1,
+                    step.kept ? "  <- chosen" : "");
 }
 
 // Leave-one-subject-out over the list's subjects: a fold table, then the mean.

@@ -14,6 +14,7 @@
 #include "model/artifact.hpp"
 #include "model/header.hpp"
 #include "run/state.hpp"
+#include "run/stream_labels.hpp"
 #include "test_support.hpp"
 #include "toy/toy.hpp"
 #include "train/pipeline.hpp"
@@ -213,15 +214,18 @@ TEST_CASE("the online settings travel in the model: training stores them, init()
     options.online.segment_penalty = 1.5f;
     options.online.unknown_cost = 0.25f;
     options.min_action_us = 750000;
+    options.label_lead_us = 300000;
     const host::ModelData model = host::train_model(host::toy_clips(world, 2, 8), options);
     const ModelView view = model.view();
     CHECK(view.settle_delay_us == 1000000u);
     CHECK(view.segment_penalty == 1.5f);
     CHECK(view.unknown_cost == 0.25f);
     CHECK(view.min_action_us == 750000u);
+    CHECK(view.label_lead_us == 300000u);
     const AnnotatorConfig config = annotator_config(view);
     CHECK(config.segmenter.unknown_cost == 0.25f);
     CHECK(config.min_action_us == 750000);
+    CHECK(config.label_lead_us == 300000);
     host::Stateful<Annotator> annotator;
     REQUIRE(annotator.init(view, config) == Status::ok);
     CHECK(annotator->settle_chars() == 10u);  // 1 s at the toy's 10 Hz string
@@ -233,9 +237,113 @@ TEST_CASE("the online settings travel in the model: training stores them, init()
     const host::ModelData loaded = host::parse_model("online.model", host::serialize_model(model));
     CHECK(loaded.unknown_cost == 0.25f);
     CHECK(loaded.min_action_us == 750000u);
+    CHECK(loaded.label_lead_us == 300000u);
     const std::string header = host::generate_header(model, "0", "online", "online.model");
     CHECK(header.find("m.segment_penalty = 0x1.8p+0f;") != std::string::npos);
     CHECK(header.find("m.min_action_us = 750000;") != std::string::npos);
+    CHECK(header.find("m.label_lead_us = 300000;") != std::string::npos);
+}
+
+TEST_CASE("the label lead moves every label's time and the events' times, and nothing else") {
+    const host::ToyWorld world = host::make_toy_world();
+    const ModelView view = world.model.view();
+    REQUIRE(view.label_lead_us == 0u);
+    struct Run {
+        std::vector<std::pair<std::uint64_t, LabelId>> settled;
+        std::vector<std::int64_t> ticks, label_times;  // of each settled character
+        std::vector<ActionEvent> events;
+    };
+    host::ToyStreamOptions stream;
+    stream.frame_time_jitter = 0.3;
+    stream.drop_probability = 0.1;
+    const auto frames = host::toy_stream(world, {0, 2, 1, 3, 0}, stream);
+    const auto run = [&](std::int64_t lead_us) {
+        AnnotatorConfig config = annotator_config(view);
+        config.label_lead_us = lead_us;
+        host::Stateful<Annotator> annotator;
+        REQUIRE(annotator.init(view, config) == Status::ok);
+        Run out;
+        for (const host::ToyFrame& frame : frames) {
+            const FrameResult r = annotator->push_frame(frame.time_us, frame.positions.data());
+            for (std::uint32_t k = 0; k < r.characters_settled; ++k) {
+                const std::uint64_t c = annotator->settled_character() - (r.characters_settled - 1 - k);
+                out.settled.emplace_back(c, annotator->settled_label(c));
+                out.ticks.push_back(annotator->character_time_us(c));
+                out.label_times.push_back(annotator->label_time_us(c));
+            }
+            for (std::uint32_t e = 0; e < r.events; ++e) out.events.push_back(annotator->event(e));
+        }
+        const std::uint32_t flushed = annotator->flush();
+        for (std::uint32_t e = 0; e < flushed; ++e) out.events.push_back(annotator->event(e));
+        return out;
+    };
+    const Run at_ticks = run(0);
+    REQUIRE(at_ticks.settled.size() > 20);
+    REQUIRE(at_ticks.events.size() >= 4);
+    CHECK(at_ticks.label_times == at_ticks.ticks);
+    for (const std::int64_t lead_us :
+         {std::int64_t{1}, std::int64_t{150000}, std::int64_t{view.string_period_us} * 3}) {
+        CAPTURE(lead_us);
+        const Run led = run(lead_us);
+        CHECK(led.settled == at_ticks.settled);  // what is settled, and when, is the same
+        CHECK(led.ticks == at_ticks.ticks);
+        REQUIRE(led.label_times.size() == led.ticks.size());
+        for (std::size_t i = 0; i < led.ticks.size(); ++i) CHECK(led.label_times[i] == led.ticks[i] - lead_us);
+        REQUIRE(led.events.size() == at_ticks.events.size());
+        for (std::size_t i = 0; i < led.events.size(); ++i) {
+            const ActionEvent &a = led.events[i], &b = at_ticks.events[i];
+            CHECK(a.kind == b.kind);
+            CHECK(a.label == b.label);
+            CHECK(a.first_character == b.first_character);
+            CHECK(a.last_character == b.last_character);
+            CHECK(a.confidence == b.confidence);
+            CHECK(a.start_time_us == b.start_time_us - lead_us);
+            CHECK(a.end_time_us == b.end_time_us - lead_us);
+        }
+    }
+    // A negative lead, or one past the longest settle delay, is refused.
+    host::Stateful<Annotator> annotator;
+    AnnotatorConfig bad = annotator_config(view);
+    bad.label_lead_us = -1;
+    CHECK(annotator.init(view, bad) == Status::invalid_argument);
+    bad.label_lead_us = max_settle_delay_us + 1;
+    CHECK(annotator.init(view, bad) == Status::invalid_argument);
+    bad.label_lead_us = max_settle_delay_us;
+    CHECK(annotator.init(view, bad) == Status::ok);
+}
+
+TEST_CASE("with a label lead, a frame takes the label of the character that lead after it") {
+    const host::ToyWorld world = host::make_toy_world();
+    const ModelView view = world.model.view();
+    // Frames every 25 ms, so a lead of a whole number of frames maps each frame onto a later one exactly.
+    host::ToyStreamOptions stream;
+    stream.frame_rate_hz = 40.0;
+    const auto frames = host::toy_stream(world, {1, 3, 0, 2}, stream);
+    std::vector<double> times;
+    std::vector<float> positions;
+    for (const host::ToyFrame& frame : frames) {
+        REQUIRE(frame.time_us % 25000 == 0);
+        times.push_back(static_cast<double>(frame.time_us) * 1e-6);
+        positions.insert(positions.end(), frame.positions.begin(), frame.positions.end());
+    }
+    const std::size_t joints = frames.front().positions.size() / 3;
+    AnnotatorConfig config = annotator_config(view);
+    const host::StreamLabels at_ticks = host::label_stream(view, config, times, positions.data(), joints);
+    for (const std::size_t shift : {std::size_t{1}, std::size_t{4}, std::size_t{10}}) {
+        CAPTURE(shift);
+        config.label_lead_us = static_cast<std::int64_t>(shift) * 25000;
+        const host::StreamLabels led = host::label_stream(view, config, times, positions.data(), joints);
+        REQUIRE(led.settled.size() == frames.size());
+        std::size_t changed = 0;
+        for (std::size_t f = 0; f + shift < frames.size(); ++f) {
+            CHECK(led.settled[f] == at_ticks.settled[f + shift]);
+            // Its label comes when that later frame's does.
+            CHECK(led.settled_at_s[f] == std::max(at_ticks.settled_at_s[f + shift], times[f]));
+            changed += led.settled[f] != at_ticks.settled[f];
+        }
+        CHECK(changed > 0);                // the actions' boundaries moved
+        CHECK(led.live == at_ticks.live);  // the live label is the newest character's, whatever the lead
+    }
 }
 
 TEST_CASE("spread_work reports the same labels and events, at most one character later") {

@@ -723,7 +723,7 @@ namespace {
 // A model's artifact as an earlier version wrote it: the version line, and
 // none of the fields added since (version 6: the exemplars; 7: the
 // acceleration's weight; 8: the events' shortest action; 9: the exemplars'
-// dimension; 10: the clip descriptor).
+// dimension; 10: the clip descriptor; 11: the label lead).
 std::string older_artifact(const ModelData& model, int version) {
     std::string body;
     const std::string fields = serialize_fields(model);
@@ -734,7 +734,8 @@ std::string older_artifact(const ModelData& model, int version) {
                            (version < 7 && line.find("acceleration_weight") != std::string::npos) ||
                            (version < 8 && line.find("min_action_us") != std::string::npos) ||
                            (version < 9 && line.find("exemplar_dim ") == 0) ||
-                           (version < 10 && line.find("descriptor") == 0);
+                           (version < 10 && line.find("descriptor") == 0) ||
+                           (version < 11 && line.find("label_lead_us") == 0);
         if (!added) body += line;
         at = end;
     }
@@ -746,24 +747,24 @@ std::string older_artifact(const ModelData& model, int version) {
 }  // namespace
 
 TEST_CASE(
-    "version-5 to 9 artifacts (before the exemplars, the acceleration, the shortest action, the exemplars' "
-    "dimension, the clip descriptor) are read") {
+    "version-5 to 10 artifacts (before the exemplars, the acceleration, the shortest action, the exemplars' "
+    "dimension, the clip descriptor, the label lead) are read") {
     const ToyWorld world = make_toy_world();
     REQUIRE_FALSE(world.model.view().has_exemplars());
     REQUIRE_FALSE(world.model.view().has_acceleration());
     REQUIRE(world.model.min_action_us == 250000u);  // what a model without the field has
-    for (const int version : {5, 6, 7, 8, 9}) {
+    for (const int version : {5, 6, 7, 8, 9, 10}) {
         CAPTURE(version);
         const std::string old = older_artifact(world.model, version);
         CHECK(serialize_model(parse_model("old.model", old)) == serialize_model(world.model));
         // The same lines under the current version lack fields: refused, with the
         // line (the first field missing from them).
         std::string current = old;
-        current.replace(0, std::string("actionstring-model 5").size(),
-                        "actionstring-model " + std::to_string(artifact_version));
-        const char* const missing = version < 7   ? "expected 'acceleration_weight'"
-                                    : version < 9 ? "expected 'exemplar_dim'"
-                                                  : "expected 'descriptor_weight'";
+        current.replace(0, current.find('\n'), "actionstring-model " + std::to_string(artifact_version));
+        const char* const missing = version < 7    ? "expected 'acceleration_weight'"
+                                    : version < 9  ? "expected 'exemplar_dim'"
+                                    : version < 10 ? "expected 'descriptor_weight'"
+                                                   : "expected 'label_lead_us'";
         CHECK_THROWS_WITH_AS(parse_model("new.model", current), doctest::Contains(missing), ReadError);
     }
     // A version-7 model's events keep the runtime's default shortest action.
@@ -771,6 +772,10 @@ TEST_CASE(
     shorter.min_action_us = 500000;
     CHECK(parse_model("v7.model", older_artifact(shorter, 7)).min_action_us == 250000u);
     CHECK(parse_model("v8.model", older_artifact(shorter, 8)).min_action_us == 500000u);
+    // A version-10 model's labels apply at their characters' ticks (no lead).
+    shorter.label_lead_us = 200000;
+    CHECK(parse_model("v10.model", older_artifact(shorter, 10)).label_lead_us == 0u);
+    CHECK(parse_model("v11.model", serialize_model(shorter)).label_lead_us == 200000u);
     // A version-8 model's exemplars keep every coordinate of the feature.
     TrainingOptions options = toy_pca_only_options();
     options.exemplars = 3;

@@ -251,7 +251,11 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     REQUIRE(a.min_action_steps.size() == std::size(min_action_candidates_us));
     const MinActionStep& longest = a.min_action_steps.back();
     CHECK(longest.min_action_us == 1500000);
-    double f1 = 0, frames = 0, latency = 0;
+    // The label lead is tried with both chosen: the longest lead's figures too.
+    REQUIRE(a.label_lead_steps.size() == std::size(label_lead_candidates_us));
+    const LabelLeadStep& longest_lead = a.label_lead_steps.back();
+    CHECK(longest_lead.label_lead_us == 500000);
+    double f1 = 0, frames = 0, latency = 0, led_frames = 0, led_f1 = 0;
     std::vector<double> event_f1;  // per fold
     for (const auto& held : folds) {
         REQUIRE(held.size() == 1);  // one subject per fold
@@ -263,6 +267,10 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
         actionstring::AnnotatorConfig events = actionstring::annotator_config(model.view());
         events.segmenter = a.chosen;
         events.min_action_us = longest.min_action_us;
+        actionstring::AnnotatorConfig led = actionstring::annotator_config(model.view());
+        led.segmenter = a.chosen;
+        led.min_action_us = a.chosen_min_action_us;
+        led.label_lead_us = longest_lead.label_lead_us;
         event_f1.push_back(0.0);
         for (int order = 1; order <= online_tuning_orders; ++order) {
             const OnlineReport report = evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), config);
@@ -272,6 +280,9 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
                 evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), events);
             event_f1.back() += reported.settled.event_segment_f1 / online_tuning_orders;
             latency += reported.settled.detection_latency_s;
+            const OnlineReport leading = evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), led);
+            led_frames += leading.settled.frame_accuracy;
+            led_f1 += leading.settled.segment_f1;
         }
     }
     const double n = static_cast<double>(folds.size()) * online_tuning_orders;
@@ -283,6 +294,26 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     CHECK(longest.event_segment_f1 == doctest::Approx(mean).epsilon(1e-12));
     CHECK(longest.standard_error == doctest::Approx(std::sqrt(squares / 2.0 / 3.0)).epsilon(1e-12));
     CHECK(longest.detection_latency_s == doctest::Approx(latency / n).epsilon(1e-12));
+    CHECK(longest_lead.frame_accuracy == doctest::Approx(led_frames / n).epsilon(1e-12));
+    CHECK(longest_lead.segment_f1 == doctest::Approx(led_f1 / n).epsilon(1e-12));
+    // One lead kept: the best settled frames, the shorter on a tie; deterministic.
+    std::size_t kept_leads = 0;
+    for (std::size_t i = 0; i < a.label_lead_steps.size(); ++i) {
+        CHECK(a.label_lead_steps[i].frame_accuracy == b.label_lead_steps[i].frame_accuracy);
+        if (!a.label_lead_steps[i].kept) continue;
+        ++kept_leads;
+        CHECK(a.chosen_label_lead_us == a.label_lead_steps[i].label_lead_us);
+        for (std::size_t j = 0; j < a.label_lead_steps.size(); ++j) {
+            CHECK(a.label_lead_steps[j].frame_accuracy <= a.label_lead_steps[i].frame_accuracy + 1e-9);
+            if (j < i) CHECK(a.label_lead_steps[j].frame_accuracy < a.label_lead_steps[i].frame_accuracy - 1e-9);
+        }
+    }
+    CHECK(kept_leads == 1);
+    TrainingOptions adopted = options;
+    adopt_online_tuning(a, adopted);
+    CHECK(adopted.label_lead_us == a.chosen_label_lead_us);
+    CHECK(adopted.min_action_us == a.chosen_min_action_us);
+    CHECK(adopted.online.segment_penalty == a.chosen.segment_penalty);
     // One kept, by the one-standard-error rule, and it is the model's.
     std::size_t kept_actions = 0;
     for (std::size_t i = 0; i < a.min_action_steps.size(); ++i) {
@@ -296,11 +327,14 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     std::vector<LabelledClip> one = clips;
     for (LabelledClip& c : one) c.subject = "s";
     options.min_action_us = 400000;
+    options.label_lead_us = 70000;
     const OnlineTuningResult single = tune_online(one, options);
     CHECK(single.steps.empty());
     CHECK(single.min_action_steps.empty());
     CHECK(single.chosen.segment_penalty == options.online.segment_penalty);
     CHECK(single.chosen_min_action_us == 400000);
+    CHECK(single.label_lead_steps.empty());
+    CHECK(single.chosen_label_lead_us == 70000);
 }
 
 TEST_CASE("a latency budget: shorter settle delays tried, only what meets it kept, the fastest when nothing does") {

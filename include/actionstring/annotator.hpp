@@ -50,6 +50,15 @@ struct AnnotatorConfig {
     /// but reports each action later; a model carries its own (chosen at
     /// training, ModelView::min_action_us).
     std::int64_t min_action_us = 250000;
+    /// How much earlier than its tick a character's label applies
+    /// (label_time_us(), and the events' start and end times). A character
+    /// is made from the feature at its tick, whose motion is a difference
+    /// back over the model's span: an action shows in the characters a
+    /// little after it shows in the body, so placing each label this much
+    /// earlier puts the boundaries where the actions change. It moves times
+    /// only: what is settled, and when, is the same. A model carries its own
+    /// (chosen at training, ModelView::label_lead_us); 0 to max_settle_delay_us.
+    std::int64_t label_lead_us = 0;
     /// Spread each character's work (the encoder's projection, GMM and tree;
     /// the segmenter's pass over every representative character, and over
     /// the exemplars when the settings weigh them) over the frames until the
@@ -75,6 +84,7 @@ constexpr AnnotatorConfig annotator_config(const ModelView& model) noexcept {
     AnnotatorConfig c;
     c.segmenter = segmenter_config(model);
     c.min_action_us = model.min_action_us;
+    c.label_lead_us = model.label_lead_us;
     return c;
 }
 
@@ -130,7 +140,8 @@ public:
         // Settings first, so a bad one is reported as such rather than as a size.
         Status status = ActionSegmenter::check(model, config.segmenter);
         if (status != Status::ok) return status;
-        if (!(config.min_action_us >= 0 && config.min_action_us <= max_settle_delay_us))
+        if (!(config.min_action_us >= 0 && config.min_action_us <= max_settle_delay_us) ||
+            !(config.label_lead_us >= 0 && config.label_lead_us <= max_settle_delay_us))
             return Status::invalid_argument;
         const Plan p = plan(model, config);
         if (!detail::storage_fits(storage, bytes, p.bytes)) {
@@ -298,6 +309,14 @@ public:
     std::uint32_t settle_chars() const noexcept { return segmenter_.settle_chars(); }
     /// Time of a character's tick (any character of the current stream).
     std::int64_t character_time_us(std::uint64_t character) const noexcept { return encoder_.tick_time_us(character); }
+    /// The stream time from which a character's label applies: its tick,
+    /// less the label lead (AnnotatorConfig::label_lead_us). A frame at time
+    /// t takes the label of the last character whose label time is at most
+    /// t, which may be up to the lead after the frame; the events' start and
+    /// end times are label times too.
+    std::int64_t label_time_us(std::uint64_t character) const noexcept {
+        return encoder_.tick_time_us(character) - config_.label_lead_us;
+    }
     /// Characters in the current stream's string so far.
     std::uint64_t characters() const noexcept { return pushed_; }
     /// How many settled labels settled_label(character) remembers.
@@ -402,7 +421,7 @@ private:
         ++result.characters_settled;
         const std::uint64_t s = segmenter_.settled_character();
         const LabelId label = segmenter_.settled_label();
-        events_.settle(s, label, live_[s % live_ring_] == label, tick_time(origin_us, s));
+        events_.settle(s, label, live_[s % live_ring_] == label, tick_time(origin_us, s) - config_.label_lead_us);
     }
 
     // The unsettled tail of a stream (whose character 0 ticked at origin_us)
@@ -411,7 +430,7 @@ private:
         const std::uint64_t first = segmenter_.has_settled() ? segmenter_.settled_character() + 1 : 0;
         for (std::uint64_t c = first; c < fed_; ++c) {
             const LabelId label = segmenter_.provisional_label(c);
-            events_.settle(c, label, live_[c % live_ring_] == label, tick_time(origin_us, c));
+            events_.settle(c, label, live_[c % live_ring_] == label, tick_time(origin_us, c) - config_.label_lead_us);
         }
         events_.close();
     }

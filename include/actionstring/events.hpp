@@ -29,7 +29,8 @@ struct ActionEvent {
     /// The action's first character, and its last (ended) or newest so far (started).
     std::uint64_t first_character = 0;
     std::uint64_t last_character = 0;
-    /// Times of those characters' ticks, in the stream's clock (microseconds).
+    /// Those characters' label times in the stream's clock (microseconds):
+    /// their ticks, less the label lead (Annotator::label_time_us()).
     std::int64_t start_time_us = 0;
     std::int64_t end_time_us = 0;
     /// Share in [0, 1] of the action's characters (so far) whose live label was this label.
@@ -57,7 +58,7 @@ public:
     /// Forgets the previous frame's events.
     void begin_frame() noexcept { count_ = 0; }
 
-    /// One settled character: its label, whether its live label agreed, and its tick time.
+    /// One settled character: its label, whether its live label agreed, and its label time.
     void settle(std::uint64_t character, LabelId label, bool live_agreed, std::int64_t time_us) noexcept {
         const Run one{true, label, character, character, time_us, time_us, live_agreed ? 1u : 0u, false};
         if (!run_.reported) {

@@ -125,5 +125,8 @@
     SCALAR(float, segment_vote_weight, 0.0f, 0, 0)         /* the characters' votes in the explanation */ \
     SCALAR(float, segment_exemplar_weight, 0.0f, 0, 0)     /* the exemplars in the explanation */         \
     /* an action event needs a settled run this long (events.hpp): a shorter one is flicker */            \
-    SCALAR(std::uint32_t, min_action_us, 250000, 0, 600000000)
+    SCALAR(std::uint32_t, min_action_us, 250000, 0, 600000000)                                           \
+    /* how much earlier than its tick a character's label applies (annotator.hpp, label_time_us()): */  \
+    /* the feature's motion looks back over its span, so an action shows in it a little late        */  \
+    SCALAR(std::uint32_t, label_lead_us, 0, 0, 600000000)
 // clang-format on

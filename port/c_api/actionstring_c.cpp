@@ -129,6 +129,7 @@ AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) 
     config.window_rule = c->window_rule != 0;
     config.min_action_us = c->min_action_us;
     config.spread_work = c->spread_work != 0;
+    config.label_lead_us = c->label_lead_us;
     config.segmenter.settle_delay_us = c->online.settle_delay_us;
     config.segmenter.segment_penalty = c->online.segment_penalty;
     config.segmenter.stay_penalty = c->online.stay_penalty;
@@ -145,7 +146,8 @@ bool config_ok(const ModelView& model, const AnnotatorConfig& config) {
            actionstring::StringSampler::settings_ok(model.string_period_us, config.max_gap_us,
                                                     config.max_backward_us) &&
            Annotator::required_bytes(model, config) != actionstring::unsatisfiable_bytes && config.min_action_us >= 0 &&
-           config.min_action_us <= actionstring::max_settle_delay_us;
+           config.min_action_us <= actionstring::max_settle_delay_us && config.label_lead_us >= 0 &&
+           config.label_lead_us <= actionstring::max_settle_delay_us;
 }
 
 void set_model(actionstring_model* handle, const ModelView& view, const char* checksum) {
@@ -224,6 +226,7 @@ actionstring_status actionstring_default_config(const actionstring_model* handle
     config->window_rule = c.window_rule ? 1 : 0;
     config->min_action_us = c.min_action_us;
     config->spread_work = c.spread_work ? 1 : 0;
+    config->label_lead_us = c.label_lead_us;
     return ACTIONSTRING_OK;
 }
 
@@ -369,6 +372,14 @@ actionstring_status actionstring_set_min_action(actionstring_state* handle, int6
     return reconfigure(*state, config);
 }
 
+actionstring_status actionstring_set_label_lead(actionstring_state* handle, int64_t label_lead_us) {
+    State* state = live(handle);
+    if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    AnnotatorConfig config = state->annotator.config();
+    config.label_lead_us = label_lead_us;
+    return reconfigure(*state, config);
+}
+
 int32_t actionstring_label(const actionstring_state* handle) {
     const State* state = live(handle);
     if (state == nullptr || state->annotator.label() == actionstring::unknown_label) return -1;
@@ -397,6 +408,12 @@ int32_t actionstring_settled_label(const actionstring_state* handle, int64_t cha
     if (state == nullptr || character < 0) return -1;
     const actionstring::LabelId label = state->annotator.settled_label(static_cast<std::uint64_t>(character));
     return label == actionstring::unknown_label ? -1 : static_cast<int32_t>(label);
+}
+
+int64_t actionstring_label_time_us(const actionstring_state* handle, int64_t character) {
+    const State* state = live(handle);
+    if (state == nullptr || character < 0) return 0;
+    return state->annotator.label_time_us(static_cast<std::uint64_t>(character));
 }
 
 float actionstring_confidence(const actionstring_state* handle) {

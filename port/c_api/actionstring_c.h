@@ -89,6 +89,9 @@ typedef struct actionstring_config {
                                   frames until the next one, for a flat frame cost; the same labels and events,
                                   each reported up to one string period later (actionstring_finish_work()); more
                                   state (actionstring_state_size()); default 0 */
+    int64_t label_lead_us;   /**< a character's label applies this long before its tick (actionstring_label_time_us(),
+                                  the events' times): the feature's motion looks back, so actions show in it late
+                                  (the model's own, 0 to 600 s) */
 } actionstring_config;
 
 /** What one actionstring_push_frame() did. */
@@ -105,8 +108,8 @@ typedef struct actionstring_frame_result {
 typedef struct actionstring_event {
     int32_t started;         /**< 1: the action started; 0: it ended */
     int32_t label;           /**< label index */
-    int64_t start_time_us;   /**< time of its first character, on the frames' clock */
-    int64_t end_time_us;     /**< time of its last character (so far, for a start) */
+    int64_t start_time_us;   /**< label time of its first character, on the frames' clock */
+    int64_t end_time_us;     /**< label time of its last character (so far, for a start) */
     int64_t first_character; /**< stream index of its first character */
     int64_t last_character;
     float confidence; /**< share of its characters whose live label already said this label */
@@ -191,6 +194,10 @@ ACTIONSTRING_C_API actionstring_status actionstring_set_online_settings(actionst
  *  restarts its stream. INVALID_ARGUMENT for a negative one or one over 10
  *  minutes; NOT_INITIALIZED for a bad state. On failure the state is unchanged. */
 ACTIONSTRING_C_API actionstring_status actionstring_set_min_action(actionstring_state* state, int64_t min_action_us);
+/** Replaces a state's label lead (config.label_lead_us; a model carries its own) and
+ *  restarts its stream. INVALID_ARGUMENT for a negative one or one over 10 minutes;
+ *  NOT_INITIALIZED for a bad state. On failure the state is unchanged. */
+ACTIONSTRING_C_API actionstring_status actionstring_set_label_lead(actionstring_state* state, int64_t label_lead_us);
 
 /** The paper's window rule (needs config.window_rule): the current label index, or -1. */
 ACTIONSTRING_C_API int32_t actionstring_label(const actionstring_state* state);
@@ -210,6 +217,10 @@ ACTIONSTRING_C_API int64_t actionstring_settled_character(const actionstring_sta
 /** Final label of a settled character (one of the most recent, e.g. those the last frame
  *  reported in characters_settled), or -1 for unknown or a character not remembered. */
 ACTIONSTRING_C_API int32_t actionstring_settled_label(const actionstring_state* state, int64_t character);
+/** The time on the frames' clock from which a character's label applies: its tick less
+ *  the label lead (config.label_lead_us). A frame at time t takes the label of the last
+ *  character whose label time is at most t. 0 for a bad state or a negative index. */
+ACTIONSTRING_C_API int64_t actionstring_label_time_us(const actionstring_state* state, int64_t character);
 /** The model a state runs, or NULL for a bad state. */
 ACTIONSTRING_C_API const actionstring_model* actionstring_state_model(const actionstring_state* state);
 

@@ -165,8 +165,9 @@ class Model:
 
     @property
     def online_settings(self) -> Dict[str, float]:
-        """The online settings the model carries: the segmenter's and the events'
-        shortest action (``settle`` and ``min_action`` in seconds)."""
+        """The online settings the model carries: the segmenter's, the events'
+        shortest action and the label lead (``settle``, ``min_action`` and
+        ``label_lead`` in seconds)."""
         return dict(self._native.online_settings)
 
     def state_bytes(self, **online: Any) -> int:
@@ -256,7 +257,9 @@ class Annotator:
     ``stream_restarted`` or why the frame was rejected: ``non_finite_input``,
     ``tracking_lost``, ...), ``accepted``, ``characters``, ``settled`` (a list of
     (character, time_s, label) for every character whose label became final with
-    this frame; label None for no action), ``live_label`` (the newest guess),
+    this frame; label None for no action; time_s is where the label applies from:
+    the character's tick less the model's ``label_lead``, as the feature's motion
+    looks back and actions show in it late), ``live_label`` (the newest guess),
     ``live_margin`` (how far it leads every other label, in units of the model's
     character distances: its confidence; ``inf`` when nothing else can explain the stream) and
     ``events``: each action once when it starts and once when it ends (dicts

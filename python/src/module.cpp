@@ -215,7 +215,7 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
             throw py::value_error(
                 "unknown online setting '" + key +
                 "' (settle, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, segment_exemplars, "
-                "window_rule, spread_work, max_gap, max_backward, min_action)");
+                "window_rule, spread_work, max_gap, max_backward, min_action, label_lead)");
     }
     return config;
 }
@@ -246,8 +246,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
             tuned = host::tune_training(clips, options);
             options = tuned.options;
             online = host::tune_online(clips, options);
-            options.online = online.chosen;
-            options.min_action_us = online.chosen_min_action_us;
+            host::adopt_online_tuning(online, options);
         }
         host::TrainingReport training;
         model = std::make_shared<ModelData>(host::train_model(clips, options, &training));
@@ -287,7 +286,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
     }
     if (!online.steps.empty()) {
         // The online search's table (means over the held-out subjects' streams), as `train` prints it.
-        py::list settings_tried, min_actions;
+        py::list settings_tried, min_actions, leads;
         for (const host::OnlineTuningStep& step : online.steps) {
             py::dict row;
             row["settings"] = step.settings;
@@ -306,9 +305,18 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
             row["kept"] = step.kept;
             min_actions.append(row);
         }
+        for (const host::LabelLeadStep& step : online.label_lead_steps) {
+            py::dict row;
+            row["label_lead"] = static_cast<double>(step.label_lead_us) * 1e-6;
+            row["frame_accuracy"] = step.frame_accuracy;
+            row["segment_f1"] = step.segment_f1;
+            row["kept"] = step.kept;
+            leads.append(row);
+        }
         py::dict tuning;
         tuning["settings"] = settings_tried;
         tuning["min_action"] = min_actions;
+        tuning["label_lead"] = leads;
         tuning["latency_budget_met"] = online.latency_budget_met;
         tuning["seconds"] = online.seconds;
         report["online_tuning"] = tuning;
@@ -378,13 +386,13 @@ public:
     ModelPtr model() const { return model_; }
 
 private:
-    // The characters a frame settled: (index, tick time in seconds, label).
+    // The characters a frame settled: (index, label time in seconds, label).
     py::list settled(const FrameResult& r) const {
         py::list out;
         if (r.characters_settled == 0) return out;
         const std::uint64_t last = annotator_->settled_character();
         for (std::uint64_t c = last + 1 - r.characters_settled; c <= last; ++c)
-            out.append(py::make_tuple(c, static_cast<double>(annotator_->character_time_us(c)) * 1e-6,
+            out.append(py::make_tuple(c, static_cast<double>(annotator_->label_time_us(c)) * 1e-6,
                                       label_object(*model_, annotator_->settled_label(c))));
         return out;
     }
@@ -525,6 +533,7 @@ PYBIND11_MODULE(_actionstring, m) {
                                    d["segment_votes"] = model.segment_vote_weight;
                                    d["segment_exemplars"] = model.segment_exemplar_weight;
                                    d["min_action"] = static_cast<double>(model.min_action_us) * 1e-6;
+                                   d["label_lead"] = static_cast<double>(model.label_lead_us) * 1e-6;
                                    return d;
                                })
         .def("state_bytes",

@@ -107,6 +107,14 @@ def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     assert len(shortest) == 1
     assert model.online_settings["min_action"] == pytest.approx(shortest[0]["min_action"])
     assert "min-action %g" % shortest[0]["min_action"] in model.training_report["settings"]
+    # Then the label lead: the best settled frames, stored in the model.
+    leads = tuning["label_lead"]
+    assert [row["label_lead"] for row in leads] == pytest.approx([0, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5])
+    lead = [row for row in leads if row["kept"]]
+    assert len(lead) == 1
+    assert all(row["frame_accuracy"] <= lead[0]["frame_accuracy"] + 1e-9 for row in leads)
+    assert model.online_settings["label_lead"] == pytest.approx(lead[0]["label_lead"])
+    assert "label-lead %g" % lead[0]["label_lead"] in model.training_report["settings"]
     # The clip search's table: the starting settings kept first, then each setting tried;
     # a kept one raised the fold mean or, on a tie, the margin.
     clip_tuning = model.training_report["tuning"]

@@ -105,6 +105,33 @@ def test_the_model_carries_its_shortest_action(toy_clips):
         "started", "ended"]
 
 
+def test_the_label_lead_moves_label_times_only(toy_clips):
+    """label_lead is trained into the model and overridable; it moves the settled
+    characters' times and the events' times by exactly the lead, nothing else."""
+    assert actionstring.train(toy_clips, **TOY_SETTINGS).online_settings["label_lead"] == 0
+    led = actionstring.train(toy_clips, **TOY_SETTINGS, label_lead=0.2)
+    assert led.online_settings["label_lead"] == pytest.approx(0.2)
+    clip = toy_clips[1]
+
+    def run(annotator):
+        settled, events = [], []
+        for time_s, frame in zip(clip.times, clip.positions):
+            result = annotator.push_frame(time_s, frame)
+            settled += result["settled"]
+            events += result["events"]
+        return settled, events + annotator.flush()
+
+    settled, events = run(actionstring.Annotator(led, settle=0.5))
+    at_ticks, events_at_ticks = run(actionstring.Annotator(led, settle=0.5, label_lead=0))
+    assert len(settled) > 5 and len(events) >= 2
+    assert [(c, label) for c, _, label in settled] == [(c, label) for c, _, label in at_ticks]
+    assert [t for _, t, _ in settled] == pytest.approx([t - 0.2 for _, t, _ in at_ticks], abs=1e-6)
+    assert [e["start"] for e in events] == pytest.approx([e["start"] - 0.2 for e in events_at_ticks], abs=1e-6)
+    assert [e["label"] for e in events] == [e["label"] for e in events_at_ticks]
+    with pytest.raises(ValueError):
+        actionstring.Annotator(led, label_lead=-0.1)
+
+
 def test_spread_work_settles_the_same_labels_later(toy_model, toy_clips):
     """spread_work=True: each character's work (the encoder's and the
     segmenter's) over the frames until the next one; the same settled labels

@@ -62,10 +62,12 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
     out.settled.assign(frames, unknown_frame);
     out.margin.assign(frames, 0.0f);
     out.settled_at_s.assign(frames, 0.0);
-    // Characters of every stream epoch (a restart begins a new one), with their final label and when it came.
+    // Characters of every stream epoch (a restart begins a new one), with their final label, when it
+    // came and the time it applies from (the runtime's label time).
     std::vector<int> char_label;
     std::vector<double> char_emitted;
-    std::vector<long long> frame_char(frames, -1);
+    std::vector<std::int64_t> char_time_us;
+    std::vector<std::size_t> frame_epoch(frames, 0);
     std::size_t epoch = 0;  // index in char_label of the current epoch's character 0
     for (std::size_t f = 0; f < frames; ++f) {
         const double now = times_s[f];
@@ -77,6 +79,7 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
             epoch = char_label.size();
         }
         while (char_label.size() < epoch + annotator->characters()) {
+            char_time_us.push_back(annotator->label_time_us(char_label.size() - epoch));
             char_label.push_back(not_settled);
             char_emitted.push_back(now);
         }
@@ -92,7 +95,7 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
         out.window[f] = frame_label(annotator->label());
         out.live[f] = frame_label(annotator->live_label());
         out.margin[f] = annotator->live_margin();
-        if (annotator->characters() > 0) frame_char[f] = static_cast<long long>(epoch + annotator->characters() - 1);
+        frame_epoch[f] = epoch;
     }
     if (frames > 0) {
         // A character whose work is still spread over frames (spread_work) is finished first.
@@ -115,12 +118,22 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
         const std::uint32_t flushed = annotator->flush();  // the same tail, as events
         for (std::size_t i = 0; i < flushed; ++i) out.events.push_back({annotator->event(i), times_s.back()});
     }
+    // Each frame takes the label of its epoch's last character whose label time is at most the
+    // frame's (with a label lead, a character that came after it); unknown before the first.
+    std::vector<std::size_t> epoch_end(frames, char_label.size());  // one past each frame's epoch's last character
+    for (std::size_t f = frames; f-- > 1;)
+        epoch_end[f - 1] = frame_epoch[f] != frame_epoch[f - 1] ? frame_epoch[f] : epoch_end[f];
+    std::size_t next = 0;  // the first character whose label time is after the frame's, or its epoch's end
     for (std::size_t f = 0; f < frames; ++f) {
-        if (frame_char[f] < 0) {
+        const std::size_t first = frame_epoch[f], end = epoch_end[f];
+        const std::int64_t now_us = seconds_to_us(times_s[f]);
+        if (next < first) next = first;
+        while (next < end && char_time_us[next] <= now_us) ++next;
+        if (next == first) {
             out.settled_at_s[f] = times_s[f];
             continue;
         }
-        const auto c = static_cast<std::size_t>(frame_char[f]);
+        const std::size_t c = next - 1;
         out.settled[f] = char_label[c] == not_settled ? unknown_frame : char_label[c];
         out.settled_at_s[f] = std::max(char_emitted[c], times_s[f]);
     }

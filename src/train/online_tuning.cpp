@@ -51,6 +51,7 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     OnlineTuningResult result;
     result.chosen = options.online;
     result.chosen_min_action_us = options.min_action_us;
+    result.chosen_label_lead_us = options.label_lead_us;
     // The folds of self-tuning (at most tuning_max_folds, subjects dealt round-robin).
     const std::vector<std::vector<std::string>> folds = subject_folds(clips, tuning_max_folds);
     if (folds.size() < 2) return result;
@@ -205,8 +206,38 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     }
     result.min_action_steps[kept].kept = true;
     result.chosen_min_action_us = result.min_action_steps[kept].min_action_us;
+
+    // The label lead, with both: it moves where each settled label lies in
+    // time, not what is settled, so it is judged by the settled frames.
+    for (const std::int64_t lead_us : label_lead_candidates_us) {
+        LabelLeadStep step;
+        step.label_lead_us = lead_us;
+        for (const Fold& fold : trained) {
+            AnnotatorConfig config = annotator_config(fold.model.view());
+            config.segmenter = result.chosen;
+            config.min_action_us = result.chosen_min_action_us;
+            config.label_lead_us = lead_us;
+            for (int order = 1; order <= orders; ++order) {
+                const OnlineReport report = stream(fold, config, order);
+                step.frame_accuracy += report.settled.frame_accuracy * share;
+                step.segment_f1 += report.settled.segment_f1 * share;
+            }
+        }
+        result.label_lead_steps.push_back(step);
+    }
+    std::size_t lead = 0;
+    for (std::size_t i = 1; i < result.label_lead_steps.size(); ++i)
+        if (result.label_lead_steps[i].frame_accuracy > result.label_lead_steps[lead].frame_accuracy + 1e-9) lead = i;
+    result.label_lead_steps[lead].kept = true;
+    result.chosen_label_lead_us = result.label_lead_steps[lead].label_lead_us;
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
     return result;
+}
+
+void adopt_online_tuning(const OnlineTuningResult& tuned, TrainingOptions& options) {
+    options.online = tuned.chosen;
+    options.min_action_us = tuned.chosen_min_action_us;
+    options.label_lead_us = tuned.chosen_label_lead_us;
 }
 
 }  // namespace host

@@ -37,11 +37,22 @@ struct MinActionStep {
     bool kept = false;
 };
 
+/// One label lead tried (AnnotatorConfig::label_lead_us), with the chosen
+/// segmenter settings and shortest action, and what the held-out streams gave.
+struct LabelLeadStep {
+    std::int64_t label_lead_us = 0;
+    double frame_accuracy = 0;  ///< Mean over the folds of settled frame accuracy.
+    double segment_f1 = 0;      ///< Mean over the folds of the settled labels' segment F1 (IoU ≥ 0.5).
+    bool kept = false;
+};
+
 struct OnlineTuningResult {
     SegmenterConfig chosen;
     std::int64_t chosen_min_action_us = 250000;
+    std::int64_t chosen_label_lead_us = 0;
     std::vector<OnlineTuningStep> steps;
     std::vector<MinActionStep> min_action_steps;
+    std::vector<LabelLeadStep> label_lead_steps;
     /// With a latency budget (TrainingOptions::latency_budget_s): whether any
     /// setting met it. When none did, the fastest setting and the shortest
     /// action were kept.
@@ -58,6 +69,14 @@ constexpr std::int64_t min_action_candidates_us[] = {250000, 500000, 750000, 100
 /// standard error of the best mean, so a device pays latency only for a gain
 /// the folds can tell from noise. Returns its index (0 when `steps` is empty).
 std::size_t one_standard_error_choice(const std::vector<MinActionStep>& steps);
+
+/// The label leads tried, shortest first. A character is made from the
+/// feature at its tick, whose motion is a difference back over the model's
+/// span, so the settled labels change a little after the actions do: on the
+/// training subjects' folds settled frames peaked with a lead of 0.1 s on
+/// HDM05 and 0.2 s on MSR Action3D (velocity span 0.4 s), 0.5 s on UTKinect
+/// (span 0.6 s); models/README.md, "The label lead".
+constexpr std::int64_t label_lead_candidates_us[] = {0, 50000, 100000, 150000, 200000, 300000, 400000, 500000};
 
 /// The stay and skip penalties tried beside the options' own (both at once):
 /// the explanation's time warping made cheaper.
@@ -83,15 +102,21 @@ constexpr int online_tuning_orders = 3;
 /// rest as in `options.online`; keeps the best mean segment F1 (ties: frame
 /// accuracy, then the earlier, simpler settings). Then, with those settings on
 /// the same folds and streams, tries each of min_action_candidates_us for the
-/// events and keeps one_standard_error_choice(). Deterministic.
+/// events and keeps one_standard_error_choice(); then, with both, each of
+/// label_lead_candidates_us, and keeps the best mean settled frame accuracy
+/// (ties: the shorter lead). Deterministic.
 /// With options.latency_budget_s, the grid also tries settle delays of 1 and
 /// 1.5 s beside options.online's, and both choices consider only what meets
 /// the budget on the folds (the fastest when nothing does).
-/// Needs two subjects or more (otherwise returns options.online and
-/// options.min_action_us, no steps).
+/// Needs two subjects or more (otherwise returns options.online,
+/// options.min_action_us and options.label_lead_us, no steps).
 OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const TrainingOptions& options,
                                const std::vector<LabelledRecording>* recordings = nullptr,
                                const std::function<void(const OnlineTuningStep&)>& progress = {});
+
+/// Sets what tune_online() chose in `options`: the segmenter's settings, the
+/// events' shortest action and the label lead.
+void adopt_online_tuning(const OnlineTuningResult& tuned, TrainingOptions& options);
 
 }  // namespace host
 }  // namespace actionstring

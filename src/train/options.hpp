@@ -117,6 +117,9 @@ struct TrainingOptions {
     SegmenterConfig online;
     /// The events' shortest action, stored in the model (AnnotatorConfig::min_action_us).
     std::int64_t min_action_us = 250000;
+    /// How much earlier than its tick a character's label applies, stored in
+    /// the model (AnnotatorConfig::label_lead_us).
+    std::int64_t label_lead_us = 0;
     /// Self-tuning's online search keeps only settings whose mean detection
     /// latency on the folds (true start → `started` report) is at most this
     /// many seconds, and then also tries shorter settle delays (1 and 1.5 s);

@@ -90,6 +90,7 @@ void check_options(const TrainingOptions& o) {
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
             "the settle delay must be 0 to 60 s");
     require(o.min_action_us >= 0 && o.min_action_us <= 60000000, "the shortest action must be 0 to 60 s");
+    require(o.label_lead_us >= 0 && o.label_lead_us <= 60000000, "the label lead must be 0 to 60 s");
 }
 
 // Distance between joints a and b of one frame, in double.
@@ -604,6 +605,7 @@ void set_matching(ModelData& m, const TrainingOptions& options, int representati
     m.segment_vote_weight = online.vote_weight;
     m.segment_exemplar_weight = online.exemplar_weight;
     m.min_action_us = static_cast<std::uint32_t>(options.min_action_us);
+    m.label_lead_us = static_cast<std::uint32_t>(options.label_lead_us);
     // The model stores representative indices in 16 bits (0xFFFF means "no action").
     if (representatives >= 0xFFFF)
         throw std::invalid_argument(std::to_string(representatives) +

@@ -85,6 +85,7 @@ bool apply_segmenter_setting(const std::string& name, const std::string& value, 
 
 bool apply_online_setting(const std::string& name, const std::string& value, AnnotatorConfig& config) {
     if (name == "min-action") config.min_action_us = std::llround(number(name, value, 0, 60) * 1e6);
+    else if (name == "label-lead") config.label_lead_us = std::llround(number(name, value, 0, 60) * 1e6);
     else return apply_segmenter_setting(name, value, config.segmenter);
     return true;
 }
@@ -175,6 +176,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "unknown-distance") o.unknown_distance = num(0, 1e30);
     else if (name == "seed") o.seed = static_cast<std::uint32_t>(whole(0, 4294967295.0));
     else if (name == "min-action") o.min_action_us = std::llround(num(0, 60) * 1e6);
+    else if (name == "label-lead") o.label_lead_us = std::llround(num(0, 60) * 1e6);
     else if (name == "latency-budget") o.latency_budget_s = num(0, 60);
     else if (apply_segmenter_setting(name, value, o.online)) return true;
     else if (name == "rate") read.frame_rate_hz = num(0.001, 1e6);

@@ -32,8 +32,9 @@ std::string range_text(double low, double high);
 bool apply_segmenter_setting(const std::string& name, const std::string& value, SegmenterConfig& config);
 
 /// Applies one of the online settings a model carries to a runtime config:
-/// the segmenter's (apply_segmenter_setting()) or the events' shortest action
-/// (min-action, in seconds, up to a minute). Returns false when `name` is not
+/// the segmenter's (apply_segmenter_setting()), the events' shortest action
+/// (min-action, in seconds, up to a minute) or the label lead (label-lead, in
+/// seconds, up to a minute). Returns false when `name` is not
 /// one; throws std::invalid_argument for a bad value.
 bool apply_online_setting(const std::string& name, const std::string& value, AnnotatorConfig& config);
 

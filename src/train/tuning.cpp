@@ -188,7 +188,8 @@ std::string options_as_config(const TrainingOptions& o) {
         << "\nseed " << o.seed << "\nsettle " << number(us_to_seconds(o.online.settle_delay_us)) << "\nsegment-penalty "
         << number(o.online.segment_penalty) << "\nstay-penalty " << number(o.online.stay_penalty) << "\nskip-penalty "
         << number(o.online.skip_penalty) << "\nunknown-cost " << number(o.online.unknown_cost) << "\nsegment-votes "
-        << number(o.online.vote_weight) << "\nmin-action " << number(us_to_seconds(o.min_action_us)) << "\n";
+        << number(o.online.vote_weight) << "\nmin-action " << number(us_to_seconds(o.min_action_us)) << "\nlabel-lead "
+        << number(us_to_seconds(o.label_lead_us)) << "\n";
     if (o.max_representative_chars > 0) out << "max-representative-chars " << o.max_representative_chars << "\n";
     if (o.max_representative_share > 0)
         out << "max-representative-share " << number(o.max_representative_share) << "\n";

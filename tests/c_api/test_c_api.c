@@ -154,6 +154,12 @@ static void contract_checks(const actionstring_model* model) {
     CHECK(actionstring_set_min_action(NULL, 500000) == ACTIONSTRING_NOT_INITIALIZED);
     CHECK(actionstring_set_min_action(state, 1000000) == ACTIONSTRING_OK);
     CHECK(actionstring_set_min_action(state, config.min_action_us) == ACTIONSTRING_OK);
+    /* The label lead: the model's own by default, replaceable, checked; the stream below runs with 0.25 s. */
+    CHECK(config.label_lead_us >= 0 && config.label_lead_us <= (int64_t)600 * 1000000);
+    CHECK(actionstring_set_label_lead(state, -1) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_set_label_lead(state, (int64_t)3600 * 1000000) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_set_label_lead(NULL, 0) == ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_set_label_lead(state, 250000) == ACTIONSTRING_OK);
 
     /* Wrong element count or a null frame: rejected before the runtime sees it. */
     CHECK(actionstring_push_frame(state, 0, frame, 3 * joints - 1, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
@@ -181,6 +187,20 @@ static void contract_checks(const actionstring_model* model) {
         const float confidence = actionstring_confidence(state);
         CHECK(confidence >= 0.0f && confidence <= 1.0f);
         CHECK(strcmp(actionstring_label_name(state), actionstring_model_label_name(model, label)) == 0);
+        /* A settled character's label applies from its tick less the lead: before this frame by at least the lead. */
+        const int64_t settled = actionstring_settled_character(state);
+        if (result.characters_settled > 0) {
+            CHECK(actionstring_label_time_us(state, settled) <= stamp - 250000);
+            if (settled > 0)
+                CHECK(actionstring_label_time_us(state, settled) > actionstring_label_time_us(state, settled - 1));
+        }
+        /* The events' times are label times. */
+        for (uint32_t i = 0; i < result.events; ++i) {
+            actionstring_event e;
+            CHECK(actionstring_event_at(state, i, &e) == ACTIONSTRING_OK);
+            CHECK(e.start_time_us == actionstring_label_time_us(state, e.first_character));
+            CHECK(e.end_time_us == actionstring_label_time_us(state, e.last_character));
+        }
     }
     CHECK(accepted == 597);
     CHECK(characters > 50);                /* about 12 characters per second of accepted frames */
@@ -193,6 +213,8 @@ static void contract_checks(const actionstring_model* model) {
     CHECK(actionstring_settled_label(state, -5) == -1);
     CHECK(actionstring_settled_label(NULL, 0) == -1);
     CHECK(actionstring_settled_character(NULL) == -1);
+    CHECK(actionstring_label_time_us(NULL, 0) == 0);
+    CHECK(actionstring_label_time_us(state, -1) == 0);
 
     /* Events: pairs, started before ended; the flush ends a running action. */
     actionstring_event event;
