@@ -344,6 +344,21 @@ TEST_CASE("with a label lead, a frame takes the label of the character that lead
         CHECK(changed > 0);                // the actions' boundaries moved
         CHECK(led.live == at_ticks.live);  // the live label is the newest character's, whatever the lead
     }
+    // Without the paper's window rule: the segmenter's labels and events are the same, the window's unknown.
+    config.label_lead_us = 0;
+    const host::StreamLabels segmenter_only =
+        host::label_stream(view, config, times, positions.data(), joints, /*paper_rule=*/false);
+    CHECK(segmenter_only.settled == at_ticks.settled);
+    CHECK(segmenter_only.settled_at_s == at_ticks.settled_at_s);
+    CHECK(segmenter_only.live == at_ticks.live);
+    REQUIRE(segmenter_only.events.size() == at_ticks.events.size());
+    for (std::size_t i = 0; i < at_ticks.events.size(); ++i)
+        CHECK(segmenter_only.events[i].event.start_time_us == at_ticks.events[i].event.start_time_us);
+    const auto unknown_windows = [](const host::StreamLabels& labels) {
+        return std::count(labels.window.begin(), labels.window.end(), host::unknown_frame);
+    };
+    CHECK(unknown_windows(at_ticks) < static_cast<std::ptrdiff_t>(frames.size()));
+    CHECK(unknown_windows(segmenter_only) == static_cast<std::ptrdiff_t>(frames.size()));
 }
 
 TEST_CASE("spread_work reports the same labels and events, at most one character later") {

@@ -319,7 +319,7 @@ int model_label(const std::vector<std::string>& names, const std::string& label)
 }  // namespace
 
 OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledClip>& clips, std::uint32_t seed,
-                             const AnnotatorConfig& config) {
+                             const AnnotatorConfig& config, bool paper_rule) {
     const std::vector<std::string> names = name_strings(model.label_names, model.label_count);
     std::map<std::string, std::vector<std::size_t>> by_subject;
     for (std::size_t c = 0; c < clips.size(); ++c) by_subject[clips[c].subject].push_back(c);
@@ -344,7 +344,8 @@ OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledC
                 s + 1 < stream.segment_first_frame.size() ? stream.segment_first_frame[s + 1] : stream.frame_count();
             for (std::size_t f = stream.segment_first_frame[s]; f < end; ++f) timeline.truth[f] = label;
         }
-        timeline.labels = label_stream(model, config, timeline.times_s, stream.positions.data(), stream.joints);
+        timeline.labels =
+            label_stream(model, config, timeline.times_s, stream.positions.data(), stream.joints, paper_rule);
         timeline.joints = stream.joints;
         timeline.positions = std::move(stream.positions);
         timeline.parents = clips[order.front()].clip.parents;
@@ -358,7 +359,7 @@ OnlineReport evaluate_online(const ModelView& model, const std::vector<LabelledC
 
 StreamTimeline stream_recording(const ModelView& model, const Clip& clip,
                                 const std::vector<LabelledRecording::Interval>* intervals,
-                                const AnnotatorConfig& config) {
+                                const AnnotatorConfig& config, bool paper_rule) {
     StreamTimeline timeline;
     const std::size_t slash = clip.source.find_last_of('/');
     timeline.name = clip.source.substr(slash == std::string::npos ? 0 : slash + 1);
@@ -372,7 +373,7 @@ StreamTimeline stream_recording(const ModelView& model, const Clip& clip,
                 if (clip.times[f] >= interval.start_s && clip.times[f] <= interval.end_s) timeline.truth[f] = label;
         }
     }
-    timeline.labels = label_stream(model, config, clip.times, clip.positions.data(), clip.joint_count());
+    timeline.labels = label_stream(model, config, clip.times, clip.positions.data(), clip.joint_count(), paper_rule);
     timeline.joints = clip.joint_count();
     timeline.positions = clip.positions;
     timeline.parents = clip.parents;
@@ -381,12 +382,12 @@ StreamTimeline stream_recording(const ModelView& model, const Clip& clip,
 }
 
 OnlineReport evaluate_recordings(const ModelView& model, const std::vector<LabelledRecording>& recordings,
-                                 const AnnotatorConfig& config) {
+                                 const AnnotatorConfig& config, bool paper_rule) {
     OnlineReport report;
     report.recordings = true;
     PooledTimelines pooled;
     for (const LabelledRecording& recording : recordings) {
-        StreamTimeline timeline = stream_recording(model, recording.clip, &recording.intervals, config);
+        StreamTimeline timeline = stream_recording(model, recording.clip, &recording.intervals, config, paper_rule);
         pooled.add(timeline);
         report.streams.push_back(std::move(timeline));
     }

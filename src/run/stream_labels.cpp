@@ -47,11 +47,11 @@ std::string annotator_refusal(const ModelView& model, const AnnotatorConfig& con
 }
 
 StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config, const std::vector<double>& times_s,
-                          const float* positions, std::size_t joints) {
+                          const float* positions, std::size_t joints, bool paper_rule) {
     require_joint_count(model, joints, "the stream");
-    // Every rule, the paper's window rule included.
+    // Every rule, the paper's window rule included unless not wanted.
     AnnotatorConfig every_rule = config;
-    every_rule.window_rule = true;
+    every_rule.window_rule = paper_rule;
     Stateful<Annotator> annotator;
     const Status status = annotator.init(model, every_rule);
     if (status != Status::ok) throw std::invalid_argument(annotator_refusal(model, config, status));

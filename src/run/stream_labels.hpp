@@ -49,8 +49,11 @@ std::string annotator_refusal(const ModelView& model, const AnnotatorConfig& con
 /// Streams frames (times in seconds, joints × 3 floats each) through one
 /// annotator exactly as a device would, and collects every rule's labels. The
 /// unsettled tail at the end is reported from the best explanation then.
+/// With `paper_rule` false the paper's window rule is not run (`window` stays
+/// unknown): the segmenter's labels and events are the same, and most of the
+/// work is saved when only they are wanted (self-tuning's online search).
 StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config, const std::vector<double>& times_s,
-                          const float* positions, std::size_t joints);
+                          const float* positions, std::size_t joints, bool paper_rule = true);
 
 /// One stretch of time with a constant label from the annotator.
 struct LabelSpan {

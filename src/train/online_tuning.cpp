@@ -130,11 +130,12 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
         fold.model = train_model(train, options, nullptr, &no_action);
         trained.push_back(std::move(fold));
     }
-    // One held-out stream set's report under `config`, in order `order`.
+    // One held-out stream set's report under `config`, in order `order`:
+    // the segmenter's figures only (the paper's window rule is not run).
     auto stream = [&](const Fold& fold, const AnnotatorConfig& config, int order) {
         return recordings != nullptr
-                   ? evaluate_recordings(fold.model.view(), fold.test_recordings, config)
-                   : evaluate_online(fold.model.view(), fold.test, static_cast<std::uint32_t>(order), config);
+                   ? evaluate_recordings(fold.model.view(), fold.test_recordings, config, false)
+                   : evaluate_online(fold.model.view(), fold.test, static_cast<std::uint32_t>(order), config, false);
     };
     for (const Fold& fold : trained)
         for (OnlineTuningStep& step : steps) {
