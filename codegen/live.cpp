@@ -162,6 +162,22 @@ int run_live(const host::ModelData& model, const AnnotatorConfig& config, const 
             print_line(out);
         }
     };
+    // A settled label that differs from the last one shown, printed; returns whether it was.
+    auto show = [&](LabelId label, std::int64_t time_us) {
+        if (static_cast<int>(label) == shown) return false;
+        shown = label;
+        host::JsonWriter out;
+        out.begin_object().field("settled", label_name(label)).field("time", host::us_to_seconds(time_us)).end_object();
+        print_line(out);
+        return true;
+    };
+    // The labels an ended stream's last characters took when it ended (a restart or the flush).
+    auto show_flushed = [&]() {
+        bool wrote = false;
+        for (std::size_t i = 0; i < annotator->flushed_characters(); ++i)
+            wrote = show(annotator->flushed_label(i), annotator->flushed_label_time_us(i)) || wrote;
+        return wrote;
+    };
     std::string error;
     while (lines.next(line)) {
         ++line_number;
@@ -179,24 +195,14 @@ int run_live(const host::ModelData& model, const AnnotatorConfig& config, const 
         const FrameResult r = annotator->push_frame(host::seconds_to_us(time_s), frame.data());
         ++frames;
         if (r.status != Status::ok && r.status != Status::stream_restarted) ++rejected;
-        bool wrote = false;
-        if (r.characters_settled > 0) {
-            const LabelId label = annotator->settled_label();
-            if (static_cast<int>(label) != shown) {
-                shown = label;
-                host::JsonWriter out;
-                out.begin_object()
-                    .field("settled", label_name(label))
-                    .field("time", host::us_to_seconds(annotator->label_time_us(annotator->settled_character())))
-                    .end_object();
-                print_line(out);
-                wrote = true;
-            }
-        }
+        bool wrote = show_flushed();  // a restart: the ended stream's last labels first
+        if (r.characters_settled > 0)
+            wrote = show(annotator->settled_label(), annotator->label_time_us(annotator->settled_character())) || wrote;
         print_events();
         if (wrote || r.events > 0) std::fflush(stdout);
     }
     annotator->flush();
+    show_flushed();
     print_events();
     std::fflush(stdout);
     std::fprintf(stderr,

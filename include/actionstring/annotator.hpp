@@ -104,6 +104,11 @@ struct FrameResult {
     /// last one is settled_character(); one per character once the stream is
     /// settle_chars() long).
     std::uint32_t characters_settled = 0;
+    /// When this frame restarted the stream: the ended stream's last
+    /// characters, whose labels became final with the restart (those not
+    /// reported settled before; the best explanation's labels at the end, as
+    /// flush() gives them): flushed_label(0 … characters_flushed − 1).
+    std::uint32_t characters_flushed = 0;
     /// Action events (started, ended) this frame produced: event(0 … events − 1).
     std::uint32_t events = 0;
 };
@@ -160,6 +165,8 @@ public:
         if (status != Status::ok) return status;
         live_ = reinterpret_cast<LabelId*>(base + p.live);
         live_ring_ = p.live_count;
+        flushed_ = reinterpret_cast<LabelId*>(base + p.flushed);
+        flushed_count_ = 0;
         const std::int64_t period = model.string_period_us;
         min_action_chars_ = static_cast<std::uint32_t>((config.min_action_us + period - 1) / period);
         config_ = config;
@@ -175,6 +182,7 @@ public:
     void reset() noexcept {
         clear_stream();
         events_.reset(min_action_chars_);
+        flushed_count_ = 0;
     }
 
     /// Ends the stream: the characters not settled yet take the label the
@@ -182,13 +190,17 @@ public:
     /// events this produces are in event(…) (a clip shorter than the settle
     /// delay still gets its label). The next frame starts a new stream.
     /// Returns the number of events.
+    /// The labels of the characters it made final (those not reported
+    /// settled before) are flushed_label(0 … flushed_characters() − 1).
     std::uint32_t flush() noexcept {
         events_.begin_frame();
+        flushed_count_ = 0;
         if (model_ == nullptr) return 0;
         FrameResult finished;
         const std::int64_t origin_us = pushed_ > 0 ? encoder_.tick_time_us(0) : 0;
+        const std::uint64_t unreported = first_unreported();
         work_on(all_work, finished, origin_us);
-        finish_stream(origin_us);
+        finish_stream(origin_us, unreported);
         clear_stream();
         return static_cast<std::uint32_t>(events_.event_count());
     }
@@ -206,6 +218,7 @@ public:
             return result;
         }
         events_.begin_frame();
+        flushed_count_ = 0;
         work_on(all_work, result, encoder_.tick_time_us(0));
         result.events = static_cast<std::uint32_t>(events_.event_count());
         return result;
@@ -223,6 +236,7 @@ public:
             return result;
         }
         events_.begin_frame();
+        flushed_count_ = 0;
         // The old stream's clock, for events of its tail should this frame restart it.
         const std::int64_t origin_us = pushed_ > 0 ? encoder_.tick_time_us(0) : 0;
         // Spread, the frame is taken now and its characters computed later.
@@ -231,9 +245,11 @@ public:
         result.status = encoded.status;
         if (!encoded.accepted()) return result;
         if (encoded.status == Status::stream_restarted) {
-            FrameResult old_stream;  // its settled characters are not this stream's
+            FrameResult old_stream;  // its settled characters are not this stream's: they are flushed
+            const std::uint64_t unreported = first_unreported();
             work_on(all_work, old_stream, origin_us);  // the old stream's last characters count
-            finish_stream(origin_us);  // the old stream ends: its tail settles, its action ends
+            finish_stream(origin_us, unreported);      // the old stream ends: its tail settles, its action ends
+            result.characters_flushed = flushed_count_;
             if (window_rule_) matcher_.reset();
             segmenter_.reset();
             has_window_ = false;
@@ -304,6 +320,25 @@ public:
     std::uint32_t events_dropped() const noexcept { return events_.dropped(); }
     /// Whether an action event has started and not yet ended.
     bool in_action() const noexcept { return events_.in_action(); }
+
+    /// The characters of the stream that ended with the last push_frame()
+    /// (a restart, FrameResult::characters_flushed) or flush() whose labels
+    /// became final then: the best explanation's labels of its unsettled
+    /// tail, and those settled while finishing its work (with spread_work),
+    /// which no FrameResult reported. Valid until the next push_frame(),
+    /// finish_work(), flush() or reset(); 0 otherwise.
+    std::uint32_t flushed_characters() const noexcept { return flushed_count_; }
+    /// The ended stream's index of flushed character i (i < flushed_characters()).
+    std::uint64_t flushed_character(std::size_t i) const noexcept { return flushed_first_ + i; }
+    /// Final label of flushed character i, or unknown_label for i ≥ flushed_characters().
+    LabelId flushed_label(std::size_t i) const noexcept { return i < flushed_count_ ? flushed_[i] : unknown_label; }
+    /// Label time of flushed character i on the ended stream's clock (its
+    /// tick less the label lead, as label_time_us()).
+    std::int64_t flushed_label_time_us(std::size_t i) const noexcept {
+        return flushed_origin_us_ +
+               static_cast<std::int64_t>((flushed_first_ + i) * (model_ != nullptr ? model_->string_period_us : 0u)) -
+               config_.label_lead_us;
+    }
 
     /// Characters between a character and its settled label.
     std::uint32_t settle_chars() const noexcept { return segmenter_.settle_chars(); }
@@ -424,15 +459,32 @@ private:
         events_.settle(s, label, live_[s % live_ring_] == label, tick_time(origin_us, s) - config_.label_lead_us);
     }
 
+    // The first character of the stream whose settled label no FrameResult
+    // has reported yet (every one settled before this call was).
+    std::uint64_t first_unreported() const noexcept {
+        return segmenter_.has_settled() ? segmenter_.settled_character() + 1 : 0;
+    }
+
     // The unsettled tail of a stream (whose character 0 ticked at origin_us)
-    // takes its provisional labels, and a running action ends.
-    void finish_stream(std::int64_t origin_us) noexcept {
-        const std::uint64_t first = segmenter_.has_settled() ? segmenter_.settled_character() + 1 : 0;
+    // takes its provisional labels, and a running action ends. The labels
+    // from character `unreported` on are kept as the flushed ones.
+    void finish_stream(std::int64_t origin_us, std::uint64_t unreported) noexcept {
+        const std::uint64_t first = first_unreported();
+        flushed_first_ = unreported;
+        flushed_origin_us_ = origin_us;
+        flushed_count_ = 0;
+        for (std::uint64_t c = unreported; c < first; ++c) keep_flushed(segmenter_.settled_label(c));
         for (std::uint64_t c = first; c < fed_; ++c) {
             const LabelId label = segmenter_.provisional_label(c);
+            keep_flushed(label);
             events_.settle(c, label, live_[c % live_ring_] == label, tick_time(origin_us, c) - config_.label_lead_us);
         }
         events_.close();
+    }
+    // One more flushed label; the buffer holds every character the segmenter
+    // remembers, more than a stream's unsettled tail can be.
+    void keep_flushed(LabelId label) noexcept {
+        if (flushed_count_ < live_ring_) flushed_[flushed_count_++] = label;
     }
 
     // Character c's tick in a stream whose character 0 ticked at origin_us
@@ -460,11 +512,12 @@ private:
     }
 
     // One block: the encoder's, the window matcher's (with the window rule)
-    // and the segmenter's storage, each aligned, and a live label per
-    // character the segmenter remembers (for the events' confidence).
+    // and the segmenter's storage, each aligned, a live label per character
+    // the segmenter remembers (for the events' confidence), and as many
+    // flushed labels (an ended stream's tail).
     struct Plan {
         std::size_t encoder = 0, encoder_bytes = 0, matcher = 0, matcher_bytes = 0, segmenter = 0, segmenter_bytes = 0,
-                    live = 0, live_count = 0, bytes = 0;
+                    live = 0, live_count = 0, flushed = 0, bytes = 0;
     };
     static constexpr Plan plan(const ModelView& model, const AnnotatorConfig& config) noexcept {
         Plan p;
@@ -477,6 +530,7 @@ private:
         p.segmenter = layout.add<unsigned char>(p.segmenter_bytes);
         p.live_count = ActionSegmenter::settled_history(model, config.segmenter);
         p.live = layout.add<LabelId>(p.live_count);
+        p.flushed = layout.add<LabelId>(p.live_count);
         p.bytes = p.encoder_bytes == unsatisfiable_bytes || p.matcher_bytes == unsatisfiable_bytes ||
                           p.segmenter_bytes == unsatisfiable_bytes
                       ? unsatisfiable_bytes
@@ -495,6 +549,10 @@ private:
     ActionEventTracker events_;
     LabelId* live_ = nullptr;  // live label of each remembered character, by index mod live_ring_
     std::size_t live_ring_ = 1;
+    LabelId* flushed_ = nullptr;  // the ended stream's flushed labels (live_ring_ of them at most)
+    std::uint32_t flushed_count_ = 0;
+    std::uint64_t flushed_first_ = 0;
+    std::int64_t flushed_origin_us_ = 0;
     std::uint32_t min_action_chars_ = 1;
     bool has_window_ = false;
     WindowResult window_;

@@ -264,7 +264,7 @@ actionstring_status actionstring_init(const actionstring_model* handle, const ac
 
 actionstring_status actionstring_push_frame(actionstring_state* handle, int64_t time_us, const float* positions,
                                             size_t position_count, actionstring_frame_result* result) {
-    actionstring_frame_result out{ACTIONSTRING_OK, 0, 0, 0, 0};
+    actionstring_frame_result out{ACTIONSTRING_OK, 0, 0, 0, 0, 0};
     State* state = live(handle);
     if (state == nullptr) out.status = ACTIONSTRING_NOT_INITIALIZED;
     else if (positions == nullptr || position_count != static_cast<size_t>(state->model->view.joint_count) * 3u)
@@ -276,6 +276,7 @@ actionstring_status actionstring_push_frame(actionstring_state* handle, int64_t 
         out.windows_completed = frame.windows_completed;
         out.characters_settled = frame.characters_settled;
         out.events = frame.events;
+        out.characters_flushed = frame.characters_flushed;
     }
     if (result != nullptr) *result = out;
     return out.status;
@@ -303,6 +304,24 @@ actionstring_status actionstring_flush(actionstring_state* handle, uint32_t* eve
     const std::uint32_t count = state->annotator.flush();
     if (events != nullptr) *events = count;
     return ACTIONSTRING_OK;
+}
+
+uint32_t actionstring_flushed_count(const actionstring_state* handle) {
+    const State* state = live(handle);
+    return state == nullptr ? 0u : state->annotator.flushed_characters();
+}
+
+int32_t actionstring_flushed_label(const actionstring_state* handle, uint32_t index) {
+    const State* state = live(handle);
+    if (state == nullptr) return -1;
+    const actionstring::LabelId label = state->annotator.flushed_label(index);
+    return label == actionstring::unknown_label ? -1 : static_cast<int32_t>(label);
+}
+
+int64_t actionstring_flushed_label_time_us(const actionstring_state* handle, uint32_t index) {
+    const State* state = live(handle);
+    if (state == nullptr || index >= state->annotator.flushed_characters()) return 0;
+    return state->annotator.flushed_label_time_us(index);
 }
 
 actionstring_status actionstring_finish_work(actionstring_state* handle, actionstring_frame_result* result) {

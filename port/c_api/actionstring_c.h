@@ -101,6 +101,8 @@ typedef struct actionstring_frame_result {
     uint32_t windows_completed;  /**< windows that completed (with the window rule) */
     uint32_t characters_settled; /**< characters whose final label the segmenter decided */
     uint32_t events;             /**< action events this frame produced (actionstring_event()) */
+    uint32_t characters_flushed; /**< when the frame restarted the stream: the ended stream's last characters,
+                                      whose labels became final with it (actionstring_flushed_label()) */
 } actionstring_frame_result;
 
 /** An action event: each detected action is reported once when it starts and
@@ -168,8 +170,20 @@ ACTIONSTRING_C_API actionstring_status actionstring_event_at(const actionstring_
                                                              actionstring_event* event);
 /** Ends the stream: characters not settled yet take their labels and a running action
  *  ends; *events (if not NULL) receives how many events that made (read them with
- *  actionstring_event_at()). The next frame starts a new stream. */
+ *  actionstring_event_at()), and the labels are actionstring_flushed_label(). The next
+ *  frame starts a new stream. */
 ACTIONSTRING_C_API actionstring_status actionstring_flush(actionstring_state* state, uint32_t* events);
+
+/** The characters of the stream that ended with the last push_frame() (a restart: its
+ *  result's characters_flushed) or actionstring_flush(), whose labels became final then
+ *  and which no result reported settled; 0 after any other call or for a bad state. */
+ACTIONSTRING_C_API uint32_t actionstring_flushed_count(const actionstring_state* state);
+/** Final label of flushed character `index` (< actionstring_flushed_count()), or -1 for
+ *  unknown, an index out of range or a bad state. */
+ACTIONSTRING_C_API int32_t actionstring_flushed_label(const actionstring_state* state, uint32_t index);
+/** Where flushed character `index`'s label applies from, on the ended stream's clock
+ *  (its tick less the label lead, as actionstring_label_time_us()); 0 when out of range. */
+ACTIONSTRING_C_API int64_t actionstring_flushed_label_time_us(const actionstring_state* state, uint32_t index);
 
 /** With config.spread_work: finishes the work of the characters in progress now and
  *  reports it as a frame would (`result` may be NULL: characters_settled, events), e.g.

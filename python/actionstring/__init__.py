@@ -259,7 +259,9 @@ class Annotator:
     (character, time_s, label) for every character whose label became final with
     this frame; label None for no action; time_s is where the label applies from:
     the character's tick less the model's ``label_lead``, as the feature's motion
-    looks back and actions show in it late), ``live_label`` (the newest guess),
+    looks back and actions show in it late), ``flushed`` (when the frame restarted
+    the stream after a gap: the ended stream's last characters, whose labels
+    became final with the restart, as ``settled``'s), ``live_label`` (the newest guess),
     ``live_margin`` (how far it leads every other label, in units of the model's
     character distances: its confidence; ``inf`` when nothing else can explain the stream) and
     ``events``: each action once when it starts and once when it ends (dicts
@@ -293,6 +295,13 @@ class Annotator:
         """Ends the stream: characters not yet settled take their labels, a running
         action ends; returns those events. The next frame starts a new stream."""
         return list(self._native.flush())
+
+    def flushed(self) -> List[Tuple[int, float, Any]]:
+        """The labels the stream that ended with the last ``push_frame()`` (a
+        restart after a gap: its ``flushed``) or ``flush()`` gave its last
+        characters, which no ``settled`` list reported: (character, time_s,
+        label) as ``settled``'s, on the ended stream's clock."""
+        return list(self._native.flushed())
 
     def reset(self) -> None:
         """Starts another stream."""

@@ -353,6 +353,7 @@ public:
         out["characters"] = r.characters;
         out["windows_completed"] = r.windows_completed;
         out["settled"] = settled(r);
+        out["flushed"] = flushed();
         out["live_label"] = label_object(*model_, annotator_->live_label());
         out["live_margin"] = annotator_->live_margin();
         return out;
@@ -373,6 +374,17 @@ public:
     py::list flush() {
         annotator_->flush();
         return events();
+    }
+
+    /// The ended stream's characters whose labels the last push_frame()
+    /// (a restart) or flush() made final: (index, label time in seconds, label).
+    py::list flushed() const {
+        py::list out;
+        for (std::size_t i = 0; i < annotator_->flushed_characters(); ++i)
+            out.append(py::make_tuple(annotator_->flushed_character(i),
+                                      static_cast<double>(annotator_->flushed_label_time_us(i)) * 1e-6,
+                                      label_object(*model_, annotator_->flushed_label(i))));
+        return out;
     }
 
     void reset() { annotator_->reset(); }
@@ -581,6 +593,7 @@ PYBIND11_MODULE(_actionstring, m) {
         .def("push_frame", &StreamAnnotator::push_frame, py::arg("time_s"), py::arg("positions"))
         .def("reset", &StreamAnnotator::reset)
         .def("flush", &StreamAnnotator::flush)
+        .def("flushed", &StreamAnnotator::flushed)
         .def("finish_work", &StreamAnnotator::finish_work,
              "With spread_work=True: finishes the characters whose work is being spread, now; returns what a "
              "frame returns (settled, events, live_label, live_margin)")

@@ -132,6 +132,28 @@ def test_the_label_lead_moves_label_times_only(toy_clips):
         actionstring.Annotator(led, label_lead=-0.1)
 
 
+def test_a_restart_flushes_the_ended_streams_tail(toy_model, toy_clips):
+    """A gap over max_gap restarts the stream: the frame's ``flushed`` holds the ended
+    stream's unsettled tail with final labels, and flush() does the same at the end."""
+    clip = toy_clips[1]
+    annotator = actionstring.Annotator(toy_model, settle=0.5)
+    for time_s, frame in zip(clip.times, clip.positions):
+        assert annotator.push_frame(time_s, frame)["flushed"] == []
+    result = annotator.push_frame(clip.times[-1] + 5.0, clip.positions[0])
+    assert result["status"] == "stream_restarted"
+    flushed = result["flushed"]
+    assert len(flushed) >= annotator.settle_chars
+    assert flushed == annotator.flushed()
+    indices = [c for c, _, _ in flushed]
+    assert indices == list(range(indices[0], indices[0] + len(indices)))
+    times = [t for _, t, _ in flushed]
+    assert times == sorted(times) and times[-1] <= clip.times[-1]
+    assert all(label is None or label in toy_model.label_names for _, _, label in flushed)
+    assert annotator.push_frame(clip.times[-1] + 5.1, clip.positions[1])["flushed"] == []
+    annotator.flush()
+    assert len(annotator.flushed()) >= 1
+
+
 def test_spread_work_settles_the_same_labels_later(toy_model, toy_clips):
     """spread_work=True: each character's work (the encoder's and the
     segmenter's) over the frames until the next one; the same settled labels

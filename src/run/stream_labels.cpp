@@ -69,13 +69,22 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
     std::vector<std::int64_t> char_time_us;
     std::vector<std::size_t> frame_epoch(frames, 0);
     std::size_t epoch = 0;  // index in char_label of the current epoch's character 0
+    // The labels an ended stream's last characters took when it ended (a restart, or the
+    // flush at the end), emitted now; any the annotator did not give stay unknown.
+    const auto take_flushed = [&](double now) {
+        for (std::size_t i = 0; i < annotator->flushed_characters(); ++i) {
+            const std::size_t c = epoch + static_cast<std::size_t>(annotator->flushed_character(i));
+            if (c < char_label.size() && char_label[c] == not_settled)
+                char_label[c] = frame_label(annotator->flushed_label(i)), char_emitted[c] = now;
+        }
+        for (std::size_t c = epoch; c < char_label.size(); ++c)
+            if (char_label[c] == not_settled) char_label[c] = unknown_frame, char_emitted[c] = now;
+    };
     for (std::size_t f = 0; f < frames; ++f) {
         const double now = times_s[f];
         const FrameResult r = annotator->push_frame(seconds_to_us(now), positions + f * joints * 3);
         if (r.status == Status::stream_restarted) {
-            // The old epoch's unsettled tail is gone with the reset; it stays unknown, emitted now.
-            for (std::size_t c = epoch; c < char_label.size(); ++c)
-                if (char_label[c] == not_settled) char_label[c] = unknown_frame, char_emitted[c] = now;
+            take_flushed(now);
             epoch = char_label.size();
         }
         while (char_label.size() < epoch + annotator->characters()) {
@@ -98,25 +107,11 @@ StreamLabels label_stream(const ModelView& model, const AnnotatorConfig& config,
         frame_epoch[f] = epoch;
     }
     if (frames > 0) {
-        // A character whose work is still spread over frames (spread_work) is finished first.
-        const FrameResult r = annotator->finish_work();
-        const std::uint64_t last = annotator->settled_character();
-        for (std::uint64_t k = 0; k < r.characters_settled; ++k) {
-            const std::uint64_t c = last - (r.characters_settled - 1 - k);
-            char_label[epoch + c] = frame_label(annotator->settled_label(c));
-            char_emitted[epoch + c] = times_s.back();
-        }
-        for (std::size_t i = 0; i < r.events; ++i) out.events.push_back({annotator->event(i), times_s.back()});
-    }
-    // At the end of the stream, the unsettled tail gets what the best explanation says of it then.
-    for (std::uint64_t c = annotator->has_settled() ? annotator->settled_character() + 1 : 0;
-         c < annotator->characters(); ++c) {
-        char_label[epoch + c] = frame_label(annotator->provisional_label(c));
-        char_emitted[epoch + c] = times_s.back();
-    }
-    if (frames > 0) {
-        const std::uint32_t flushed = annotator->flush();  // the same tail, as events
-        for (std::size_t i = 0; i < flushed; ++i) out.events.push_back({annotator->event(i), times_s.back()});
+        // At the end of the stream, the unsettled tail gets what the best explanation says of it then
+        // (a character whose work is still spread over frames, with spread_work, finished first).
+        const std::uint32_t events = annotator->flush();
+        take_flushed(times_s.back());
+        for (std::size_t i = 0; i < events; ++i) out.events.push_back({annotator->event(i), times_s.back()});
     }
     // Each frame takes the label of its epoch's last character whose label time is at most the
     // frame's (with a label lead, a character that came after it); unknown before the first.

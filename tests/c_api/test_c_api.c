@@ -220,8 +220,34 @@ static void contract_checks(const actionstring_model* model) {
     actionstring_event event;
     CHECK(actionstring_event_at(state, 99, &event) == ACTIONSTRING_INVALID_ARGUMENT);
     CHECK(actionstring_event_at(NULL, 0, &event) == ACTIONSTRING_NOT_INITIALIZED);
+    /* A frame 10 s after the last restarts the stream: the ended stream's unsettled tail is
+     * flushed, labels final, times in order on its clock (the lead before each tick). */
+    const int64_t last_settled = actionstring_settled_character(state);
+    synthetic_frame(joints, 0, frame);
+    CHECK(actionstring_push_frame(state, (int64_t)20 * 1000000, frame, 3 * joints, &result) ==
+          ACTIONSTRING_STREAM_RESTARTED);
+    CHECK(result.characters_flushed > 0);
+    CHECK(result.characters_flushed == actionstring_flushed_count(state));
+    CHECK(actionstring_flushed_count(NULL) == 0);
+    CHECK(actionstring_flushed_label(NULL, 0) == -1);
+    CHECK(actionstring_flushed_label(state, result.characters_flushed) == -1);
+    CHECK(actionstring_flushed_label_time_us(state, result.characters_flushed) == 0);
+    CHECK(actionstring_flushed_label_time_us(state, 0) >
+          actionstring_label_time_us(NULL, 0)); /* after the stream's start */
+    for (uint32_t i = 0; i < result.characters_flushed; ++i) {
+        const int32_t label = actionstring_flushed_label(state, i);
+        CHECK(label >= -1 && label < (int32_t)actionstring_model_label_count(model));
+        CHECK(actionstring_flushed_label_time_us(state, i) < (int64_t)10 * 1000000);
+        if (i > 0)
+            CHECK(actionstring_flushed_label_time_us(state, i) > actionstring_flushed_label_time_us(state, i - 1));
+    }
+    CHECK(last_settled >= 0);
+    /* The next frame starts afresh. */
+    CHECK(actionstring_push_frame(state, (int64_t)20 * 1000000 + 16667, frame, 3 * joints, &result) == ACTIONSTRING_OK);
+    CHECK(result.characters_flushed == 0 && actionstring_flushed_count(state) == 0);
     uint32_t flushed = 99;
     CHECK(actionstring_flush(state, &flushed) == ACTIONSTRING_OK);
+    CHECK(actionstring_flushed_count(state) >= 1); /* the new stream's first characters */
     CHECK(flushed <= 16);
     for (uint32_t i = 0; i < flushed; ++i) {
         CHECK(actionstring_event_at(state, i, &event) == ACTIONSTRING_OK);

@@ -11,11 +11,15 @@
 bool setup();
 void on_frame(std::int64_t time_us, const float* joint_xyz_metres);
 
-// The snippet's user hook: here it counts the final labels and checks them.
+// The snippet's user hook: here it counts the final labels and checks them:
+// a name, and times in order that start at most a second (the model's label
+// lead is less) before the stream's first frame, at 0.
 static int settled_labels = 0;
 static bool labels_ok = true;
+static std::int64_t last_time_us = -1000000;
 void on_settled(std::int64_t time_us, const char* label) {
-    labels_ok = labels_ok && label != nullptr && label[0] != '\0' && time_us >= 0;
+    labels_ok = labels_ok && label != nullptr && label[0] != '\0' && time_us >= last_time_us;
+    last_time_us = time_us;
     ++settled_labels;
 }
 
