@@ -244,6 +244,21 @@ TEST_CASE("the online settings travel in the model: training stores them, init()
     CHECK(header.find("m.label_lead_us = 300000;") != std::string::npos);
 }
 
+namespace {
+
+// The same action event, its times `earlier_us` earlier.
+void check_same_event(const ActionEvent& a, const ActionEvent& b, std::int64_t earlier_us = 0) {
+    CHECK(a.kind == b.kind);
+    CHECK(a.label == b.label);
+    CHECK(a.first_character == b.first_character);
+    CHECK(a.last_character == b.last_character);
+    CHECK(a.confidence == b.confidence);
+    CHECK(a.start_time_us == b.start_time_us - earlier_us);
+    CHECK(a.end_time_us == b.end_time_us - earlier_us);
+}
+
+}  // namespace
+
 TEST_CASE("the label lead moves every label's time and the events' times, and nothing else") {
     const host::ToyWorld world = host::make_toy_world();
     const ModelView view = world.model.view();
@@ -290,16 +305,8 @@ TEST_CASE("the label lead moves every label's time and the events' times, and no
         REQUIRE(led.label_times.size() == led.ticks.size());
         for (std::size_t i = 0; i < led.ticks.size(); ++i) CHECK(led.label_times[i] == led.ticks[i] - lead_us);
         REQUIRE(led.events.size() == at_ticks.events.size());
-        for (std::size_t i = 0; i < led.events.size(); ++i) {
-            const ActionEvent &a = led.events[i], &b = at_ticks.events[i];
-            CHECK(a.kind == b.kind);
-            CHECK(a.label == b.label);
-            CHECK(a.first_character == b.first_character);
-            CHECK(a.last_character == b.last_character);
-            CHECK(a.confidence == b.confidence);
-            CHECK(a.start_time_us == b.start_time_us - lead_us);
-            CHECK(a.end_time_us == b.end_time_us - lead_us);
-        }
+        for (std::size_t i = 0; i < led.events.size(); ++i)
+            check_same_event(led.events[i], at_ticks.events[i], lead_us);
     }
     // A negative lead, or one past the longest settle delay, is refused.
     host::Stateful<Annotator> annotator;
@@ -469,14 +476,7 @@ TEST_CASE("spread_work reports the same labels and events, at most one character
             REQUIRE(spread.events.size() == plain.events.size());
             CHECK(!plain.events.empty());
             for (std::size_t e = 0; e < plain.events.size(); ++e) {
-                const ActionEvent &a = plain.events[e], &b = spread.events[e];
-                CHECK(a.kind == b.kind);
-                CHECK(a.label == b.label);
-                CHECK(a.first_character == b.first_character);
-                CHECK(a.last_character == b.last_character);
-                CHECK(a.start_time_us == b.start_time_us);
-                CHECK(a.end_time_us == b.end_time_us);
-                CHECK(a.confidence == b.confidence);
+                check_same_event(plain.events[e], spread.events[e]);
                 CHECK(spread.events_at[e] >= plain.events_at[e]);
             }
             // Never earlier, and on a stream that does not restart at most
