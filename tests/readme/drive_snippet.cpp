@@ -17,9 +17,11 @@ void on_frame(std::int64_t time_us, const float* joint_xyz_metres);
 static int settled_labels = 0;
 static bool labels_ok = true;
 static std::int64_t last_time_us = -1000000;
+static bool saw_tail = false;  // a label of the last second before the gap: only the restart's flush gives those
 void on_settled(std::int64_t time_us, const char* label) {
     labels_ok = labels_ok && label != nullptr && label[0] != '\0' && time_us >= last_time_us;
     last_time_us = time_us;
+    saw_tail = saw_tail || (time_us >= 9000000 && time_us < 10000000);
     ++settled_labels;
 }
 
@@ -30,8 +32,9 @@ int main() {
     }
     constexpr std::size_t joints = 31;
     std::vector<float> frame(joints * 3);
-    for (int f = 0; f < 120 * 20; ++f) {  // 20 s at 120 Hz
+    for (int f = 0; f < 120 * 20; ++f) {  // 20 s at 120 Hz, with a 2 s tracking loss from 10 s
         const double t = f / 120.0;
+        if (t >= 10.0 && t < 12.0) continue;  // the stream restarts at 12 s: flushed labels
         for (std::size_t j = 0; j < joints; ++j) {
             // Each joint circles its own rest offset; joints 1 and 6 are the hips.
             const double phase = 0.7 * static_cast<double>(j) + 2.0 * t;
@@ -43,9 +46,10 @@ int main() {
         frame[3 * 6 + 0] = static_cast<float>(0.3 * t - 0.1);  // right hip
         on_frame(static_cast<std::int64_t>(std::llround(t * 1e6)), frame.data());
     }
-    if (settled_labels == 0 || !labels_ok) {
-        std::fprintf(stderr, "README snippet: %d labels settled in 20 s%s\n", settled_labels,
-                     labels_ok ? "" : ", some without a name or time");
+    if (settled_labels == 0 || !labels_ok || !saw_tail) {
+        std::fprintf(stderr, "README snippet: %d labels settled in 20 s%s%s\n", settled_labels,
+                     labels_ok ? "" : ", some without a name or time",
+                     saw_tail ? "" : ", none of the second before the gap (the restart's flushed labels)");
         return 1;
     }
     std::printf("README snippet ran: %d settled labels\n", settled_labels);
