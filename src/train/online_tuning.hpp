@@ -73,9 +73,10 @@ std::size_t one_standard_error_choice(const std::vector<MinActionStep>& steps);
 /// The label leads tried, shortest first. A character is made from the
 /// feature at its tick, whose motion is a difference back over the model's
 /// span, so the settled labels change a little after the actions do: on the
-/// training subjects' folds settled frames peaked with a lead of 0.1 s on
-/// HDM05 and 0.2 s on MSR Action3D (velocity span 0.4 s), 0.5 s on UTKinect
-/// (span 0.6 s); models/README.md, "The label lead".
+/// configs' training folds settled frames peaked with a lead of 0.1 s on
+/// HDM05 and 0.15 to 0.2 s on MSR Action3D (velocity span 0.4 s), 0.25 to
+/// 0.3 s on UTKinect (span 0.6 s), and at 0.05 s for the GMM feature, which
+/// has no velocity; models/README.md, "The label lead".
 constexpr std::int64_t label_lead_candidates_us[] = {0, 50000, 100000, 150000, 200000, 300000, 400000, 500000};
 
 /// The stay and skip penalties tried beside the options' own (both at once):
