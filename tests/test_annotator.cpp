@@ -540,6 +540,7 @@ TEST_CASE("a restart and flush() give the ended stream's tail its labels: flushe
         const FrameResult restart = annotator->push_frame(frames[gap].time_us, frames[gap].positions.data());
         REQUIRE(restart.status == Status::stream_restarted);
         REQUIRE(restart.characters_flushed == expected.size());
+        CHECK(restart.characters_flushed <= annotator->settled_history());
         REQUIRE(annotator->flushed_characters() == expected.size());
         for (std::size_t i = 0; i < expected.size(); ++i) {
             CHECK(annotator->flushed_character(i) == reported + i);

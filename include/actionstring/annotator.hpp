@@ -324,9 +324,11 @@ public:
     /// The characters of the stream that ended with the last push_frame()
     /// (a restart, FrameResult::characters_flushed) or flush() whose labels
     /// became final then: the best explanation's labels of its unsettled
-    /// tail, and those settled while finishing its work (with spread_work),
-    /// which no FrameResult reported. Valid until the next push_frame(),
-    /// finish_work(), flush() or reset(); 0 otherwise.
+    /// tail, and before them those settled while finishing its work (with
+    /// spread_work), which no FrameResult reported; the last
+    /// settled_history() of these at most, which always holds the whole
+    /// tail. Valid until the next push_frame(), finish_work(), flush() or
+    /// reset(); 0 otherwise.
     std::uint32_t flushed_characters() const noexcept { return flushed_count_; }
     /// The ended stream's index of flushed character i (i < flushed_characters()).
     std::uint64_t flushed_character(std::size_t i) const noexcept { return flushed_first_ + i; }
@@ -467,9 +469,13 @@ private:
 
     // The unsettled tail of a stream (whose character 0 ticked at origin_us)
     // takes its provisional labels, and a running action ends. The labels
-    // from character `unreported` on are kept as the flushed ones.
+    // from character `unreported` on are kept as the flushed ones, the last
+    // settled_history() of them at most: the whole unsettled tail (at most
+    // settle_chars()), and before it what the segmenter still remembers of
+    // those settled while the stream's work was finished.
     void finish_stream(std::int64_t origin_us, std::uint64_t unreported) noexcept {
         const std::uint64_t first = first_unreported();
+        if (fed_ - unreported > live_ring_) unreported = fed_ - live_ring_;
         flushed_first_ = unreported;
         flushed_origin_us_ = origin_us;
         flushed_count_ = 0;
@@ -481,8 +487,7 @@ private:
         }
         events_.close();
     }
-    // One more flushed label; the buffer holds every character the segmenter
-    // remembers, more than a stream's unsettled tail can be.
+    // One more flushed label (the buffer holds settled_history() of them).
     void keep_flushed(LabelId label) noexcept {
         if (flushed_count_ < live_ring_) flushed_[flushed_count_++] = label;
     }
