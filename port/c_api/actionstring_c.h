@@ -176,7 +176,8 @@ ACTIONSTRING_C_API actionstring_status actionstring_flush(actionstring_state* st
 
 /** The characters of the stream that ended with the last push_frame() (a restart: its
  *  result's characters_flushed) or actionstring_flush(), whose labels became final then
- *  and which no result reported settled; 0 after any other call or for a bad state. */
+ *  and which no result reported settled (the last the state remembers: always its whole
+ *  unsettled tail); 0 after any other call or for a bad state. */
 ACTIONSTRING_C_API uint32_t actionstring_flushed_count(const actionstring_state* state);
 /** Final label of flushed character `index` (< actionstring_flushed_count()), or -1 for
  *  unknown, an index out of range or a bad state. */
