@@ -292,8 +292,9 @@ class Annotator:
         return dict(self._native.finish_work())
 
     def flush(self) -> List[Dict[str, Any]]:
-        """Ends the stream: characters not yet settled take their labels, a running
-        action ends; returns those events. The next frame starts a new stream."""
+        """Ends the stream: characters not yet settled take their labels (then in
+        ``flushed()``), a running action ends; returns those events. The next
+        frame starts a new stream."""
         return list(self._native.flush())
 
     def flushed(self) -> List[Tuple[int, float, Any]]:
