@@ -31,7 +31,8 @@ std::vector<std::string> run(const std::vector<LabelId>& labels, std::uint32_t m
     };
     for (std::size_t c = 0; c < labels.size(); ++c) {
         tracker.begin_frame();
-        tracker.settle(c, labels[c], true, static_cast<std::int64_t>(c) * 100000);
+        tracker.settle(c, labels[c], true, static_cast<std::int64_t>(c) * 100000,
+                       static_cast<std::int64_t>(c + 1) * 100000);
         collect();
     }
     if (close) {
@@ -49,6 +50,27 @@ TEST_CASE("each action gives one start (after min_chars) and one end; silence gi
     CHECK(run({U, U, 0, 0, 0, 0, U, U, 1, 1, 1, U, U}, 2) == expected);
     CHECK(run(std::vector<LabelId>(50, U), 1).empty());
     CHECK(run({U, 0, U, U, 1, U}, 2).empty());  // single characters are flicker at min_chars 2
+}
+
+TEST_CASE("an action's times run from its first character's label time to where its last one's stops") {
+    ActionEventTracker tracker;
+    tracker.reset(2);
+    const std::vector<LabelId> labels{U, 0, 0, 0, U, U};
+    std::vector<ActionEvent> events;
+    for (std::size_t c = 0; c < labels.size(); ++c) {
+        tracker.begin_frame();
+        // Characters 100 ms apart, each label applying until the next character's.
+        tracker.settle(c, labels[c], true, 1000000 + static_cast<std::int64_t>(c) * 100000,
+                       1000000 + static_cast<std::int64_t>(c + 1) * 100000);
+        for (std::size_t i = 0; i < tracker.event_count(); ++i) events.push_back(tracker.event(i));
+    }
+    REQUIRE(events.size() == 2);
+    CHECK(events[0].kind == ActionEvent::Kind::started);
+    CHECK(events[0].start_time_us == 1100000);
+    CHECK(events[0].end_time_us == 1300000);  // characters 1 and 2 so far
+    CHECK(events[1].kind == ActionEvent::Kind::ended);
+    CHECK(events[1].start_time_us == 1100000);
+    CHECK(events[1].end_time_us == 1400000);  // characters 1 to 3: until character 4's label time
 }
 
 TEST_CASE("an interruption shorter than min_chars joins the action") {
@@ -139,5 +161,6 @@ TEST_CASE("a gap that restarts the stream ends the running action at once") {
     REQUIRE(r.events >= 1);
     CHECK(annotator->event(r.events - 1).kind == ActionEvent::Kind::ended);
     CHECK(annotator->event(r.events - 1).label == 1);
-    CHECK(annotator->event(r.events - 1).end_time_us <= last);
+    // It ends with the old stream: where its last character's label stops, one tick after it at most.
+    CHECK(annotator->event(r.events - 1).end_time_us <= last + static_cast<std::int64_t>(view.string_period_us));
 }

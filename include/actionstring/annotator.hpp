@@ -458,7 +458,8 @@ private:
         ++result.characters_settled;
         const std::uint64_t s = segmenter_.settled_character();
         const LabelId label = segmenter_.settled_label();
-        events_.settle(s, label, live_[s % live_ring_] == label, tick_time(origin_us, s) - config_.label_lead_us);
+        events_.settle(s, label, live_[s % live_ring_] == label, tick_time(origin_us, s) - config_.label_lead_us,
+                       tick_time(origin_us, s + 1) - config_.label_lead_us);
     }
 
     // The first character of the stream whose settled label no FrameResult
@@ -483,7 +484,8 @@ private:
         for (std::uint64_t c = first; c < fed_; ++c) {
             const LabelId label = segmenter_.provisional_label(c);
             keep_flushed(label);
-            events_.settle(c, label, live_[c % live_ring_] == label, tick_time(origin_us, c) - config_.label_lead_us);
+            events_.settle(c, label, live_[c % live_ring_] == label, tick_time(origin_us, c) - config_.label_lead_us,
+                           tick_time(origin_us, c + 1) - config_.label_lead_us);
         }
         events_.close();
     }

@@ -29,8 +29,10 @@ struct ActionEvent {
     /// The action's first character, and its last (ended) or newest so far (started).
     std::uint64_t first_character = 0;
     std::uint64_t last_character = 0;
-    /// Those characters' label times in the stream's clock (microseconds):
-    /// their ticks, less the label lead (Annotator::label_time_us()).
+    /// Where the action's labels apply, in the stream's clock (microseconds):
+    /// from its first character's label time (its tick, less the label lead;
+    /// Annotator::label_time_us()) to the next character's after its last
+    /// (or newest so far), where the last one's label stops applying.
     std::int64_t start_time_us = 0;
     std::int64_t end_time_us = 0;
     /// Share in [0, 1] of the action's characters (so far) whose live label was this label.
@@ -58,12 +60,15 @@ public:
     /// Forgets the previous frame's events.
     void begin_frame() noexcept { count_ = 0; }
 
-    /// One settled character: its label, whether its live label agreed, and its label time.
-    void settle(std::uint64_t character, LabelId label, bool live_agreed, std::int64_t time_us) noexcept {
-        const Run one{true, label, character, character, time_us, time_us, live_agreed ? 1u : 0u, false};
+    /// One settled character: its label, whether its live label agreed, and
+    /// the time its label applies from and the time it stops applying (its
+    /// label time, and the next character's).
+    void settle(std::uint64_t character, LabelId label, bool live_agreed, std::int64_t time_us,
+                std::int64_t until_us) noexcept {
+        const Run one{true, label, character, character, time_us, until_us, live_agreed ? 1u : 0u, false};
         if (!run_.reported) {
             // A candidate: the same label extends it, another replaces it.
-            if (run_.active && label == run_.label) extend(run_, character, time_us, live_agreed);
+            if (run_.active && label == run_.label) extend(run_, character, until_us, live_agreed);
             else run_ = one;
             report_if_long(run_);
             return;
@@ -75,10 +80,10 @@ public:
                 run_.end_us = pending_.end_us;
                 pending_ = Run{};
             }
-            extend(run_, character, time_us, live_agreed);
+            extend(run_, character, until_us, live_agreed);
             return;
         }
-        if (pending_.active && label == pending_.label) extend(pending_, character, time_us, live_agreed);
+        if (pending_.active && label == pending_.label) extend(pending_, character, until_us, live_agreed);
         else pending_ = one;
         if (length(pending_) < min_chars_) return;
         // The interruption lasted: the action ended before it, and it is the new candidate.
@@ -114,9 +119,9 @@ private:
     };
 
     static std::uint64_t length(const Run& run) noexcept { return run.last - run.first + 1; }
-    static void extend(Run& run, std::uint64_t character, std::int64_t time_us, bool live_agreed) noexcept {
+    static void extend(Run& run, std::uint64_t character, std::int64_t until_us, bool live_agreed) noexcept {
         run.last = character;
-        run.end_us = time_us;
+        run.end_us = until_us;
         run.agreed += live_agreed ? 1u : 0u;
     }
     void report_if_long(Run& run) noexcept {

@@ -111,7 +111,8 @@ typedef struct actionstring_event {
     int32_t started;         /**< 1: the action started; 0: it ended */
     int32_t label;           /**< label index */
     int64_t start_time_us;   /**< label time of its first character, on the frames' clock */
-    int64_t end_time_us;     /**< label time of its last character (so far, for a start) */
+    int64_t end_time_us;     /**< where its last character's label stops applying (so far, for a start):
+                                  the label time of the character after it */
     int64_t first_character; /**< stream index of its first character */
     int64_t last_character;
     float confidence; /**< share of its characters whose live label already said this label */

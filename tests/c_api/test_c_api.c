@@ -199,7 +199,7 @@ static void contract_checks(const actionstring_model* model) {
             actionstring_event e;
             CHECK(actionstring_event_at(state, i, &e) == ACTIONSTRING_OK);
             CHECK(e.start_time_us == actionstring_label_time_us(state, e.first_character));
-            CHECK(e.end_time_us == actionstring_label_time_us(state, e.last_character));
+            CHECK(e.end_time_us == actionstring_label_time_us(state, e.last_character + 1));
         }
     }
     CHECK(accepted == 597);
