@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
         }
     int settled[kMaxModels] = {0};
     float xyz[3 * kMaxJoints];
-    for (int f = 0; f < 900; ++f)
+    for (int f = 0; f < 900; ++f) {
+        if (f >= 400 && f < 490) continue; /* 1.5 s without frames: the stream restarts, its tail flushed */
         for (int m = 0; m < count; ++m) {
             const uint32_t joints = actionstring_model_joint_count(&recognisers[m].model);
             if (joints > kMaxJoints) return 1;
@@ -36,9 +37,10 @@ int main(int argc, char** argv) {
             if (strlen(label) == 0) return 1;
             ++settled[m];
         }
+    }
     int failures = 0;
     for (int m = 0; m < count; ++m) {
-        printf("%s: %d final labels from 900 frames\n", argv[m + 1], settled[m]);
+        printf("%s: %d final labels from 810 frames (a 1.5 s gap among 900)\n", argv[m + 1], settled[m]);
         failures += settled[m] == 0;
         recogniser_close(&recognisers[m]);
     }
