@@ -337,9 +337,7 @@ public:
     /// Label time of flushed character i on the ended stream's clock (its
     /// tick less the label lead, as label_time_us()).
     std::int64_t flushed_label_time_us(std::size_t i) const noexcept {
-        return flushed_origin_us_ +
-               static_cast<std::int64_t>((flushed_first_ + i) * (model_ != nullptr ? model_->string_period_us : 0u)) -
-               config_.label_lead_us;
+        return model_ != nullptr ? label_time(flushed_origin_us_, flushed_first_ + i) : 0;
     }
 
     /// Characters between a character and its settled label.
@@ -458,8 +456,7 @@ private:
         ++result.characters_settled;
         const std::uint64_t s = segmenter_.settled_character();
         const LabelId label = segmenter_.settled_label();
-        events_.settle(s, label, live_[s % live_ring_] == label, tick_time(origin_us, s) - config_.label_lead_us,
-                       tick_time(origin_us, s + 1) - config_.label_lead_us);
+        settle_event(s, label, origin_us);
     }
 
     // The first character of the stream whose settled label no FrameResult
@@ -484,8 +481,7 @@ private:
         for (std::uint64_t c = first; c < fed_; ++c) {
             const LabelId label = segmenter_.provisional_label(c);
             keep_flushed(label);
-            events_.settle(c, label, live_[c % live_ring_] == label, tick_time(origin_us, c) - config_.label_lead_us,
-                           tick_time(origin_us, c + 1) - config_.label_lead_us);
+            settle_event(c, label, origin_us);
         }
         events_.close();
     }
@@ -499,6 +495,16 @@ private:
     std::int64_t tick_time(std::int64_t origin_us, std::uint64_t c) const noexcept {
         return static_cast<std::int64_t>(static_cast<std::uint64_t>(origin_us) +
                                          c * static_cast<std::uint64_t>(model_->string_period_us));
+    }
+    // Character c's label time there: its tick, less the label lead.
+    std::int64_t label_time(std::int64_t origin_us, std::uint64_t c) const noexcept {
+        return tick_time(origin_us, c) - config_.label_lead_us;
+    }
+    // A final label to the events: whether the character's live label agreed,
+    // and the span its label applies over (to the next character's label time).
+    void settle_event(std::uint64_t c, LabelId label, std::int64_t origin_us) noexcept {
+        events_.settle(c, label, live_[c % live_ring_] == label, label_time(origin_us, c),
+                       label_time(origin_us, c + 1));
     }
 
     // Forgets the stream but not the events just produced.
