@@ -28,7 +28,7 @@ table() {
     echo "| evaluated clips | clip accuracy | DTW 1-NN | settled frame accuracy | segment F1 | event F1 |"
     echo "|---|---:|---:|---:|---:|---:|"
     local spec
-    for spec in none scale=0.7 scale=1.25 noise=0.01 noise=0.03 "rate=$rate" jitter=0.01 drop=0.3; do
+    for spec in none scale=0.7 scale=1.25 tilt=10 tilt=-10 noise=0.01 noise=0.03 "rate=$rate" jitter=0.01 drop=0.3; do
         local json="$out/robustness/${name}_${spec//[=.]/_}.json" perturb=()
         [ "$spec" != none ] && perturb=(--perturb "$spec")
         "$cli" eval --model "$out/$name.model" --clips "$eval" --train "$train" --online "${perturb[@]}" \

@@ -84,6 +84,49 @@ TEST_CASE("a scaled clip has every position times the factor, nothing else chang
         CHECK(c.positions[i] == static_cast<float>(static_cast<double>(before.positions[i]) * 0.7));
 }
 
+TEST_CASE("tilt turns each tracked frame about the hips' line, lost frames and a clip without roles unchanged") {
+    // y up; root at (1, 1, 2), hips 0.1 m either side along x, a head 0.5 m above the root.
+    Clip c;
+    c.source = "tilt";
+    c.joint_names = {"root", "left", "right", "head"};
+    c.roles = JointRoles{0, 1, 2};
+    for (std::size_t f = 0; f < 3; ++f) {
+        c.times.push_back(static_cast<double>(f) / 30.0);
+        const float z = 2.0f + 0.01f * static_cast<float>(f);
+        c.positions.insert(c.positions.end(), {1.0f, 1.0f, z, 0.9f, 1.0f, z, 1.1f, 1.0f, z, 1.0f, 1.5f, z});
+    }
+    c.lost = {0, 0, 1};  // the third frame was lost (its positions are kept as they are)
+    const Clip before = c;
+    Perturbation p;
+    p.tilt_deg = 90.0;
+    perturb_clip(c, p, 0);
+    CHECK(c.times == before.times);
+    // The line runs through the tracked frames' mean root, z = 2.005: a right-handed quarter turn about +x
+    // takes the head's +0.5 in y to +0.5 in z, and a root 0.005 before the line in z to 0.005 below it in y.
+    const float* f0 = c.frame(0);
+    CHECK(f0[0] == doctest::Approx(1.0));
+    CHECK(f0[1] == doctest::Approx(1.005));
+    CHECK(f0[2] == doctest::Approx(2.005));
+    CHECK(f0[9] == doctest::Approx(1.0));
+    CHECK(f0[10] == doctest::Approx(1.005));
+    CHECK(f0[11] == doctest::Approx(2.505));
+    // Lengths about the root keep, and so do the hips' line and the lost frame.
+    for (std::size_t f = 0; f < 2; ++f) {
+        const float* at = c.frame(f);
+        CHECK(std::hypot(at[9] - at[0], at[10] - at[1], at[11] - at[2]) == doctest::Approx(0.5));
+        CHECK(at[3] == doctest::Approx(0.9));
+        CHECK(at[6] == doctest::Approx(1.1));
+    }
+    for (std::size_t i = 24; i < 36; ++i) CHECK(c.positions[i] == before.positions[i]);
+    // Without roles there is no hip line: nothing moves.
+    Clip bare = before;
+    bare.roles = JointRoles{};
+    perturb_clip(bare, p, 0);
+    CHECK(bare.positions == before.positions);
+    CHECK(parse_perturbation("tilt=-15").tilt_deg == -15.0);
+    CHECK(message_of("tilt=100").find("degrees") != std::string::npos);
+}
+
 TEST_CASE("noise: Gaussian of the asked deviation, its own per clip, the same for the same seed and index") {
     Clip zero = line_clip(4000, 30.0);
     for (float& v : zero.positions) v = 0.0f;

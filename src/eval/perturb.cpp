@@ -44,6 +44,46 @@ private:
 
 bool is_lost(const Clip& clip, std::size_t f) { return f < clip.lost.size() && clip.lost[f] != 0; }
 
+// Every tracked frame rotated by `degrees` about the horizontal line through
+// the mean root position along the mean horizontal hip direction. A clip
+// without roles, tracked frames or a horizontal hip direction is unchanged.
+void tilt(Clip& clip, double degrees) {
+    const JointRoles& roles = clip.roles;
+    if (!roles.complete()) return;
+    const int up = clip.up_axis;
+    double axis[3] = {0.0, 0.0, 0.0}, centre[3] = {0.0, 0.0, 0.0};
+    std::size_t tracked = 0;
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        if (is_lost(clip, f)) continue;
+        const float* frame = clip.frame(f);
+        for (int a = 0; a < 3; ++a) {
+            axis[a] += static_cast<double>(frame[3 * roles.right_hip + a]) - frame[3 * roles.left_hip + a];
+            centre[a] += frame[3 * roles.root + a];
+        }
+        ++tracked;
+    }
+    axis[up] = 0.0;
+    const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    if (tracked == 0 || !(length > 0.0)) return;
+    for (double& v : axis) v /= length;
+    for (double& v : centre) v /= static_cast<double>(tracked);
+    // Rodrigues: v cos θ + (k × v) sin θ + k (k · v)(1 − cos θ), about the centre.
+    const double theta = degrees * 3.14159265358979323846 / 180.0, c = std::cos(theta), s = std::sin(theta);
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        if (is_lost(clip, f)) continue;
+        float* frame = clip.frame(f);
+        for (std::size_t j = 0; j < clip.joint_count(); ++j) {
+            float* x = frame + 3 * j;
+            const double v[3] = {x[0] - centre[0], x[1] - centre[1], x[2] - centre[2]};
+            const double along = axis[0] * v[0] + axis[1] * v[1] + axis[2] * v[2];
+            const double cross[3] = {axis[1] * v[2] - axis[2] * v[1], axis[2] * v[0] - axis[0] * v[2],
+                                     axis[0] * v[1] - axis[1] * v[0]};
+            for (int a = 0; a < 3; ++a)
+                x[a] = static_cast<float>(centre[a] + v[a] * c + cross[a] * s + axis[a] * along * (1.0 - c));
+        }
+    }
+}
+
 void resample(Clip& clip, double rate_hz) {
     const std::size_t n = clip.frame_count(), stride = clip.joint_count() * 3;
     if (n < 2 || stride == 0) return;
@@ -103,7 +143,7 @@ double number(const std::string& item, const std::string& text, double low, doub
 }  // namespace
 
 bool Perturbation::any() const noexcept {
-    return scale != 1.0 || noise_m > 0.0 || drop > 0.0 || rate_hz > 0.0 || jitter_s > 0.0;
+    return scale != 1.0 || tilt_deg != 0.0 || noise_m > 0.0 || drop > 0.0 || rate_hz > 0.0 || jitter_s > 0.0;
 }
 
 std::string Perturbation::describe() const {
@@ -115,6 +155,7 @@ std::string Perturbation::describe() const {
         parts.push_back(out.str());
     };
     if (rate_hz > 0.0) add("resampled to ", rate_hz, " Hz");
+    if (tilt_deg != 0.0) add("tilted ", tilt_deg, "°");
     if (scale != 1.0) add("scale ", scale);
     if (noise_m > 0.0) add("noise ", noise_m, " m");
     if (jitter_s > 0.0) add("timestamp jitter ±", jitter_s, " s");
@@ -137,10 +178,11 @@ Perturbation parse_perturbation(const std::string& spec) {
         const std::size_t equals = item.find('=');
         if (equals == std::string::npos)
             throw std::invalid_argument("--perturb: '" + item +
-                                        "': expected name=value (scale, noise, drop, rate, jitter, seed)");
+                                        "': expected name=value (scale, tilt, noise, drop, rate, jitter, seed)");
         const std::string name = item.substr(0, equals), value = item.substr(equals + 1);
         if (!seen.insert(name).second) throw std::invalid_argument("--perturb: '" + name + "' is given twice");
         if (name == "scale") p.scale = number(item, value, 0.01, 100.0, "a factor from 0.01 to 100");
+        else if (name == "tilt") p.tilt_deg = number(item, value, -90.0, 90.0, "degrees from -90 to 90");
         else if (name == "noise") p.noise_m = number(item, value, 0.0, 1.0, "metres from 0 to 1");
         else if (name == "drop") p.drop = number(item, value, 0.0, 0.99, "a probability from 0 to 0.99");
         else if (name == "rate") p.rate_hz = number(item, value, 0.1, 10000.0, "frames per second from 0.1 to 10000");
@@ -152,7 +194,7 @@ Perturbation parse_perturbation(const std::string& spec) {
             p.seed = static_cast<std::uint64_t>(seed);
         } else
             throw std::invalid_argument("--perturb: '" + name +
-                                        "' is not a perturbation (scale, noise, drop, rate, jitter, seed)");
+                                        "' is not a perturbation (scale, tilt, noise, drop, rate, jitter, seed)");
         if (comma == spec.size()) break;
     }
     return p;
@@ -163,6 +205,7 @@ void perturb_clip(Clip& clip, const Perturbation& p, std::uint64_t index) {
     Draws draws(p.seed, index);
     if (p.rate_hz > 0.0) resample(clip, p.rate_hz);
     const std::size_t n = clip.frame_count(), stride = clip.joint_count() * 3;
+    if (p.tilt_deg != 0.0) tilt(clip, p.tilt_deg);
     if (p.scale != 1.0)
         for (float& v : clip.positions) v = static_cast<float>(static_cast<double>(v) * p.scale);
     if (p.noise_m > 0.0)

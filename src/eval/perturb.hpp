@@ -15,9 +15,17 @@ namespace host {
 /// model's accuracy under the shift can be read beside the baselines' on the
 /// same changed clips. Each field at its default changes nothing.
 ///
-/// Applied in this order: resampling, scale, noise, timestamp jitter,
+/// Applied in this order: resampling, tilt, scale, noise, timestamp jitter,
 /// dropped frames.
 struct Perturbation {
+    /// Degrees by which the performer is seen tilted: a sensor mounted higher
+    /// or lower, pitched to keep them in view. Every tracked frame turns by
+    /// this angle (right-handed) about the horizontal line through the clip's
+    /// mean root position along its mean horizontal hip direction (right −
+    /// left), so a performer facing the sensor turns about the sensor's own
+    /// horizontal axis. The model's facing normalisation turns about the up
+    /// axis only, so this is a shift it does not undo.
+    double tilt_deg = 0.0;
     /// Every position times this, about the sensor's origin: a smaller or
     /// larger person (0.7 is a child of 1.2 m beside an adult of 1.75 m).
     double scale = 1.0;
@@ -43,8 +51,8 @@ struct Perturbation {
     std::string describe() const;
 };
 
-/// Reads "name=value,…" with the names scale, noise (metres), drop, rate (Hz),
-/// jitter (seconds) and seed. Throws std::invalid_argument naming the item
+/// Reads "name=value,…" with the names scale, tilt (degrees), noise (metres),
+/// drop, rate (Hz), jitter (seconds) and seed. Throws std::invalid_argument naming the item
 /// and what was expected when one is unknown, repeated, not a number or out
 /// of range.
 Perturbation parse_perturbation(const std::string& spec);
