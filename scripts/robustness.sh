@@ -20,15 +20,18 @@ if [ ! -x "$cli" ] || [ ! -f "$out/hdm05.model" ]; then
 fi
 mkdir -p "$out/robustness"
 
-# table NAME TITLE TRAIN EVAL RATE: one row per perturbation; RATE is another sensor's frame rate for that data.
+# table NAME TITLE TRAIN EVAL RATE [EXTRA...]: one row per perturbation; RATE is another sensor's frame
+# rate for that data; EXTRA are further specs (mirror=1 where the classes are not lateral: a
+# mirrored grabHighR is a left-handed grab, which HDM05 labels otherwise).
 table() {
     local name=$1 title=$2 train=$3 eval=$4 rate=$5
+    shift 5
     echo "$title"
     echo
     echo "| evaluated clips | clip accuracy | DTW 1-NN | settled frame accuracy | segment F1 | event F1 |"
     echo "|---|---:|---:|---:|---:|---:|"
     local spec
-    for spec in none scale=0.7 scale=1.25 tilt=10 tilt=-10 noise=0.01 noise=0.03 "rate=$rate" jitter=0.01 drop=0.3; do
+    for spec in none scale=0.7 scale=1.25 tilt=10 tilt=-10 noise=0.01 noise=0.03 "rate=$rate" jitter=0.01 drop=0.3 "$@"; do
         local json="$out/robustness/${name}_${spec//[=.]/_}.json" perturb=()
         [ "$spec" != none ] && perturb=(--perturb "$spec")
         "$cli" eval --model "$out/$name.model" --clips "$eval" --train "$train" --online "${perturb[@]}" \
@@ -46,9 +49,9 @@ table hdm05 "HDM05 val (actor mm), hdm05-accurate.config, 120 Hz optical" \
     "$data/hdm05/train.tsv" "$data/hdm05/val.tsv" 30
 if [ -f "$out/msr.model" ]; then
     table msr "MSR Action3D test, msr.config, 15 Hz Kinect v1" \
-        "$data/msr-action3d/train.tsv" "$data/msr-action3d/test.tsv" 30
+        "$data/msr-action3d/train.tsv" "$data/msr-action3d/test.tsv" 30 mirror=1
 fi
 if [ -f "$out/utkinect.model" ]; then
     table utkinect "UTKinect s04–s06 whole recordings, utkinect.config, 30 Hz Kinect v1" \
-        "$out/utkinect_train.tsv" "$out/utkinect_test.tsv" 15
+        "$out/utkinect_train.tsv" "$out/utkinect_test.tsv" 15 mirror=1
 fi

@@ -11,6 +11,7 @@
 #include "eval/perturb.hpp"
 #include "toy/toy.hpp"
 #include "toy_options.hpp"
+#include "train/augment.hpp"
 #include "train/pipeline.hpp"
 
 using namespace actionstring;
@@ -125,6 +126,40 @@ TEST_CASE("tilt turns each tracked frame about the hips' line, lost frames and a
     CHECK(bare.positions == before.positions);
     CHECK(parse_perturbation("tilt=-15").tilt_deg == -15.0);
     CHECK(message_of("tilt=100").find("degrees") != std::string::npos);
+}
+
+TEST_CASE("mirror: the clip as training's mirroring gives it, before the tilt") {
+    Clip c;
+    c.source = "sides";
+    c.joint_names = {"HipCenter", "HipLeft", "HipRight", "HandLeft", "HandRight"};
+    c.roles = JointRoles{0, 1, 2};
+    for (std::size_t f = 0; f < 4; ++f) {
+        const float t = static_cast<float>(f);
+        c.times.push_back(static_cast<double>(f) / 30.0);
+        c.positions.insert(c.positions.end(), {0.0f, 1.0f, 2.0f, -0.1f, 1.0f, 2.0f, 0.1f, 1.0f, 2.0f, -0.3f, 1.2f, 2.0f,
+                                               0.3f + 0.1f * t, 1.5f + 0.1f * t, 1.8f});
+    }
+    Perturbation p = parse_perturbation("mirror=1");
+    CHECK(p.mirror);
+    CHECK(p.describe() == "mirrored (seed 1)");
+    Clip mirrored = c;
+    perturb_clip(mirrored, p, 0);
+    CHECK(mirrored.positions == mirror_clip(c).positions);
+    CHECK(mirrored.positions != c.positions);
+    CHECK(mirrored.times == c.times);
+    // The moving right hand now moves on the left, reflected.
+    CHECK(mirrored.frame(3)[9] == mirror_clip(c).frame(3)[9]);
+    CHECK_FALSE(parse_perturbation("mirror=0").any());
+    CHECK(message_of("mirror=0.5").find("0 or 1") != std::string::npos);
+    // Mirroring comes first: with a tilt, the tilt of the mirrored clip.
+    p.tilt_deg = 20.0;
+    Clip both = c;
+    perturb_clip(both, p, 0);
+    Perturbation tilt_only;
+    tilt_only.tilt_deg = 20.0;
+    Clip expected = mirror_clip(c);
+    perturb_clip(expected, tilt_only, 0);
+    CHECK(both.positions == expected.positions);
 }
 
 TEST_CASE("noise: Gaussian of the asked deviation, its own per clip, the same for the same seed and index") {

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "train/augment.hpp"
 #include "train/settings.hpp"
 
 namespace actionstring {
@@ -143,7 +144,7 @@ double number(const std::string& item, const std::string& text, double low, doub
 }  // namespace
 
 bool Perturbation::any() const noexcept {
-    return scale != 1.0 || tilt_deg != 0.0 || noise_m > 0.0 || drop > 0.0 || rate_hz > 0.0 || jitter_s > 0.0;
+    return scale != 1.0 || mirror || tilt_deg != 0.0 || noise_m > 0.0 || drop > 0.0 || rate_hz > 0.0 || jitter_s > 0.0;
 }
 
 std::string Perturbation::describe() const {
@@ -155,6 +156,7 @@ std::string Perturbation::describe() const {
         parts.push_back(out.str());
     };
     if (rate_hz > 0.0) add("resampled to ", rate_hz, " Hz");
+    if (mirror) add("mirrored");
     if (tilt_deg != 0.0) add("tilted ", tilt_deg, "°");
     if (scale != 1.0) add("scale ", scale);
     if (noise_m > 0.0) add("noise ", noise_m, " m");
@@ -178,11 +180,15 @@ Perturbation parse_perturbation(const std::string& spec) {
         const std::size_t equals = item.find('=');
         if (equals == std::string::npos)
             throw std::invalid_argument("--perturb: '" + item +
-                                        "': expected name=value (scale, tilt, noise, drop, rate, jitter, seed)");
+                                        "': expected name=value (scale, mirror, tilt, noise, drop, rate, jitter, seed)");
         const std::string name = item.substr(0, equals), value = item.substr(equals + 1);
         if (!seen.insert(name).second) throw std::invalid_argument("--perturb: '" + name + "' is given twice");
         if (name == "scale") p.scale = number(item, value, 0.01, 100.0, "a factor from 0.01 to 100");
-        else if (name == "tilt") p.tilt_deg = number(item, value, -90.0, 90.0, "degrees from -90 to 90");
+        else if (name == "mirror") {
+            const double flag = number(item, value, 0.0, 1.0, "0 or 1");
+            if (flag != 0.0 && flag != 1.0) throw std::invalid_argument("--perturb: '" + item + "': expected 0 or 1");
+            p.mirror = flag == 1.0;
+        } else if (name == "tilt") p.tilt_deg = number(item, value, -90.0, 90.0, "degrees from -90 to 90");
         else if (name == "noise") p.noise_m = number(item, value, 0.0, 1.0, "metres from 0 to 1");
         else if (name == "drop") p.drop = number(item, value, 0.0, 0.99, "a probability from 0 to 0.99");
         else if (name == "rate") p.rate_hz = number(item, value, 0.1, 10000.0, "frames per second from 0.1 to 10000");
@@ -194,7 +200,7 @@ Perturbation parse_perturbation(const std::string& spec) {
             p.seed = static_cast<std::uint64_t>(seed);
         } else
             throw std::invalid_argument("--perturb: '" + name +
-                                        "' is not a perturbation (scale, tilt, noise, drop, rate, jitter, seed)");
+                                        "' is not a perturbation (scale, mirror, tilt, noise, drop, rate, jitter, seed)");
         if (comma == spec.size()) break;
     }
     return p;
@@ -205,6 +211,7 @@ void perturb_clip(Clip& clip, const Perturbation& p, std::uint64_t index) {
     Draws draws(p.seed, index);
     if (p.rate_hz > 0.0) resample(clip, p.rate_hz);
     const std::size_t n = clip.frame_count(), stride = clip.joint_count() * 3;
+    if (p.mirror) clip = mirror_clip(clip);
     if (p.tilt_deg != 0.0) tilt(clip, p.tilt_deg);
     if (p.scale != 1.0)
         for (float& v : clip.positions) v = static_cast<float>(static_cast<double>(v) * p.scale);

@@ -15,9 +15,15 @@ namespace host {
 /// model's accuracy under the shift can be read beside the baselines' on the
 /// same changed clips. Each field at its default changes nothing.
 ///
-/// Applied in this order: resampling, tilt, scale, noise, timestamp jitter,
-/// dropped frames.
+/// Applied in this order: resampling, mirroring, tilt, scale, noise,
+/// timestamp jitter, dropped frames.
 struct Perturbation {
+    /// The performance done with the other side of the body (a left-handed
+    /// performer where the training ones were right-handed): each clip
+    /// mirrored as training's `mirror` setting mirrors (train/augment.hpp).
+    /// It keeps the clip's label, so it measures only data whose classes are
+    /// not lateral (not HDM05's grabHighR, depositFloorR, …).
+    bool mirror = false;
     /// Degrees by which the performer is seen tilted: a sensor mounted higher
     /// or lower, pitched to keep them in view. Every tracked frame turns by
     /// this angle (right-handed) about the horizontal line through the clip's
@@ -51,8 +57,8 @@ struct Perturbation {
     std::string describe() const;
 };
 
-/// Reads "name=value,…" with the names scale, tilt (degrees), noise (metres),
-/// drop, rate (Hz), jitter (seconds) and seed. Throws std::invalid_argument naming the item
+/// Reads "name=value,…" with the names scale, mirror (0 or 1), tilt (degrees),
+/// noise (metres), drop, rate (Hz), jitter (seconds) and seed. Throws std::invalid_argument naming the item
 /// and what was expected when one is unknown, repeated, not a number or out
 /// of range.
 Perturbation parse_perturbation(const std::string& spec);
