@@ -67,11 +67,13 @@ void print_eval_usage(std::FILE* out) {
                  "clips) as another sensor or person would, so every figure, the baselines'\n"
                  "too, is measured on the changed clips: SPEC is name=value items separated by\n"
                  "commas: scale=F (positions times F: 0.7 is a child beside an adult),\n"
+                 "mirror=1 (the other side of the body: a left-handed performer),\n"
                  "tilt=DEG (each frame turned DEG degrees about the hips' horizontal line, as\n"
-                 "a sensor mounted higher or lower sees the performer), noise=M (Gaussian noise of M metres on every coordinate), rate=HZ (resampled\n"
-                 "to HZ by linear interpolation), jitter=S (timestamps moved by up to +-S\n"
-                 "seconds), drop=P (each frame but the first and last missing with\n"
-                 "probability P), seed=N [1]; e.g. --perturb scale=0.7,noise=0.01.\n");
+                 "a sensor mounted higher or lower sees the performer), noise=M (Gaussian\n"
+                 "noise of M metres on every coordinate), rate=HZ (resampled to HZ by linear\n"
+                 "interpolation), jitter=S (timestamps moved by up to +-S seconds), drop=P\n"
+                 "(each frame but the first and last missing with probability P), seed=N [1];\n"
+                 "e.g. --perturb scale=0.7,noise=0.01.\n");
 }
 
 void print_online(const char* rule, const host::OnlineResults& r) {
