@@ -179,8 +179,9 @@ Perturbation parse_perturbation(const std::string& spec) {
         at = comma + 1;
         const std::size_t equals = item.find('=');
         if (equals == std::string::npos)
-            throw std::invalid_argument("--perturb: '" + item +
-                                        "': expected name=value (scale, mirror, tilt, noise, drop, rate, jitter, seed)");
+            throw std::invalid_argument(
+                "--perturb: '" + item +
+                "': expected name=value (scale, mirror, tilt, noise, drop, rate, jitter, seed)");
         const std::string name = item.substr(0, equals), value = item.substr(equals + 1);
         if (!seen.insert(name).second) throw std::invalid_argument("--perturb: '" + name + "' is given twice");
         if (name == "scale") p.scale = number(item, value, 0.01, 100.0, "a factor from 0.01 to 100");
@@ -199,8 +200,9 @@ Perturbation parse_perturbation(const std::string& spec) {
                 throw std::invalid_argument("--perturb: '" + item + "': expected a whole number");
             p.seed = static_cast<std::uint64_t>(seed);
         } else
-            throw std::invalid_argument("--perturb: '" + name +
-                                        "' is not a perturbation (scale, mirror, tilt, noise, drop, rate, jitter, seed)");
+            throw std::invalid_argument(
+                "--perturb: '" + name +
+                "' is not a perturbation (scale, mirror, tilt, noise, drop, rate, jitter, seed)");
         if (comma == spec.size()) break;
     }
     return p;
