@@ -37,11 +37,11 @@ void print_eval_usage(std::FILE* out) {
                  "                         [--report DIR] [--perturb SPEC]\n"
                  "\n"
                  "Classifies every clip of LIST with the runtime's own code and reports clip\n"
-                 "accuracy, per-class precision and recall, the confusion matrix, the unknown rate\n"
-                 "and the annotator's per-frame time. With --train (the model's training list) the\n"
-                 "same run adds baselines on the same split: 1-NN over all training strings (no\n"
-                 "representatives), the same with PCA-only characters (no GMM; paper Fig. 4),\n"
-                 "and DTW 1-NN on normalised poses.\n"
+                 "accuracy, per-class precision and recall, each subject's clip accuracy, the\n"
+                 "confusion matrix, the unknown rate and the annotator's per-frame time. With\n"
+                 "--train (the model's training list) the same run adds baselines on the same\n"
+                 "split: 1-NN over all training strings (no representatives), the same with\n"
+                 "PCA-only characters (no GMM; paper Fig. 4), and DTW 1-NN on normalised poses.\n"
                  "With --online it also concatenates each subject's clips in a seeded shuffled\n"
                  "order and streams them frame by frame through the annotator, as a device would,\n"
                  "reporting frame accuracy, segment F1 (IoU >= 0.5), label delay and flicker for\n"
@@ -136,6 +136,18 @@ void print_evaluation(const Evaluation& e, const std::string& clips_path, std::u
     std::printf("\nper class (action strings):\n  %-32s %9s %7s\n", "label", "precision", "recall");
     for (std::size_t l = 0; l < main.labels.size(); ++l)
         std::printf("  %-32s %9.3f %7.3f\n", main.labels[l].c_str(), main.precision[l], main.recall[l]);
+    if (!main.per_subject.empty()) {
+        // Every method's accuracy on each subject's clips, the model's first: the baselines' results
+        // are in the same order as e.results.
+        std::printf("\nper subject (clip accuracy; the model, then each baseline in the order above):\n");
+        for (std::size_t s = 0; s < main.per_subject.size(); ++s) {
+            const host::SubjectScore& score = main.per_subject[s];
+            std::printf("  %-32s %4zu clips", score.subject.c_str(), score.clips);
+            for (const auto& r : e.results)
+                if (s < r.per_subject.size()) std::printf(" %7.3f", r.per_subject[s].accuracy);
+            std::printf("\n");
+        }
+    }
     std::printf("\nconfusion (rows true, columns predicted in label order, last column unknown):\n");
     for (std::size_t t = 0; t < main.confusion.size(); ++t) {
         std::printf("  %-32s", main.labels[t].c_str());

@@ -38,6 +38,37 @@ TEST_CASE("accuracy, unknown rate, confusion, precision and recall") {
     CHECK(json.find("\"b\": {\"precision\": 0.5, \"recall\": 0.5, \"support\": 2}") != std::string::npos);
     CHECK(std::count(json.begin(), json.end(), '{') == std::count(json.begin(), json.end(), '}'));
     CHECK(std::count(json.begin(), json.end(), '[') == std::count(json.begin(), json.end(), ']'));
+    // No clip names a subject: no per-subject scores.
+    CHECK(r.per_subject.empty());
+    CHECK(json.find("\"per_subject\": []") != std::string::npos);
+}
+
+TEST_CASE("per-subject clip accuracy, in the order of the subjects' names") {
+    std::vector<LabelledClip> clips(5);
+    const char* labels[] = {"a", "b", "a", "b", "a"};
+    const char* subjects[] = {"s2", "s1", "s2", "s1", "s1"};
+    for (std::size_t c = 0; c < clips.size(); ++c) clips[c].label = labels[c], clips[c].subject = subjects[c];
+    ClipResults r;
+    r.labels = {"a", "b"};
+    r.predictions = {0, 1, 1, -1, 0};  // s2: right, wrong; s1: right, unknown, right
+    summarise(r, clips);
+    REQUIRE(r.per_subject.size() == 2);
+    CHECK(r.per_subject[0].subject == "s1");
+    CHECK(r.per_subject[0].clips == 3);
+    CHECK(r.per_subject[0].correct == 2);
+    CHECK(r.per_subject[0].accuracy == doctest::Approx(2.0 / 3.0));
+    CHECK(r.per_subject[1].subject == "s2");
+    CHECK(r.per_subject[1].clips == 2);
+    CHECK(r.per_subject[1].correct == 1);
+    CHECK(r.per_subject[1].accuracy == doctest::Approx(0.5));
+    JsonWriter writer;
+    write_json(writer, r, clips);
+    CHECK(writer.str().find("\"per_subject\": [{\"subject\": \"s1\", \"clips\": 3, \"correct\": 2, "
+                            "\"clip_accuracy\": 0.666") != std::string::npos);
+    // Summarised again (another method on the same clips), nothing accumulates.
+    summarise(r, clips);
+    CHECK(r.per_subject.size() == 2);
+    CHECK(r.per_subject[0].clips == 3);
 }
 
 TEST_CASE("the 95% Wilson interval of an accuracy, against values worked by hand") {

@@ -186,7 +186,8 @@ class Model:
                  seed: int = 1, name: str = "<python>", perturb: str = "",
                  **online_settings: Any) -> Dict[str, Any]:
         """The figures ``actionstring eval --json`` reports, computed by the same code:
-        clip accuracy, per-class precision and recall, confusion, predictions; with
+        clip accuracy, per-class precision and recall, per-subject accuracy
+        (``per_subject``), confusion, predictions; with
         ``train`` the baselines on the same split (DTW 1-NN among them); with
         ``online`` the streaming figures over the clips concatenated per subject.
         ``perturb`` changes the evaluated clips (never ``train``) as ``eval --perturb``

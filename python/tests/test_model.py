@@ -235,9 +235,12 @@ def test_evaluation_equals_the_cli(hdm05, cli, hdm05_model):
     expected = json.loads((folder / "eval.json").read_text())
     model = actionstring.Model.load(folder / "cli.model")
     got = model.evaluate(actionstring.read_clip_list(hdm05 / "val.tsv"))
-    for key in ("clip_accuracy", "unknown_rate", "labels", "confusion", "per_class", "clips"):
+    for key in ("clip_accuracy", "unknown_rate", "labels", "confusion", "per_class", "per_subject", "clips"):
         assert got[key] == expected[key], key
     assert got["clip_accuracy"] > 0.8
+    # val.tsv is one actor's: one per-subject row, holding every clip.
+    assert [(s["subject"], s["clips"], s["correct"]) for s in got["per_subject"]] == [
+        ("mm", got["clips"], got["correct"])]
     # classify() gives each clip the label the evaluation counted.
     clips = actionstring.read_clip_list(hdm05 / "val.tsv")
     predicted = [model.classify(clip).label for clip in clips]

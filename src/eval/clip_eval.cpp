@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <memory>
 
 #include "actionstring/annotator.hpp"
@@ -54,6 +55,21 @@ void summarise(ClipResults& r, const std::vector<LabelledClip>& clips) {
         for (std::size_t p = 0; p <= L; ++p) support += r.confusion[l][p];
         if (predicted_as > 0) r.precision[l] = static_cast<double>(r.confusion[l][l]) / predicted_as;
         if (support > 0) r.recall[l] = static_cast<double>(r.confusion[l][l]) / support;
+    }
+    r.per_subject.clear();
+    std::map<std::string, SubjectScore> subjects;
+    bool named = false;
+    for (std::size_t c = 0; c < clips.size(); ++c) {
+        named = named || !clips[c].subject.empty();
+        SubjectScore& score = subjects[clips[c].subject];
+        score.subject = clips[c].subject;
+        ++score.clips;
+        score.correct += r.predictions[c] == label_index(r.labels, clips[c].label);
+    }
+    if (!named) return;
+    for (auto& [name, score] : subjects) {
+        score.accuracy = static_cast<double>(score.correct) / static_cast<double>(score.clips);
+        r.per_subject.push_back(score);
     }
 }
 

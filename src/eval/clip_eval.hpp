@@ -13,6 +13,13 @@
 namespace actionstring {
 namespace host {
 
+/// One subject's clips in a list, and how many of them a method got right.
+struct SubjectScore {
+    std::string subject;
+    std::size_t clips = 0, correct = 0;
+    double accuracy = 0;  ///< correct / clips
+};
+
 /// Clip-recognition results of one method on one list.
 struct ClipResults {
     std::string method;
@@ -24,6 +31,10 @@ struct ClipResults {
     Interval accuracy_interval;  ///< 95% Wilson interval of clip_accuracy (significance.hpp).
     double unknown_rate = 0;
     std::vector<double> precision, recall;  ///< Per label (NaN-free: 0 when undefined).
+    /// Per subject, in the order of their names; empty when no clip names a
+    /// subject. Cross-subject lists are few people, and one performer unlike
+    /// the others can carry most of the errors: this says whether it does.
+    std::vector<SubjectScore> per_subject;
     /// A baseline against the model's own method on the same clips (paired;
     /// compare_with_model()): the clips only the model gets right, those only
     /// this method gets right, and the exact McNemar p of that difference.
@@ -39,7 +50,8 @@ ClipResults start_results(const std::string& method, const ModelView& model, con
 /// Index of `label` in `labels` (labels.size() when absent).
 int label_index(const std::vector<std::string>& labels, const std::string& label);
 
-/// Fills accuracy (with its interval), unknown rate, precision and recall from predictions.
+/// Fills accuracy (with its interval), unknown rate, precision, recall and
+/// the per-subject scores from predictions.
 void summarise(ClipResults& results, const std::vector<LabelledClip>& clips);
 
 /// Pairs a baseline's predictions with the model's on the same clips:

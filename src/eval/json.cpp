@@ -31,6 +31,15 @@ void write_fields(JsonWriter& out, const ClipResults& r, const std::vector<Label
         out.end_object();
     }
     out.end_object();
+    out.key("per_subject").begin_array();
+    for (const SubjectScore& s : r.per_subject)
+        out.begin_object()
+            .field("subject", s.subject)
+            .field("clips", s.clips)
+            .field("correct", s.correct)
+            .field("clip_accuracy", s.accuracy)
+            .end_object();
+    out.end_array();
 }
 
 void write_json(JsonWriter& out, const ClipResults& r, const std::vector<LabelledClip>& clips) {

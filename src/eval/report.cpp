@@ -169,6 +169,20 @@ void write_report(const std::string& dir, const std::string& title, const std::v
         if (r.paired) md << r.model_only << " / " << r.method_only << ", p " << r.mcnemar_p;
         md << " |\n";
     }
+    if (!clip_results.empty() && !clip_results.front().per_subject.empty()) {
+        md << "\nClip accuracy per subject (the methods in the order above):\n\n| subject | clips |";
+        for (const ClipResults& r : clip_results) md << " " << r.method << " |";
+        md << "\n|---|---:|";
+        for (std::size_t m = 0; m < clip_results.size(); ++m) md << "---:|";
+        md << "\n";
+        for (std::size_t s = 0; s < clip_results.front().per_subject.size(); ++s) {
+            const SubjectScore& score = clip_results.front().per_subject[s];
+            md << "| " << score.subject << " | " << score.clips << " |";
+            for (const ClipResults& r : clip_results)
+                md << " " << (s < r.per_subject.size() ? r.per_subject[s].accuracy : 0.0) << " |";
+            md << "\n";
+        }
+    }
     if (!clip_results.empty()) {
         write_file(dir + "/confusion.svg", confusion_svg(clip_results.front()));
         md << "\n![confusion matrix](confusion.svg)\n";
