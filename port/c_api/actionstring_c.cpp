@@ -11,6 +11,7 @@
 #include "actionstring/blob.hpp"
 #include "actionstring/clip.hpp"
 #include "actionstring/storage.hpp"
+#include "actionstring/version.hpp"
 #if defined(ACTIONSTRING_C_MODEL_HEADER)
 #include ACTIONSTRING_C_MODEL_HEADER
 #endif
@@ -209,6 +210,8 @@ const char* actionstring_model_label_name(const actionstring_model* handle, int3
     if (model == nullptr || label < 0 || static_cast<uint32_t>(label) >= model->view.label_count) return "unknown";
     return model->view.label_names[static_cast<std::size_t>(label)];
 }
+
+const char* actionstring_version(void) { return actionstring::version_string(); }
 
 const char* actionstring_model_checksum(const actionstring_model* handle) {
     const Model* model = checked_model(handle);

@@ -118,6 +118,13 @@ typedef struct actionstring_event {
     float confidence; /**< share of its characters whose live label already said this label */
 } actionstring_event;
 
+/* ---- the library ------------------------------------------------------------------- */
+
+/** The library's version, "major.minor.patch" (static storage). Before 1.0 the
+ *  minor number changes whenever a program built against an earlier release
+ *  could break: a struct or function here, or a model format (actionstring/version.hpp). */
+ACTIONSTRING_C_API const char* actionstring_version(void);
+
 /* ---- models ------------------------------------------------------------------------ */
 
 /** Reads a model blob in place: `blob` (`size` bytes, aligned to 16) is checked

@@ -35,7 +35,10 @@ __all__ = [
     "ActionStringClassifier",
 ]
 
-__version__ = "0.1.0"
+# The library's version (include/actionstring/version.hpp), written out so that
+# tools read it without building the extension; a test holds it, pyproject.toml's
+# and the extension's own to the same.
+__version__ = "0.2.0"
 
 PathLike = Union[str, "os.PathLike[str]"]
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "actionstring/annotator.hpp"
+#include "actionstring/version.hpp"
 #include "eval/evaluation.hpp"
 #include "io/clip_list.hpp"
 #include "io/formats.hpp"
@@ -439,6 +440,7 @@ PYBIND11_MODULE(_actionstring, m) {
     using namespace actionstring;
     using namespace actionstring::python;
     m.doc() = "actionstring: real-time action recognition from skeleton motion (the C++ library, bound).";
+    m.attr("__version__") = actionstring::version_string();
     static py::exception<host::ReadError> read_error(m, "ReadError", PyExc_ValueError);
     py::register_exception_translator([](std::exception_ptr p) {
         try {

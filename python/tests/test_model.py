@@ -1,5 +1,6 @@
 """Training, saving and loading, classification and evaluation: the same as the CLI."""
 import json
+import re
 
 import numpy as np
 import pytest
@@ -280,3 +281,16 @@ def test_streamed_events_equal_annotate_events(hdm05, cli, hdm05_model):
         assert a["end"] == pytest.approx(b["end"], abs=1e-9)
         assert a["confidence"] == pytest.approx(b["confidence"], rel=1e-6)
     assert expected[0]["label"] == "squat1Reps"
+
+
+def test_one_version_everywhere(cli):
+    """version.hpp declares it; the extension, the package, pyproject.toml and the CLI agree."""
+    header = (ROOT / "include" / "actionstring" / "version.hpp").read_text()
+    numbers = [re.search(rf"^#define ACTIONSTRING_VERSION_{part} (\d+)$", header, re.M).group(1)
+               for part in ("MAJOR", "MINOR", "PATCH")]
+    declared = ".".join(numbers)
+    assert actionstring._native.__version__ == declared
+    assert actionstring.__version__ == declared
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    assert re.search(r'^version = "([^"]+)"', pyproject, re.M).group(1) == declared
+    assert run_cli(cli, "version").strip() == f"actionstring {declared}"

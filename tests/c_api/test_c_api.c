@@ -571,6 +571,8 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
+    /* The version the build's CMake project read from version.hpp. */
+    CHECK(strcmp(actionstring_version(), ACTIONSTRING_EXPECTED_VERSION) == 0);
     static actionstring_model builtin;
     if (actionstring_model_builtin(&builtin) == ACTIONSTRING_OK) {
         contract_checks(&builtin);
