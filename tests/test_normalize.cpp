@@ -98,6 +98,86 @@ TEST_CASE("translation and rotation about the up axis leave the pose and feature
     }
 }
 
+TEST_CASE("up_rotation turns the sensor's up onto the model's axis, the smallest turn, and refuses bad ones") {
+    std::mt19937 rng(11);
+    std::normal_distribution<float> normal(0.0f, 1.0f);
+    for (int up = 0; up < 3; ++up) {
+        Eigen::Vector3f axis = Eigen::Vector3f::Zero();
+        axis[up] = 1.0f;
+        std::vector<Eigen::Vector3f> ups = {-axis, 2.5f * axis, Eigen::Vector3f(0.3f, 0.2f, 0.1f)};
+        for (int trial = 0; trial < 50; ++trial) ups.emplace_back(normal(rng), normal(rng), normal(rng));
+        for (const Eigen::Vector3f& u : ups) {
+            CAPTURE(up);
+            CAPTURE(u.transpose());
+            float r[9] = {};
+            REQUIRE(up_rotation(u.data(), up, r) == Status::ok);
+            const Eigen::Matrix3f R = Eigen::Map<const Eigen::Matrix<float, 3, 3, Eigen::RowMajor>>(r);
+            CHECK((R * u.normalized() - axis).norm() < 1e-5f);
+            CHECK((R.transpose() * R - Eigen::Matrix3f::Identity()).norm() < 1e-5f);
+            CHECK(R.determinant() == doctest::Approx(1.0).epsilon(1e-5));
+            // The smallest turn: the line across both (up × axis) stays where it is.
+            const Eigen::Vector3f line = u.cross(axis);
+            if (line.norm() > 1e-3f) CHECK((R * line - line).norm() < 1e-5f * line.norm());
+        }
+        // Along the axis already: exactly the identity, which turns no coordinate's bits.
+        float r[9] = {};
+        const Eigen::Vector3f along = 3.0f * axis;
+        REQUIRE(up_rotation(along.data(), up, r) == Status::ok);
+        for (int i = 0; i < 9; ++i) CHECK(r[i] == (i % 4 == 0 ? 1.0f : 0.0f));
+    }
+    float r[9] = {};
+    const float zero[3] = {0.0f, 0.0f, 0.0f}, tiny[3] = {1e-7f, 0.0f, 0.0f},
+                nan[3] = {0.0f, std::numeric_limits<float>::quiet_NaN(), 1.0f}, huge[3] = {3e38f, 3e38f, 0.0f},
+                fine[3] = {0.0f, 1.0f, 0.1f};
+    CHECK(up_rotation(zero, 1, r) == Status::invalid_argument);
+    CHECK(up_rotation(tiny, 1, r) == Status::invalid_argument);
+    CHECK(up_rotation(nan, 1, r) == Status::invalid_argument);
+    CHECK(up_rotation(huge, 1, r) == Status::invalid_argument);  // its length overflows float
+    CHECK(up_rotation(fine, 3, r) == Status::invalid_argument);
+    CHECK(up_rotation(nullptr, 1, r) == Status::invalid_argument);
+    CHECK(up_rotation(fine, 1, nullptr) == Status::invalid_argument);
+}
+
+TEST_CASE("a sensor tilted any way gives the upright pose when its up direction is given") {
+    host::ToyWorld world = host::make_toy_world();
+    const ModelView view = world.model.view();
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> angle(-0.6f, 0.6f), direction(-1.0f, 1.0f);
+    for (const auto& key : world.key_poses) {
+        const std::vector<float> reference = normalized(view, key);
+        for (int trial = 0; trial < 20; ++trial) {
+            // A sensor pitched and rolled (up to about 35°) and turned about the up axis, somewhere else.
+            const Eigen::Vector3f line = Eigen::Vector3f(direction(rng), direction(rng), direction(rng)).normalized();
+            const Eigen::Matrix3f sensor = Eigen::AngleAxisf(angle(rng), line).toRotationMatrix() *
+                                           Eigen::AngleAxisf(3.0f * angle(rng), Eigen::Vector3f::UnitY());
+            const std::vector<float> seen = transform(key, sensor, Eigen::Vector3f(0.5f, 1.0f, 2.5f));
+            const Eigen::Vector3f up = sensor * Eigen::Vector3f::UnitY() * 9.81f;  // gravity's length does not matter
+            float r[9] = {};
+            REQUIRE(up_rotation(up.data(), view.up_axis, r) == Status::ok);
+            std::vector<float> turned(view.pose_dim());
+            REQUIRE(normalize_pose(view, seen.data(), turned.data(), nullptr, r) == Status::ok);
+            CHECK(max_difference(turned, reference) < 2e-5);
+        }
+        // Without it, a sensor pitched by 0.5 rad is a shift the pose shows.
+        const Eigen::Matrix3f pitched = Eigen::AngleAxisf(0.5f, Eigen::Vector3f::UnitX()).toRotationMatrix();
+        const std::vector<float> seen = transform(key, pitched, Eigen::Vector3f::Zero());
+        CHECK(max_difference(normalized(view, seen), reference) > 0.05);
+        const Eigen::Vector3f up = pitched * Eigen::Vector3f::UnitY();
+        float r[9] = {};
+        REQUIRE(up_rotation(up.data(), view.up_axis, r) == Status::ok);
+        std::vector<float> turned(view.pose_dim());
+        REQUIRE(normalize_pose(view, seen.data(), turned.data(), nullptr, r) == Status::ok);
+        CHECK(max_difference(turned, reference) < 2e-5);
+        // The identity turns nothing: the same bits as no rotation.
+        float identity[9];
+        const float upright[3] = {0.0f, 1.0f, 0.0f};
+        REQUIRE(up_rotation(upright, view.up_axis, identity) == Status::ok);
+        std::vector<float> same(view.pose_dim());
+        REQUIRE(normalize_pose(view, key.data(), same.data(), nullptr, identity) == Status::ok);
+        CHECK(same == reference);
+    }
+}
+
 TEST_CASE("the hips face the canonical direction after normalisation") {
     host::ToyWorld world = host::make_toy_world();
     const ModelView view = world.model.view();

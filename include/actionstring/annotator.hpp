@@ -38,6 +38,14 @@ struct AnnotatorConfig {
     /// the stream restarts at it instead of waiting for the clock to catch up.
     /// In [0, max_gap_us].
     std::int64_t max_backward_us = 100000;
+    /// The sensor's up direction in the positions' coordinates, when the
+    /// device knows it and it differs from the model's up axis (a Kinect's
+    /// floor plane normal, gravity from a headset's IMU): every frame is
+    /// turned to put it along the axis, so a sensor mounted higher, lower or
+    /// rolled gives the poses the training sensor gave (normalize.hpp,
+    /// up_rotation()). All zero: the positions' up is the model's. Not finite
+    /// or shorter than 1e-6: init() refuses it.
+    float up[3] = {0.0f, 0.0f, 0.0f};
     /// Whether to run the paper's sliding-window rule beside the segmenter
     /// (label(), last_window()). Off, its state (the largest part) is not
     /// paid for and label() stays unknown; the settled label is the better
@@ -521,7 +529,8 @@ private:
     }
 
     static constexpr EncoderConfig encoder_config(const AnnotatorConfig& config) noexcept {
-        return EncoderConfig{config.max_gap_us, config.max_backward_us, config.spread_work};
+        return EncoderConfig{
+            config.max_gap_us, config.max_backward_us, config.spread_work, {config.up[0], config.up[1], config.up[2]}};
     }
 
     // One block: the encoder's, the window matcher's (with the window rule)

@@ -67,6 +67,11 @@ struct EncoderConfig {
     /// characters can be computed over later frames; two poses, each with its
     /// feature, more storage. push_frame() alone does not need it.
     bool deferred = false;
+    /// The sensor's up direction in the positions' coordinates, when it is
+    /// known and differs from the model's up axis (a Kinect's floor plane
+    /// normal, gravity from an IMU): every frame is turned to put it along
+    /// the axis (up_rotation()). All zero: the positions' up is the model's.
+    float up[3] = {0.0f, 0.0f, 0.0f};
 };
 
 /// Frame-to-character encoder; needs only the feature tables of the model.
@@ -82,11 +87,19 @@ public:
 
     /// @return ok, invalid_model (tables, or precision factors that could
     ///         overflow float), storage_too_small, or invalid_argument
-    ///         (times StringSampler::settings_ok() refuses for the model's period)
+    ///         (times StringSampler::settings_ok() refuses for the model's
+    ///         period, or an up direction up_rotation() refuses)
     Status init(const ModelView& model, const EncoderConfig& config, void* storage, std::size_t bytes) noexcept {
         model_ = nullptr;
         const Status status = validate_feature_tables(model);
         if (status != Status::ok) return status;
+        turned_ = config.up[0] != 0.0f || config.up[1] != 0.0f || config.up[2] != 0.0f;
+        if (turned_) {
+            if (up_rotation(config.up, model.up_axis, rotation_) != Status::ok) return Status::invalid_argument;
+            // The identity turns nothing; skipping it keeps the unturned path's work.
+            turned_ = false;
+            for (int i = 0; i < 9; ++i) turned_ = turned_ || rotation_[i] != (i % 4 == 0 ? 1.0f : 0.0f);
+        }
         if (model.has_gmm() && !gmm_is_overflow_safe(model, max_pose_coordinate)) return Status::invalid_model;
         if (!StringSampler::settings_ok(model.string_period_us, config.max_gap_us, config.max_backward_us))
             return Status::invalid_argument;
@@ -169,7 +182,8 @@ public:
         }
         const std::size_t current = has_previous_ ? 1u - previous_ : 0u;
         out.status =
-            normalize_pose(*model_, positions, poses_[current], uses_bones(model_->scale_mode) ? skeleton_ : nullptr);
+            normalize_pose(*model_, positions, poses_[current], uses_bones(model_->scale_mode) ? skeleton_ : nullptr,
+                           turned_ ? rotation_ : nullptr);
         if (out.status != Status::ok) return out;
         const SamplePlan plan = sampler_.advance(time_us);
         out.status = plan.status;
@@ -441,6 +455,8 @@ private:
     float* poses_[2] = {};  // input_dim() floats each: the pose, then with motion its velocity and acceleration
     MotionRing motion_;
     float* skeleton_ = nullptr;  // the rebuilt skeleton (bone-length scaling)
+    float rotation_[9] = {};     // EncoderConfig::up's turn (up_rotation()), used when turned_
+    bool turned_ = false;
     Character characters_[2] = {};
     bool ready_[2] = {};          // the slot's character (and its motion, if any) is computed
     std::int64_t times_[2] = {};  // the slot's frame time (for its motion)

@@ -25,6 +25,53 @@ namespace actionstring {
 /// and the bound keeps the GMM's squared distances far from float overflow.
 constexpr float max_pose_coordinate = 1.0e4f;
 
+/// The turn that takes a sensor's measured up direction to the model's up
+/// axis, for a sensor pitched or rolled unlike the training one (a Kinect's
+/// floor plane normal, a headset's gravity from its IMU). The facing
+/// normalisation below turns about the up axis only, so without this a
+/// tilted sensor is a shift the model sees (README, "Other sensors and
+/// people"). `up` is in the positions' own coordinates; its length does not
+/// matter. Writes a row-major 3 × 3 rotation R with R · up ∝ the up axis, the
+/// smallest such turn (about up × axis).
+/// An up already along the axis gives exactly the identity, which turns
+/// nothing (every coordinate keeps its bits), so callers may skip it.
+/// @return ok (rotation written) or invalid_argument (a null pointer, an up
+///         axis beyond 2, or an up that is not finite or is shorter than
+///         1e-6; rotation untouched)
+inline Status up_rotation(const float* up, int up_axis, float* rotation) noexcept {
+    if (up == nullptr || rotation == nullptr || up_axis < 0 || up_axis > 2) return Status::invalid_argument;
+    if (!detail::is_finite(up[0]) || !detail::is_finite(up[1]) || !detail::is_finite(up[2]))
+        return Status::invalid_argument;
+    const float length = Eigen::Map<const Eigen::Vector3f>(up).norm();
+    if (!(length >= 1.0e-6f) || !detail::is_finite(length)) return Status::invalid_argument;
+    const float u[3] = {up[0] / length, up[1] / length, up[2] / length};
+    const int a = up_axis, b = (up_axis + 1) % 3, c = (up_axis + 2) % 3;
+    // k = u × e_a, whose only non-zero components are along b and c.
+    float k[3] = {0.0f, 0.0f, 0.0f};
+    k[b] = u[c];
+    k[c] = -u[b];
+    const float sine = std::sqrt(k[b] * k[b] + k[c] * k[c]), cosine = u[a];
+    if (k[b] == 0.0f && k[c] == 0.0f && cosine > 0.0f) {
+        for (int i = 0; i < 9; ++i) rotation[i] = i % 4 == 0 ? 1.0f : 0.0f;
+        return Status::ok;
+    }
+    float n[3] = {0.0f, 0.0f, 0.0f};
+    const bool opposite = sine < 1.0e-7f;  // upside down: half a turn about the first horizontal axis
+    if (opposite) {
+        n[b] = 1.0f;
+    } else {
+        n[b] = k[b] / sine;
+        n[c] = k[c] / sine;
+    }
+    const float s = opposite ? 0.0f : sine, cc = opposite ? -1.0f : cosine;
+    // Rodrigues: R = cos I + sin [n]× + (1 − cos) n nᵀ.
+    const float cross[9] = {0.0f, -n[2], n[1], n[2], 0.0f, -n[0], -n[1], n[0], 0.0f};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            rotation[3 * i + j] = (i == j ? cc : 0.0f) + s * cross[3 * i + j] + (1.0f - cc) * n[i] * n[j];
+    return Status::ok;
+}
+
 /// The canonical facing: after normalisation the horizontal hip vector
 /// (right hip − left hip) points along the first horizontal axis, i.e. the
 /// axis (up_axis + 1) mod 3 (z for a y-up skeleton, x for a z-up one).
@@ -36,12 +83,15 @@ constexpr float max_pose_coordinate = 1.0e4f;
 ///                  are meaningful only when the call returns Status::ok
 /// @param skeleton  scratch of joint_count × 3 floats (caller-owned), needed
 ///                  only when the model scales by bone lengths; may be null otherwise
+/// @param rotation  up_rotation()'s 3 × 3 turn, applied to every position
+///                  first (about the root, which nothing else depends on);
+///                  null for none
 /// @return ok, non_finite_input, tracking_lost (every joint the model reads is
 ///         exactly at the origin, as Kinect reports lost tracking),
 ///         degenerate_pose (no facing direction), pose_out_of_range, or
 ///         invalid_argument (a null pointer the model needs)
-inline Status normalize_pose(const ModelView& model, const float* input, float* pose_out,
-                             float* skeleton = nullptr) noexcept {
+inline Status normalize_pose(const ModelView& model, const float* input, float* pose_out, float* skeleton = nullptr,
+                             const float* rotation = nullptr) noexcept {
     if (input == nullptr || pose_out == nullptr || model.up_axis > 2) return Status::invalid_argument;
     const bool bones = uses_bones(model.scale_mode);
     const bool tree = uses_kinematic_tree(model.scale_mode);
@@ -113,7 +163,16 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     const float* root = joint(model.root_joint);
     const float* left = joint(model.left_hip_joint);
     const float* right = joint(model.right_hip_joint);
-    const float hips[3] = {right[0] - left[0], right[1] - left[1], right[2] - left[2]};
+    // A turn of the sensor turns every vector between joints alike; lengths,
+    // and so the size normalisations, do not change. Without one, no call
+    // and no work per joint (under -Os a call per joint costs a Cortex-M4
+    // hundreds of instructions a frame).
+    auto turn = [rotation](float* v) {
+        const float x = v[0], y = v[1], z = v[2];
+        for (int i = 0; i < 3; ++i) v[i] = rotation[3 * i] * x + rotation[3 * i + 1] * y + rotation[3 * i + 2] * z;
+    };
+    float hips[3] = {right[0] - left[0], right[1] - left[1], right[2] - left[2]};
+    if (rotation != nullptr) turn(hips);
     const float hip_width = length3(hips);
     const float horizontal = std::sqrt(hips[h1] * hips[h1] + hips[h2] * hips[h2]);
     // Hips nearly along the up axis leave the facing undefined (below ~0.06°).
@@ -141,9 +200,8 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     // Every coordinate is written, and the range is judged once at the end
     // (pose_out means nothing unless the call returns ok).
     std::uint32_t out_of_range = 0;
-    for (std::size_t k = 0; k < model.pose_joint_count; ++k) {
-        const float* at = joint(model.pose_joints[k]);
-        const float rel[3] = {(at[0] - root[0]) * scale, (at[1] - root[1]) * scale, (at[2] - root[2]) * scale};
+    // One loop per case, so the unturned one is the loop it always was.
+    auto write = [&](std::size_t k, const float* rel) ACTIONSTRING_DETAIL_ALWAYS_INLINE {
         float* out = pose_out + 3 * k;
         out[up] = rel[up];
         out[h1] = cos_a * rel[h1] + sin_a * rel[h2];
@@ -151,6 +209,20 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
         // The negated comparison also rejects a NaN from inf − inf.
         auto outside = [](float v) { return static_cast<std::uint32_t>(!(std::fabs(v) <= max_pose_coordinate)); };
         out_of_range |= outside(out[0]) | outside(out[1]) | outside(out[2]);
+    };
+    if (rotation == nullptr) {
+        for (std::size_t k = 0; k < model.pose_joint_count; ++k) {
+            const float* at = joint(model.pose_joints[k]);
+            const float rel[3] = {(at[0] - root[0]) * scale, (at[1] - root[1]) * scale, (at[2] - root[2]) * scale};
+            write(k, rel);
+        }
+    } else {
+        for (std::size_t k = 0; k < model.pose_joint_count; ++k) {
+            const float* at = joint(model.pose_joints[k]);
+            float rel[3] = {(at[0] - root[0]) * scale, (at[1] - root[1]) * scale, (at[2] - root[2]) * scale};
+            turn(rel);
+            write(k, rel);
+        }
     }
     return out_of_range == 0 ? Status::ok : Status::pose_out_of_range;
 }
