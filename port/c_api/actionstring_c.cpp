@@ -131,6 +131,7 @@ AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) 
     config.min_action_us = c->min_action_us;
     config.spread_work = c->spread_work != 0;
     config.label_lead_us = c->label_lead_us;
+    for (int a = 0; a < 3; ++a) config.up[a] = c->up[a];
     config.segmenter.settle_delay_us = c->online.settle_delay_us;
     config.segmenter.segment_penalty = c->online.segment_penalty;
     config.segmenter.stay_penalty = c->online.stay_penalty;
@@ -141,6 +142,13 @@ AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) 
     return config;
 }
 
+// Whether the config's up direction is none (all zero) or one the encoder turns by.
+bool up_ok(const ModelView& model, const AnnotatorConfig& config) {
+    if (config.up[0] == 0.0f && config.up[1] == 0.0f && config.up[2] == 0.0f) return true;
+    float rotation[9];
+    return actionstring::up_rotation(config.up, model.up_axis, rotation) == Status::ok;
+}
+
 // Whether a config is one init() accepts for the model (given enough memory).
 bool config_ok(const ModelView& model, const AnnotatorConfig& config) {
     return actionstring::ActionSegmenter::check(model, config.segmenter) == Status::ok &&
@@ -148,7 +156,7 @@ bool config_ok(const ModelView& model, const AnnotatorConfig& config) {
                                                     config.max_backward_us) &&
            Annotator::required_bytes(model, config) != actionstring::unsatisfiable_bytes && config.min_action_us >= 0 &&
            config.min_action_us <= actionstring::max_settle_delay_us && config.label_lead_us >= 0 &&
-           config.label_lead_us <= actionstring::max_settle_delay_us;
+           config.label_lead_us <= actionstring::max_settle_delay_us && up_ok(model, config);
 }
 
 void set_model(actionstring_model* handle, const ModelView& view, const char* checksum) {
@@ -230,6 +238,7 @@ actionstring_status actionstring_default_config(const actionstring_model* handle
     config->min_action_us = c.min_action_us;
     config->spread_work = c.spread_work ? 1 : 0;
     config->label_lead_us = c.label_lead_us;
+    for (int a = 0; a < 3; ++a) config->up[a] = c.up[a];
     return ACTIONSTRING_OK;
 }
 
@@ -399,6 +408,16 @@ actionstring_status actionstring_set_label_lead(actionstring_state* handle, int6
     if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
     AnnotatorConfig config = state->annotator.config();
     config.label_lead_us = label_lead_us;
+    return reconfigure(*state, config);
+}
+
+actionstring_status actionstring_set_up_direction(actionstring_state* handle, float x, float y, float z) {
+    State* state = live(handle);
+    if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    AnnotatorConfig config = state->annotator.config();
+    config.up[0] = x;
+    config.up[1] = y;
+    config.up[2] = z;
     return reconfigure(*state, config);
 }
 

@@ -92,6 +92,11 @@ typedef struct actionstring_config {
     int64_t label_lead_us;   /**< a character's label applies this long before its tick (actionstring_label_time_us(),
                                   the events' times): the feature's motion looks back, so actions show in it late
                                   (the model's own, 0 to 600 s) */
+    float up[3];             /**< the sensor's up direction in the positions' coordinates, when the device knows
+                                  it (a Kinect's floor plane normal, an IMU's gravity): every frame is turned to put
+                                  it along the model's up axis, so a sensor mounted higher or lower gives the poses
+                                  the training one gave; all zero (default): no turn. Not finite or shorter than
+                                  1e-6: INVALID_ARGUMENT */
 } actionstring_config;
 
 /** What one actionstring_push_frame() did. */
@@ -221,6 +226,11 @@ ACTIONSTRING_C_API actionstring_status actionstring_set_min_action(actionstring_
  *  restarts its stream. INVALID_ARGUMENT for a negative one or one over 10 minutes;
  *  NOT_INITIALIZED for a bad state. On failure the state is unchanged. */
 ACTIONSTRING_C_API actionstring_status actionstring_set_label_lead(actionstring_state* state, int64_t label_lead_us);
+/** Replaces a state's sensor up direction (config.up; 0, 0, 0 for none) and restarts
+ *  its stream. INVALID_ARGUMENT for one not finite or shorter than 1e-6;
+ *  NOT_INITIALIZED for a bad state. On failure the state is unchanged. */
+ACTIONSTRING_C_API actionstring_status actionstring_set_up_direction(actionstring_state* state, float x, float y,
+                                                                     float z);
 
 /** The paper's window rule (needs config.window_rule): the current label index, or -1. */
 ACTIONSTRING_C_API int32_t actionstring_label(const actionstring_state* state);

@@ -160,6 +160,21 @@ static void contract_checks(const actionstring_model* model) {
     CHECK(actionstring_set_label_lead(state, (int64_t)3600 * 1000000) == ACTIONSTRING_INVALID_ARGUMENT);
     CHECK(actionstring_set_label_lead(NULL, 0) == ACTIONSTRING_NOT_INITIALIZED);
     CHECK(actionstring_set_label_lead(state, 250000) == ACTIONSTRING_OK);
+    /* The sensor's up direction: none by default; a direction, or none again; not a direction refused. */
+    CHECK(config.up[0] == 0.0f && config.up[1] == 0.0f && config.up[2] == 0.0f);
+    CHECK(actionstring_set_up_direction(state, 0.0f, 0.0f, 0.0f) == ACTIONSTRING_OK);
+    CHECK(actionstring_set_up_direction(state, 0.1f, 0.9f, 0.2f) == ACTIONSTRING_OK);
+    CHECK(actionstring_set_up_direction(state, 1e-9f, 0.0f, 0.0f) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_set_up_direction(state, NAN, 1.0f, 0.0f) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_set_up_direction(NULL, 0.0f, 1.0f, 0.0f) == ACTIONSTRING_NOT_INITIALIZED);
+    {
+        actionstring_config tilted = config;
+        tilted.up[2] = INFINITY;
+        CHECK(actionstring_state_size(model, &tilted) == 0); /* a config init() would refuse */
+        tilted.up[2] = 1.0f;
+        CHECK(actionstring_state_size(model, &tilted) == actionstring_state_size(model, &config));
+    }
+    CHECK(actionstring_set_up_direction(state, 0.0f, 0.0f, 0.0f) == ACTIONSTRING_OK);
 
     /* Wrong element count or a null frame: rejected before the runtime sees it. */
     CHECK(actionstring_push_frame(state, 0, frame, 3 * joints - 1, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
