@@ -32,7 +32,8 @@ int run_annotate(int argc, char** argv) {
                 "                             [--columns time=COL,JOINT=X:Y:Z,...]\n"
                 "                             [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
                 "                             [--skip-penalty X] [--unknown-cost X] [--segment-votes X]\n"
-                "                             [--segment-exemplars X] [--label-lead S] [--spread-work]\n\n"
+                "                             [--segment-exemplars X] [--label-lead S] [--spread-work]\n"
+                "                             [--up X,Y,Z]\n\n"
                 "Streams FILE frame by frame through the annotator, as a device would, and prints\n"
                 "the timeline of settled labels: start and end time in seconds, label (or\n"
                 "'unknown') and the confidence, the share of the span's frames whose live label\n"
@@ -51,6 +52,10 @@ int run_annotate(int argc, char** argv) {
                 "--spread-work spreads each character's work (encoder and segmenter) over the\n"
                 "frames until the next character: the same labels, each up to one string period\n"
                 "later.\n"
+                "--up X,Y,Z is the sensor's up direction in the file's coordinates, when it is\n"
+                "known and differs from the model's up axis (a Kinect's floor plane normal, an\n"
+                "IMU's gravity): every frame is turned to put it along the axis, so a sensor\n"
+                "mounted higher or lower than the training one gives the poses it gave.\n"
                 "The segmenter options are those of 'actionstring eval'.\n");
             return 0;
         }
@@ -62,6 +67,7 @@ int run_annotate(int argc, char** argv) {
         else if (arg == "--udp") live_source.udp_port = static_cast<int>(args.whole(arg, 1, 65535));
         else if (arg == "--idle-timeout") live_source.idle_timeout_s = args.number(arg, 0.01, 3600);
         else if (parse_online_option(args, arg, overrides)) continue;
+        else if (parse_up_option(args, arg, overrides)) continue;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;
         else return args.error("more than one FILE given");

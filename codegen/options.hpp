@@ -137,14 +137,51 @@ inline bool apply_online_setting(ArgumentReader& args, const std::string& name, 
 struct OnlineOverrides {
     std::vector<std::pair<std::string, std::string>> settings;  // name, value
     bool spread_work = false;  // --spread-work (AnnotatorConfig::spread_work; not a model setting)
+    float up[3] = {0.0f, 0.0f, 0.0f};  // --up X,Y,Z (AnnotatorConfig::up; a property of the sensor, not the model)
     /// The model's settings with these applied (the values were checked when read).
     AnnotatorConfig over(const ModelView& model, ArgumentReader& args) const {
         AnnotatorConfig config = annotator_config(model);
         for (const auto& [name, value] : settings) apply_online_setting(args, name, value, config);
         config.spread_work = spread_work;
+        for (int a = 0; a < 3; ++a) config.up[a] = up[a];
         return config;
     }
 };
+
+/// Reads `--up X,Y,Z` (the sensor's up direction in the file's coordinates,
+/// AnnotatorConfig::up) of annotate or view into `overrides`. Returns false
+/// when `option` is not it.
+inline bool parse_up_option(ArgumentReader& args, const std::string& option, OnlineOverrides& overrides) {
+    if (option != "--up") return false;
+    const std::string text = args.value(option);
+    if (!args.ok()) return true;
+    float up[3] = {0.0f, 0.0f, 0.0f};
+    std::size_t begin = 0;
+    for (int a = 0; a < 3; ++a) {
+        const std::size_t end = text.find(',', begin);
+        const bool last = a == 2;
+        if ((end == std::string::npos) != last) {
+            args.error("option --up expects X,Y,Z (three numbers), got '" + text + "'");
+            return true;
+        }
+        const std::string item = text.substr(begin, last ? std::string::npos : end - begin);
+        char* stop = nullptr;
+        const double v = std::strtod(item.c_str(), &stop);
+        if (item.empty() || stop != item.c_str() + item.size() || !std::isfinite(v) || std::fabs(v) > 1e6) {
+            args.error("option --up expects X,Y,Z (three numbers), got '" + text + "'");
+            return true;
+        }
+        up[a] = static_cast<float>(v);
+        begin = end + 1;
+    }
+    float rotation[9];
+    if (!(up[0] == 0.0f && up[1] == 0.0f && up[2] == 0.0f) && up_rotation(up, 1, rotation) != Status::ok) {
+        args.error("option --up: '" + text + "' is not a direction (longer than 1e-6 expected, or 0,0,0 for none)");
+        return true;
+    }
+    for (int a = 0; a < 3; ++a) overrides.up[a] = up[a];
+    return true;
+}
 
 /// Reads an online option (--settle S, --min-action S, --spread-work and the like) of eval or
 /// annotate into `overrides`, checking its value now. Returns false when

@@ -29,14 +29,16 @@ int run_view(int argc, char** argv) {
             std::printf(
                 "usage: actionstring view FILE --model MODEL --out PAGE.html [--label NAME] [--title TEXT]\n"
                 "                         [--skeleton ASF] [--rate HZ] [--roles R,L,R] [--time-unit s|ms|us]\n"
-                "                         [--body N] [--columns time=COL,JOINT=X:Y:Z,...] [segmenter options]\n\n"
+                "                         [--body N] [--columns time=COL,JOINT=X:Y:Z,...] [--up X,Y,Z]\n"
+                "                         [segmenter options]\n\n"
                 "Streams FILE through the annotator as 'annotate' does and writes one\n"
                 "self-contained HTML page (no network access, no external scripts) to look at\n"
                 "it: the skeleton playing in 3D (drag to turn it) with a time slider, and\n"
                 "under it the label timelines (the truth when --label names the whole file's\n"
                 "action, the settled, live and latest-window labels), the live label's margin\n"
                 "(its confidence) and the action events. 'eval --report DIR' writes one such\n"
-                "page per stream, with the truth. The segmenter options are those of 'eval'.\n");
+                "page per stream, with the truth. The segmenter options are those of 'eval';\n"
+                "--up is the sensor's up direction, as 'annotate' takes it.\n");
             return 0;
         }
         if (arg == "--model") model_path = args.value(arg);
@@ -45,6 +47,7 @@ int run_view(int argc, char** argv) {
         else if (arg == "--title") title = args.value(arg);
         else if (parse_read_option(args, arg, read, skeleton)) continue;
         else if (parse_online_option(args, arg, overrides)) continue;
+        else if (parse_up_option(args, arg, overrides)) continue;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;
         else return args.error("more than one FILE given");

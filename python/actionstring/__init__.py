@@ -278,7 +278,11 @@ class Annotator:
     work (the encoder's projection, GMM and tree, and the segmenter's) over the
     frames until the next character, for a flat cost per frame: the same
     settled labels and events, each up to one string period later;
-    ``finish_work()`` does what is left at once.
+    ``finish_work()`` does what is left at once. ``up=(x, y, z)`` is the sensor's
+    up direction in the positions' coordinates, when the device knows it and it
+    differs from the model's up axis (a Kinect's floor plane normal, an IMU's
+    gravity): every frame is turned to put it along the axis, so a sensor mounted
+    higher or lower than the training one gives the poses it gave.
     """
 
     def __init__(self, model: Model, **online_settings: Any):

@@ -212,11 +212,15 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
         else if (key == "spread_work") config.spread_work = item.second.cast<bool>();
         else if (key == "max_gap") config.max_gap_us = std::llround(item.second.cast<double>() * 1e6);
         else if (key == "max_backward") config.max_backward_us = std::llround(item.second.cast<double>() * 1e6);
-        else if (!host::apply_online_setting(setting_name(key), setting_value(item.second), config))
+        else if (key == "up") {  // the sensor's up direction, (x, y, z); (0, 0, 0) for none
+            const auto up = item.second.cast<std::vector<float>>();
+            if (up.size() != 3) throw py::value_error("up: expected (x, y, z), the sensor's up direction");
+            for (int a = 0; a < 3; ++a) config.up[a] = up[static_cast<std::size_t>(a)];
+        } else if (!host::apply_online_setting(setting_name(key), setting_value(item.second), config))
             throw py::value_error(
                 "unknown online setting '" + key +
                 "' (settle, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, segment_exemplars, "
-                "window_rule, spread_work, max_gap, max_backward, min_action, label_lead)");
+                "window_rule, spread_work, max_gap, max_backward, min_action, label_lead, up)");
     }
     return config;
 }

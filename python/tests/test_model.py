@@ -1,6 +1,7 @@
 """Training, saving and loading, classification and evaluation: the same as the CLI."""
 import json
 import re
+import subprocess
 
 import numpy as np
 import pytest
@@ -260,6 +261,22 @@ def test_annotate_equals_the_cli(hdm05, cli, hdm05_model):
     # The clip is one squat: the label holding most of its time says so.
     longest = max(got, key=lambda segment: segment["end"] - segment["start"])
     assert longest["label"] == "squat1Reps"
+    # The sensor's up direction: --up and up= agree; the model's own axis changes nothing.
+    clip = actionstring.read_clip(amc, skeleton=str(asf))
+    axis = [0, 0, 0]
+    axis[clip.up_axis] = 1
+    same = json.loads(run_cli(cli, "annotate", "--model", folder / "cli.model", amc, "--skeleton", asf, "--json",
+                              "--up", ",".join(map(str, axis))))
+    assert same == expected
+    tilted = [0.2, 0.2, 0.2]
+    tilted[clip.up_axis] = 1.0
+    turned = json.loads(run_cli(cli, "annotate", "--model", folder / "cli.model", amc, "--skeleton", asf, "--json",
+                                "--up", ",".join(map(str, tilted))))
+    assert turned["segments"] == model.annotate(clip, up=tuple(tilted))
+    for bad in ["1,2", "0,0,1e-9", "0,nan,1", "a,b,c"]:
+        done = subprocess.run([cli, "annotate", "--model", str(folder / "cli.model"), str(amc), "--skeleton", str(asf),
+                               "--up", bad], capture_output=True, text=True)
+        assert done.returncode != 0 and "--up" in done.stderr, bad
 
 
 def test_streamed_events_equal_annotate_events(hdm05, cli, hdm05_model):

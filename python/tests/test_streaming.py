@@ -132,6 +132,36 @@ def test_the_label_lead_moves_label_times_only(toy_clips):
         actionstring.Annotator(led, label_lead=-0.1)
 
 
+def test_a_tilted_sensor_with_its_up_direction_gives_the_upright_labels(toy_model, toy_clips):
+    """up=(x, y, z) turns every frame so the sensor's up lies along the model's axis:
+    a stream seen by a sensor turned 0.5 rad about a horizontal axis gets the upright stream's labels and
+    nearly its margins; without it the margins move."""
+    clip = toy_clips[1]
+    c, s = np.cos(0.5), np.sin(0.5)
+    pitch = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]], dtype=np.float32)  # about z
+    tilted = np.ascontiguousarray(clip.positions @ pitch.T, dtype=np.float32)
+
+    def run(frames, **settings):
+        annotator = actionstring.Annotator(toy_model, settle=0.5, **settings)
+        settled, margins = [], []
+        for time_s, frame in zip(clip.times, frames):
+            result = annotator.push_frame(time_s, frame)
+            settled += [(char, label) for char, _, label in result["settled"]]
+            margins.append(min(result["live_margin"], 1e6))
+        return settled, np.array(margins)
+
+    upright, upright_margins = run(clip.positions)
+    assert len(upright) > 5
+    given, given_margins = run(tilted, up=tuple(pitch[:, 1]))
+    assert given == upright
+    assert np.max(np.abs(given_margins - upright_margins)) < 1e-3
+    _, unturned_margins = run(tilted)
+    assert np.max(np.abs(unturned_margins - upright_margins)) > 0.05
+    for bad in [(0.0, 1e-9, 0.0), (float("nan"), 1.0, 0.0), (0.0, 1.0)]:
+        with pytest.raises(ValueError):
+            actionstring.Annotator(toy_model, up=bad)
+
+
 def test_a_restart_flushes_the_ended_streams_tail(toy_model, toy_clips):
     """A gap over max_gap restarts the stream: the frame's ``flushed`` holds the ended
     stream's unsettled tail with final labels, and flush() does the same at the end."""

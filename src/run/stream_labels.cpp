@@ -36,6 +36,13 @@ std::string annotator_refusal(const ModelView& model, const AnnotatorConfig& con
                std::to_string(config.max_backward_us) + " us do not suit the model's " +
                std::to_string(model.string_period_us) + " us string period (at most 60 s and " +
                std::to_string(max_ticks_per_frame) + " periods; the tolerance at most the gap)";
+    if (!(config.up[0] == 0.0f && config.up[1] == 0.0f && config.up[2] == 0.0f)) {
+        float rotation[9];
+        if (up_rotation(config.up, model.up_axis, rotation) != Status::ok)
+            return "an up direction of (" + std::to_string(config.up[0]) + ", " + std::to_string(config.up[1]) + ", " +
+                   std::to_string(config.up[2]) + ") is not a direction: three finite numbers, longer than 1e-6 " +
+                   "(0, 0, 0 for none)";
+    }
     if (status == Status::model_exceeds_capacity)
         return "a representative of the model (" + std::to_string(model.total_representative_chars()) +
                " characters in all) with the window is longer than 16-bit path lengths hold";
