@@ -142,11 +142,11 @@ AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) 
     return config;
 }
 
-// Whether the config's up direction is none (all zero) or one the encoder turns by.
-bool up_ok(const ModelView& model, const AnnotatorConfig& config) {
-    if (config.up[0] == 0.0f && config.up[1] == 0.0f && config.up[2] == 0.0f) return true;
+// Whether an up direction is none (all zero) or one the encoder turns by.
+bool up_ok(const ModelView& model, const float* up) {
+    if (up[0] == 0.0f && up[1] == 0.0f && up[2] == 0.0f) return true;
     float rotation[9];
-    return actionstring::up_rotation(config.up, model.up_axis, rotation) == Status::ok;
+    return actionstring::up_rotation(up, model.up_axis, rotation) == Status::ok;
 }
 
 // Whether a config is one init() accepts for the model (given enough memory).
@@ -156,7 +156,7 @@ bool config_ok(const ModelView& model, const AnnotatorConfig& config) {
                                                     config.max_backward_us) &&
            Annotator::required_bytes(model, config) != actionstring::unsatisfiable_bytes && config.min_action_us >= 0 &&
            config.min_action_us <= actionstring::max_settle_delay_us && config.label_lead_us >= 0 &&
-           config.label_lead_us <= actionstring::max_settle_delay_us && up_ok(model, config);
+           config.label_lead_us <= actionstring::max_settle_delay_us && up_ok(model, config.up);
 }
 
 void set_model(actionstring_model* handle, const ModelView& view, const char* checksum) {
@@ -528,6 +528,21 @@ actionstring_status actionstring_clip_reset(actionstring_clip* handle) {
     if (clip == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
     clip->recorder.reset();
     return ACTIONSTRING_OK;
+}
+
+actionstring_status actionstring_clip_set_up_direction(actionstring_clip* handle, float x, float y, float z) {
+    ClipState* clip = live_clip(handle);
+    if (clip == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    actionstring::EncoderConfig config;
+    config.up[0] = x;
+    config.up[1] = y;
+    config.up[2] = z;
+    // Checked first, so a refused direction leaves the recorder as it was; then set up
+    // again in its own memory, which the same model and capacity fit as before.
+    if (!up_ok(clip->model->view, config.up)) return ACTIONSTRING_INVALID_ARGUMENT;
+    auto* bytes = reinterpret_cast<unsigned char*>(clip);
+    return code(clip->recorder.init(clip->model->view, clip->recorder.capacity(), config, bytes + kClipHeaderBytes,
+                                    clip->total - kClipHeaderBytes - kGuardBytes));
 }
 
 const char* actionstring_status_name(actionstring_status status) {

@@ -292,6 +292,12 @@ ACTIONSTRING_C_API actionstring_status actionstring_clip_classify(actionstring_c
 /** Forgets the recorded clip: the next frame begins a new one. */
 ACTIONSTRING_C_API actionstring_status actionstring_clip_reset(actionstring_clip* clip);
 
+/** Gives the recorder the sensor's up direction (as config.up of a state; 0, 0, 0 for
+ *  none) and forgets the recorded clip. INVALID_ARGUMENT for one not finite or shorter
+ *  than 1e-6; NOT_INITIALIZED for a bad handle. On failure the recorder is unchanged. */
+ACTIONSTRING_C_API actionstring_status actionstring_clip_set_up_direction(actionstring_clip* clip, float x, float y,
+                                                                          float z);
+
 /** Short stable name of a status code; static storage; never NULL. */
 ACTIONSTRING_C_API const char* actionstring_status_name(actionstring_status status);
 

@@ -431,6 +431,24 @@ static void clip_checks(const actionstring_model* model) {
     float again_confidence = -1.0f;
     CHECK(actionstring_clip_classify(clip, &again, &again_confidence) == ACTIONSTRING_OK);
     CHECK(actionstring_clip_length(clip) == length && again == label && again_confidence == confidence);
+    /* The sensor's up direction: the model's own axis, as given, labels the same frames the same;
+       a bad one is refused and the recorded clip kept; a good one starts a new clip. */
+    CHECK(actionstring_clip_set_up_direction(clip, 0.0f, NAN, 1.0f) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_clip_set_up_direction(clip, 0.0f, 1e-9f, 0.0f) == ACTIONSTRING_INVALID_ARGUMENT);
+    CHECK(actionstring_clip_set_up_direction(NULL, 0.0f, 1.0f, 0.0f) == ACTIONSTRING_NOT_INITIALIZED);
+    CHECK(actionstring_clip_length(clip) == length);
+    {
+        float up[3] = {0.0f, 0.0f, 0.0f};
+        up[1] = 1.0f; /* the committed models are y-up */
+        CHECK(actionstring_clip_set_up_direction(clip, up[0], up[1], up[2]) == ACTIONSTRING_OK);
+    }
+    CHECK(actionstring_clip_length(clip) == 0);
+    for (int f = 0; f < 120; ++f) {
+        synthetic_frame(joints, f, frame);
+        CHECK(actionstring_clip_push_frame(clip, (int64_t)f * 16667, frame, 3 * joints) == ACTIONSTRING_OK);
+    }
+    CHECK(actionstring_clip_classify(clip, &again, &again_confidence) == ACTIONSTRING_OK);
+    CHECK(actionstring_clip_length(clip) == length && again == label && again_confidence == confidence);
     /* A frame that is not a pose changes nothing. */
     memset(frame, 0, sizeof frame);
     CHECK(actionstring_clip_push_frame(clip, 2100000, frame, 3 * joints) == ACTIONSTRING_TRACKING_LOST);
