@@ -104,7 +104,10 @@ TEST_CASE("up_rotation turns the sensor's up onto the model's axis, the smallest
     for (int up = 0; up < 3; ++up) {
         Eigen::Vector3f axis = Eigen::Vector3f::Zero();
         axis[up] = 1.0f;
-        std::vector<Eigen::Vector3f> ups = {-axis, 2.5f * axis, Eigen::Vector3f(0.3f, 0.2f, 0.1f)};
+        Eigen::Vector3f aside = Eigen::Vector3f::Zero();
+        aside[(up + 1) % 3] = 1e-8f;  // along the axis to float precision, either way up
+        std::vector<Eigen::Vector3f> ups = {-axis,        2.5f * axis,   Eigen::Vector3f(0.3f, 0.2f, 0.1f),
+                                            axis + aside, -axis + aside, axis + 1e-4f * aside.normalized()};
         for (int trial = 0; trial < 50; ++trial) ups.emplace_back(normal(rng), normal(rng), normal(rng));
         for (const Eigen::Vector3f& u : ups) {
             CAPTURE(up);

@@ -33,8 +33,9 @@ constexpr float max_pose_coordinate = 1.0e4f;
 /// people"). `up` is in the positions' own coordinates; its length does not
 /// matter. Writes a row-major 3 × 3 rotation R with R · up ∝ the up axis, the
 /// smallest such turn (about up × axis).
-/// An up already along the axis gives exactly the identity, which turns
-/// nothing (every coordinate keeps its bits), so callers may skip it.
+/// An up along the axis (to within 1e-7 of a radian) gives exactly the
+/// identity, which turns nothing (every coordinate keeps its bits), so
+/// callers may skip it.
 /// @return ok (rotation written) or invalid_argument (a null pointer, an up
 ///         axis beyond 2, or an up that is not finite or is shorter than
 ///         1e-6; rotation untouched)
@@ -51,7 +52,8 @@ inline Status up_rotation(const float* up, int up_axis, float* rotation) noexcep
     k[b] = u[c];
     k[c] = -u[b];
     const float sine = std::sqrt(k[b] * k[b] + k[c] * k[c]), cosine = u[a];
-    if (k[b] == 0.0f && k[c] == 0.0f && cosine > 0.0f) {
+    // Along the axis to float precision: nothing to turn.
+    if (sine < 1.0e-7f && cosine > 0.0f) {
         for (int i = 0; i < 9; ++i) rotation[i] = i % 4 == 0 ? 1.0f : 0.0f;
         return Status::ok;
     }
