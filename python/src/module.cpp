@@ -213,8 +213,17 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
         else if (key == "max_gap") config.max_gap_us = std::llround(item.second.cast<double>() * 1e6);
         else if (key == "max_backward") config.max_backward_us = std::llround(item.second.cast<double>() * 1e6);
         else if (key == "up") {  // the sensor's up direction, (x, y, z); (0, 0, 0) for none
-            const auto up = item.second.cast<std::vector<float>>();
-            if (up.size() != 3) throw py::value_error("up: expected (x, y, z), the sensor's up direction");
+            std::vector<float> up;
+            if (!py::isinstance<py::str>(item.second)) {
+                try {
+                    up = item.second.cast<std::vector<float>>();
+                } catch (const py::cast_error&) {
+                    up.clear();
+                }
+            }
+            if (up.size() != 3)
+                throw py::value_error("up: expected (x, y, z), the sensor's up direction, not " +
+                                      std::string(py::repr(item.second)));
             for (int a = 0; a < 3; ++a) config.up[a] = up[static_cast<std::size_t>(a)];
         } else if (!host::apply_online_setting(setting_name(key), setting_value(item.second), config))
             throw py::value_error(

@@ -157,7 +157,7 @@ def test_a_tilted_sensor_with_its_up_direction_gives_the_upright_labels(toy_mode
     assert np.max(np.abs(given_margins - upright_margins)) < 1e-3
     _, unturned_margins = run(tilted)
     assert np.max(np.abs(unturned_margins - upright_margins)) > 0.05
-    for bad in [(0.0, 1e-9, 0.0), (float("nan"), 1.0, 0.0), (0.0, 1.0)]:
+    for bad in [(0.0, 1e-9, 0.0), (float("nan"), 1.0, 0.0), (0.0, 1.0), "0,1,0", ("a", "b", "c"), None]:
         with pytest.raises(ValueError):
             actionstring.Annotator(toy_model, up=bad)
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <memory>
 #include <stdexcept>
@@ -38,10 +39,13 @@ std::string annotator_refusal(const ModelView& model, const AnnotatorConfig& con
                std::to_string(max_ticks_per_frame) + " periods; the tolerance at most the gap)";
     if (!(config.up[0] == 0.0f && config.up[1] == 0.0f && config.up[2] == 0.0f)) {
         float rotation[9];
-        if (up_rotation(config.up, model.up_axis, rotation) != Status::ok)
-            return "an up direction of (" + std::to_string(config.up[0]) + ", " + std::to_string(config.up[1]) + ", " +
-                   std::to_string(config.up[2]) + ") is not a direction: three finite numbers, longer than 1e-6 " +
-                   "(0, 0, 0 for none)";
+        if (up_rotation(config.up, model.up_axis, rotation) != Status::ok) {
+            char text[96];
+            std::snprintf(text, sizeof text, "(%g, %g, %g)", static_cast<double>(config.up[0]),
+                          static_cast<double>(config.up[1]), static_cast<double>(config.up[2]));
+            return std::string("an up direction of ") + text +
+                   " is not a direction: three finite numbers, longer than 1e-6 (0, 0, 0 for none)";
+        }
     }
     if (status == Status::model_exceeds_capacity)
         return "a representative of the model (" + std::to_string(model.total_representative_chars()) +
