@@ -167,6 +167,26 @@ void set_model(actionstring_model* handle, const ModelView& view, const char* ch
     model->magic = kModelMagic;
 }
 
+// Restarts a state's stream with another config of its model, checked first,
+// so a refused config leaves the state as it was.
+actionstring_status reconfigure(State& state, const AnnotatorConfig& config) {
+    const ModelView& model = state.model->view;
+    if (!config_ok(model, config)) return ACTIONSTRING_INVALID_ARGUMENT;
+    const std::size_t room = state.total - kHeaderBytes - kGuardBytes;
+    if (Annotator::required_bytes(model, config) > room) return ACTIONSTRING_STORAGE_TOO_SMALL;
+    return code(state.annotator.init(model, config, reinterpret_cast<unsigned char*>(&state) + kHeaderBytes, room));
+}
+
+// The state's config with `change` applied, then reconfigure(): one setting's setter.
+template <typename Change>
+actionstring_status change_config(actionstring_state* handle, Change change) {
+    State* state = live(handle);
+    if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    AnnotatorConfig config = state->annotator.config();
+    change(config);
+    return reconfigure(*state, config);
+}
+
 }  // namespace
 
 extern "C" {
@@ -365,20 +385,6 @@ actionstring_online_settings actionstring_model_online_settings(const actionstri
                                         c.unknown_cost, c.vote_weight, c.exemplar_weight};
 }
 
-namespace {
-
-// Restarts a state's stream with another config of its model, checked first,
-// so a refused config leaves the state as it was.
-actionstring_status reconfigure(State& state, const AnnotatorConfig& config) {
-    const ModelView& model = state.model->view;
-    if (!config_ok(model, config)) return ACTIONSTRING_INVALID_ARGUMENT;
-    const std::size_t room = state.total - kHeaderBytes - kGuardBytes;
-    if (Annotator::required_bytes(model, config) > room) return ACTIONSTRING_STORAGE_TOO_SMALL;
-    return code(state.annotator.init(model, config, reinterpret_cast<unsigned char*>(&state) + kHeaderBytes, room));
-}
-
-}  // namespace
-
 actionstring_status actionstring_set_online_settings(actionstring_state* handle,
                                                      const actionstring_online_settings* settings) {
     State* state = live(handle);
@@ -396,29 +402,19 @@ actionstring_status actionstring_set_online_settings(actionstring_state* handle,
 }
 
 actionstring_status actionstring_set_min_action(actionstring_state* handle, int64_t min_action_us) {
-    State* state = live(handle);
-    if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
-    AnnotatorConfig config = state->annotator.config();
-    config.min_action_us = min_action_us;
-    return reconfigure(*state, config);
+    return change_config(handle, [&](AnnotatorConfig& config) { config.min_action_us = min_action_us; });
 }
 
 actionstring_status actionstring_set_label_lead(actionstring_state* handle, int64_t label_lead_us) {
-    State* state = live(handle);
-    if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
-    AnnotatorConfig config = state->annotator.config();
-    config.label_lead_us = label_lead_us;
-    return reconfigure(*state, config);
+    return change_config(handle, [&](AnnotatorConfig& config) { config.label_lead_us = label_lead_us; });
 }
 
 actionstring_status actionstring_set_up_direction(actionstring_state* handle, float x, float y, float z) {
-    State* state = live(handle);
-    if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
-    AnnotatorConfig config = state->annotator.config();
-    config.up[0] = x;
-    config.up[1] = y;
-    config.up[2] = z;
-    return reconfigure(*state, config);
+    return change_config(handle, [&](AnnotatorConfig& config) {
+        config.up[0] = x;
+        config.up[1] = y;
+        config.up[2] = z;
+    });
 }
 
 int32_t actionstring_label(const actionstring_state* handle) {
