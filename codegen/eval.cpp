@@ -47,7 +47,9 @@ void print_eval_usage(std::FILE* out) {
                  "reporting frame accuracy, segment F1 (IoU >= 0.5), label delay and flicker for\n"
                  "each rule: the segmenter's settled labels (the annotator's timeline, final\n"
                  "--settle seconds after the frame [2]), its live labels (no delay), and the\n"
-                 "paper's latest-window rule. A list with 'start' and 'end' columns names labelled\n"
+                 "paper's latest-window rule, then each class's settled frames: recall, precision,\n"
+                 "F1 and what its other frames were most often taken for (in --json the whole\n"
+                 "frame confusion). A list with 'start' and 'end' columns names labelled\n"
                  "intervals of continuous recordings: clips are the intervals, and --online\n"
                  "streams each recording whole (frames outside every interval: no action).\n"
                  "The online options override the settings the model carries (chosen at\n"
@@ -97,6 +99,24 @@ void print_online(const char* rule, const host::OnlineResults& r) {
             r.event_segment_f1, "", r.event_segment_f1_interval.low, r.event_segment_f1_interval.high,
             r.detection_latency_s, r.start_error_s, r.start_bias_s, "", r.end_error_s, r.end_bias_s,
             r.false_events_per_min, r.false_events_per_stream_min ? "minute of stream" : "minute of no action");
+}
+
+// Each class's settled frames: how many were labelled with it (recall), how
+// many labelled with it were it (precision), and what its other frames were
+// taken for, where a stream's frame accuracy hides it (a short action missed
+// entirely, one action called another).
+void print_frame_classes(const host::OnlineResults& r, const std::vector<std::string>& labels) {
+    auto name = [&labels](int label) { return host::frame_class_name(label, labels); };
+    std::printf(
+        "\nsettled frames per class (recall: its frames labelled with it; precision: frames labelled with it "
+        "that are it):\n  %-32s %7s %7s %9s %6s  %s\n",
+        "label", "frames", "recall", "precision", "F1", "its other frames most often taken for");
+    for (const host::FrameClassScore& c : host::frame_class_scores(r)) {
+        std::printf("  %-32s %7zu %7.3f %9.3f %6.3f", name(c.label).c_str(), c.frames, c.recall, c.precision, c.f1);
+        if (c.most_taken_for_frames > 0)
+            std::printf("  %s (%zu)", name(c.most_taken_for).c_str(), c.most_taken_for_frames);
+        std::printf("\n");
+    }
 }
 
 void print_results(const host::ClipResults& r) {
@@ -174,6 +194,7 @@ void print_evaluation(const Evaluation& e, const std::string& clips_path, std::u
         print_online("segmenter, settled labels", e.online_report.settled);
         print_online("segmenter, live labels", e.online_report.live);
         print_online("paper: latest window wins", e.online_report.window);
+        print_frame_classes(e.online_report.settled, main.labels);
     }
     std::printf(
         "\nannotator per frame (host build, the online figures' settings%s, %zu frames): median %.0f ns, p99 %.0f ns, "

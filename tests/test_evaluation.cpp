@@ -191,6 +191,81 @@ TEST_CASE("online metrics on a timeline scored by hand") {
     CHECK(split.missed_segments == 1);
 }
 
+TEST_CASE("frames by class: the confusion, each class's recall and precision, what it was taken for") {
+    // Truth:      -  -  -  0  0  0  0  1  1  2  x      (- no action, x a label the model does not know)
+    // Prediction: -  0  -  0  0  -  1  1  1  -  0
+    const std::vector<int> truth{-1, -1, -1, 0, 0, 0, 0, 1, 1, 2, -2}, predicted{-1, 0, -1, 0, 0, -1, 1, 1, 1, -1, 0};
+    std::vector<double> times(truth.size());
+    for (std::size_t i = 0; i < times.size(); ++i) times[i] = static_cast<double>(i);
+    const OnlineResults r = score_timeline(truth, predicted, times, {0, truth.size()});
+    REQUIRE(r.confusion_labels == 3);
+    REQUIRE(r.frame_confusion.size() == 20);  // 5 rows (no action, 0, 1, 2, labels not in the model) of 4
+    CHECK(r.confused(-1, -1) == 2);
+    CHECK(r.confused(-1, 0) == 1);
+    CHECK(r.confused(0, 0) == 2);
+    CHECK(r.confused(0, -1) == 1);
+    CHECK(r.confused(0, 1) == 1);
+    CHECK(r.confused(1, 1) == 2);
+    CHECK(r.confused(2, -1) == 1);
+    CHECK(r.confused(2, 2) == 0);
+    CHECK(r.confused(3, 0) == 0);   // outside the table
+    CHECK(r.confused(-2, 0) == 1);  // the last row: the frame of a label the model does not know
+    CHECK(r.confused(-2, -1) == 0);
+    CHECK(r.confused(-3, 0) == 0);
+    std::size_t counted = 0;
+    for (std::size_t n : r.frame_confusion) counted += n;
+    CHECK(counted == truth.size());
+
+    const std::vector<FrameClassScore> classes = frame_class_scores(r);
+    REQUIRE(classes.size() == 4);  // no action, then labels 0, 1, 2
+    CHECK(classes[0].label == -1);
+    CHECK(classes[0].frames == 3);
+    CHECK(classes[0].recall == doctest::Approx(2.0 / 3));
+    CHECK(classes[0].precision == doctest::Approx(2.0 / 4));  // unknown said 4 times, twice rightly
+    CHECK(classes[0].most_taken_for == 0);
+    CHECK(classes[0].most_taken_for_frames == 1);
+    CHECK(classes[1].label == 0);
+    CHECK(classes[1].frames == 4);
+    CHECK(classes[1].right == 2);
+    CHECK(classes[1].labelled == 4);  // the frame of a label the model does not know, called 0, too
+    CHECK(classes[1].recall == doctest::Approx(0.5));
+    CHECK(classes[1].precision == doctest::Approx(0.5));
+    CHECK(classes[1].f1 == doctest::Approx(2.0 * 2 / (4 + 4)));
+    CHECK(classes[1].most_taken_for == -1);  // a tie of one frame each: unknown (−1) before label 1
+    CHECK(classes[1].most_taken_for_frames == 1);
+    CHECK(classes[2].recall == doctest::Approx(1.0));
+    CHECK(classes[2].precision == doctest::Approx(2.0 / 3));
+    CHECK(classes[2].most_taken_for_frames == 0);
+    // An action missed whole: recall, precision and F1 0, taken for no action.
+    CHECK(classes[3].label == 2);
+    CHECK(classes[3].recall == 0.0);
+    CHECK(classes[3].precision == 0.0);
+    CHECK(classes[3].f1 == 0.0);
+    CHECK(classes[3].most_taken_for == -1);
+    // The per-class F1 of the actions is what frame F1 averages.
+    CHECK(r.frame_f1 == doctest::Approx((classes[1].f1 + classes[2].f1 + classes[3].f1) / 3));
+    CHECK(frame_class_name(-1, {"a", "b"}) == "no action");
+    CHECK(frame_class_name(1, {"a", "b"}) == "b");
+    CHECK(frame_class_name(5, {"a", "b"}) == "5");
+
+    // In JSON, with names: the whole table, and the classes named.
+    JsonWriter out;
+    const std::vector<std::string> names{"kick", "punch", "wave"};
+    write_json(out, r, &names);
+    const std::string json = out.str();
+    CAPTURE(json);
+    CHECK(json.find("\"frame_confusion\": [[2, 1, 0, 0], [1, 2, 1, 0], [0, 0, 2, 0], [1, 0, 0, 0]]") !=
+          std::string::npos);
+    CHECK(json.find("{\"label\": \"wave\", \"frames\": 1, \"right\": 0, \"labelled\": 0, \"recall\": 0") !=
+          std::string::npos);
+    CHECK(json.find("\"most_taken_for\": \"kick\"") != std::string::npos);
+    CHECK(json.find("\"frame_confusion_unmodelled\": [0, 1, 0, 0]") != std::string::npos);
+    // Without names, neither.
+    JsonWriter plain;
+    write_json(plain, r);
+    CHECK(plain.str().find("frame_confusion") == std::string::npos);
+}
+
 TEST_CASE("online evaluation streams concatenated toy clips deterministically") {
     ToyWorld world = make_toy_world();
     const TrainingOptions options = test::toy_options();
@@ -222,6 +297,12 @@ TEST_CASE("online evaluation streams concatenated toy clips deterministically") 
     CHECK(events_matched == a.settled.iou_matched_events);
     CHECK(2.0 * static_cast<double>(events_matched) / static_cast<double>(events) ==
           doctest::Approx(a.settled.event_segment_f1));
+    // The frames by class hold every frame, the right ones on the diagonal.
+    std::size_t tabled = 0, diagonal = 0;
+    for (std::size_t n : a.settled.frame_confusion) tabled += n;
+    for (const FrameClassScore& c : frame_class_scores(a.settled)) diagonal += c.right;
+    CHECK(tabled == a.settled.frames);
+    CHECK(static_cast<double>(diagonal) / static_cast<double>(tabled) == doctest::Approx(a.settled.frame_accuracy));
     CHECK(a.settled.frame_accuracy_interval.low <= a.settled.frame_accuracy);
     CHECK(a.settled.frame_accuracy_interval.high >= a.settled.frame_accuracy);
     CHECK(a.settled.segment_f1_interval.low <= a.settled.segment_f1);

@@ -204,6 +204,19 @@ def test_evaluate_on_toy_clips(toy_model, toy_clips):
     assert 0.0 <= events["segment_f1"] <= 1.0
     low, high = events["segment_f1_ci95"]
     assert 0.0 <= low <= high <= 1.0
+    # Frames by class: the confusion (no action, then the model's labels) and each class's figures.
+    table = settled["frame_confusion"]
+    assert len(table) == len(toy_model.label_names) + 1
+    assert all(len(row) == len(table) for row in table)
+    assert sum(map(sum, table)) == settled["frames"]
+    assert sum(table[i][i] for i in range(len(table))) == round(settled["frame_accuracy"] * settled["frames"])
+    classes = {c["label"]: c for c in settled["per_class_frames"]}
+    assert set(classes) <= set(toy_model.label_names) | {"no action"}
+    for i, name in enumerate(toy_model.label_names):
+        if name in classes:
+            assert classes[name]["frames"] == sum(table[i + 1])
+            assert classes[name]["right"] == table[i + 1][i + 1]
+            assert classes[name]["recall"] == pytest.approx(table[i + 1][i + 1] / sum(table[i + 1]))
     assert report["perturbation"] == "none"
 
 

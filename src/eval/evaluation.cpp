@@ -110,7 +110,7 @@ std::string evaluation_json(const Evaluation& e, const std::string& model_name, 
             .field("seed", static_cast<long long>(seed))
             .field("settle_delay_s", us_to_seconds(config.segmenter.settle_delay_us));
         out.key("settled");
-        write_json(out, e.online_report.settled);
+        write_json(out, e.online_report.settled, &e.results.front().labels);
         out.key("live");
         write_json(out, e.online_report.live);
         out.key("latest_window");

@@ -48,7 +48,7 @@ void write_json(JsonWriter& out, const ClipResults& r, const std::vector<Labelle
     out.end_object();
 }
 
-void write_json(JsonWriter& out, const OnlineResults& r) {
+void write_json(JsonWriter& out, const OnlineResults& r, const std::vector<std::string>* labels) {
     out.begin_object()
         .field("frames", r.frames)
         .field("frame_accuracy", r.frame_accuracy)
@@ -92,6 +92,43 @@ void write_json(JsonWriter& out, const OnlineResults& r) {
             .field("false_events_per_min", r.false_events_per_min)
             .field("false_events_per", r.false_events_per_stream_min ? "minute of stream" : "minute of no action")
             .end_object();
+    }
+    if (labels != nullptr) {
+        // Every label of the model, whether or not the streams hold it, so the table's shape is the model's.
+        const int count = static_cast<int>(labels->size());
+        auto name = [labels](int label) { return frame_class_name(label, *labels); };
+        out.key("frame_confusion").begin_array();
+        for (int row = -1; row < count; ++row) {
+            std::vector<unsigned long> counts;
+            for (int column = -1; column < count; ++column) counts.push_back(r.confused(row, column));
+            out.array(counts);
+        }
+        out.end_array();
+        // The frames of labels the model does not know (always wrong), by what they were labelled.
+        std::vector<unsigned long> unmodelled;
+        std::size_t any = 0;
+        for (int column = -1; column < count; ++column) {
+            unmodelled.push_back(r.confused(-2, column));
+            any += unmodelled.back();
+        }
+        if (any > 0) out.key("frame_confusion_unmodelled").array(unmodelled);
+        out.key("per_class_frames").begin_array();
+        for (const FrameClassScore& c : frame_class_scores(r)) {
+            if (c.label >= count) continue;
+            out.begin_object()
+                .field("label", name(c.label))
+                .field("frames", c.frames)
+                .field("right", c.right)
+                .field("labelled", c.labelled)
+                .field("recall", c.recall)
+                .field("precision", c.precision)
+                .field("f1", c.f1);
+            if (c.most_taken_for_frames > 0 && c.most_taken_for < count)
+                out.field("most_taken_for", name(c.most_taken_for))
+                    .field("most_taken_for_frames", c.most_taken_for_frames);
+            out.end_object();
+        }
+        out.end_array();
     }
     out.end_object();
 }

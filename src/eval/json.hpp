@@ -2,6 +2,7 @@
 // `actionstring eval --json` writes).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "common/json.hpp"
@@ -19,8 +20,15 @@ void write_fields(JsonWriter& out, const ClipResults& results, const std::vector
 /// The results as one JSON object.
 void write_json(JsonWriter& out, const ClipResults& results, const std::vector<LabelledClip>& clips);
 
-/// One online rule's scores as a JSON object.
-void write_json(JsonWriter& out, const OnlineResults& results);
+/// One online rule's scores as a JSON object. With `labels` (the
+/// evaluation's label names, ClipResults::labels: the model's in order, then
+/// any the list names that the model does not know, whose rows are empty),
+/// also the frames by class: frame_confusion (rows the truth, columns
+/// the prediction; row and column 0 "no action", then the labels in order),
+/// frame_confusion_unmodelled (the frames of labels the model does not know,
+/// by prediction; only when there are any) and per_class_frames
+/// (frame_class_scores(), each named).
+void write_json(JsonWriter& out, const OnlineResults& results, const std::vector<std::string>* labels = nullptr);
 
 }  // namespace host
 }  // namespace actionstring

@@ -31,6 +31,47 @@ std::vector<Segment> runs(const std::vector<int>& labels) {
 
 }  // namespace
 
+std::size_t OnlineResults::confused(int row, int column) const {
+    const std::size_t side = confusion_labels + 1;
+    if (row < unknown_frame - 1 || column < unknown_frame || frame_confusion.size() != (side + 1) * side) return 0;
+    // Rows: "no action", the labels, then the labels the model does not know (−2) last.
+    const std::size_t r = row == unknown_frame - 1 ? side : static_cast<std::size_t>(row + 1);
+    const std::size_t c = static_cast<std::size_t>(column + 1);
+    if ((row != unknown_frame - 1 && r >= side) || c >= side) return 0;
+    return frame_confusion[r * side + c];
+}
+
+std::string frame_class_name(int label, const std::vector<std::string>& labels) {
+    if (label < 0) return "no action";
+    return static_cast<std::size_t>(label) < labels.size() ? labels[static_cast<std::size_t>(label)]
+                                                           : std::to_string(label);
+}
+
+std::vector<FrameClassScore> frame_class_scores(const OnlineResults& r) {
+    std::vector<FrameClassScore> out;
+    const int labels = static_cast<int>(r.confusion_labels);
+    for (int row = unknown_frame; row < labels; ++row) {
+        FrameClassScore c;
+        c.label = row;
+        c.labelled = r.confused(unknown_frame - 1, row);  // frames of labels the model does not know
+        for (int column = unknown_frame; column < labels; ++column) {
+            const std::size_t n = r.confused(row, column);
+            c.frames += n;
+            c.labelled += r.confused(column, row);
+            if (column == row) c.right = n;
+            else if (n > c.most_taken_for_frames) c.most_taken_for = column, c.most_taken_for_frames = n;
+        }
+        if (c.frames == 0) continue;
+        c.recall = static_cast<double>(c.right) / static_cast<double>(c.frames);
+        c.precision = c.labelled > 0 ? static_cast<double>(c.right) / static_cast<double>(c.labelled) : 0.0;
+        c.f1 = c.frames + c.labelled > 0
+                   ? 2.0 * static_cast<double>(c.right) / static_cast<double>(c.frames + c.labelled)
+                   : 0.0;
+        out.push_back(c);
+    }
+    return out;
+}
+
 OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<int>& predicted,
                              const std::vector<double>& times, const std::vector<std::size_t>& stream_starts,
                              const std::vector<double>* emitted) {
@@ -50,6 +91,16 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
         r.action_frame_accuracy =
             static_cast<double>(right - no_action_right) / static_cast<double>(r.frames - no_action);
     if (no_action > 0) r.no_action_accuracy = static_cast<double>(no_action_right) / static_cast<double>(no_action);
+    int highest = -1;
+    for (std::size_t i = 0; i < truth.size(); ++i) highest = std::max({highest, truth[i], predicted[i]});
+    r.confusion_labels = static_cast<std::size_t>(highest + 1);
+    const std::size_t side = r.confusion_labels + 1;
+    r.frame_confusion.assign((side + 1) * side, 0);
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+        if (predicted[i] < unknown_frame) continue;  // never: a prediction is unknown or a model label
+        const std::size_t row = truth[i] >= unknown_frame ? static_cast<std::size_t>(truth[i] + 1) : side;
+        ++r.frame_confusion[row * side + static_cast<std::size_t>(predicted[i] + 1)];
+    }
 
     // Segments and label changes, per stream so boundaries between subjects do not count.
     int true_segments = 0, predicted_segments = 0, matched = 0, found = 0;

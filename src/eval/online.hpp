@@ -37,6 +37,18 @@ struct OnlineResults {
     double frame_f1 = 0;
     /// "Unknown everywhere" on the same frames: its frame accuracy (the share of no-action frames).
     double unknown_everywhere_accuracy = 0;
+    /// Frames by their true and predicted label, for per-class figures and
+    /// for what an action's missed frames were taken for: row 0 is "no
+    /// action" and row 1 + l label l (the truth); column 0 unknown and
+    /// column 1 + l label l (the prediction); then one last row, the frames
+    /// of labels the model does not know (truth −2, always wrong). (L + 2) ×
+    /// (L + 1) counts, row by row, L = confusion_labels: one more than the
+    /// highest label index of either side.
+    std::size_t confusion_labels = 0;
+    std::vector<std::size_t> frame_confusion;
+    /// Frames of truth `row` and prediction `column` (−1: no action / unknown;
+    /// row −2: a label the model does not know); 0 outside the table.
+    std::size_t confused(int row, int column) const;
 
     /// From the action events (the settled rule only; zero for the others).
     bool has_events = false;
@@ -86,6 +98,30 @@ struct OnlineResults {
 
 /// Fills the intervals of `results` from its units.
 void add_intervals(OnlineResults& results);
+
+/// One class's frames, read off OnlineResults::frame_confusion: "no action"
+/// (label −1: its frames labelled unknown, and the unknown labels that were
+/// no action) or an action.
+struct FrameClassScore {
+    int label = unknown_frame;
+    std::size_t frames = 0;                    ///< True frames of the class.
+    std::size_t right = 0;                     ///< Those labelled with it.
+    std::size_t labelled = 0;                  ///< Frames labelled with it, rightly or not (of any truth, −2 too).
+    double recall = 0, precision = 0, f1 = 0;  ///< 0 where undefined (nothing true, nothing labelled).
+    /// What its wrongly labelled frames were most often taken for (−1
+    /// unknown; ties to the lower index), and how many; most_taken_for_frames 0
+    /// when none was wrong.
+    int most_taken_for = unknown_frame;
+    std::size_t most_taken_for_frames = 0;
+};
+
+/// "No action" first when the streams have any, then every label with true
+/// frames, in label order.
+std::vector<FrameClassScore> frame_class_scores(const OnlineResults& results);
+
+/// A class's name in those tables: "no action" for −1, else labels[label]
+/// (its number when out of range).
+std::string frame_class_name(int label, const std::vector<std::string>& labels);
 
 /// Scores a labelled timeline: per frame the true and predicted label (−1
 /// unknown or "no action", −2 a label the model does not know), its time in

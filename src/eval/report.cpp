@@ -221,6 +221,17 @@ void write_report(const std::string& dir, const std::string& title, const std::v
                << settled.end_error_s << " s (mean bias " << std::showpos << settled.end_bias_s << std::noshowpos
                << " s), " << settled.false_events_per_min << " false events per "
                << (settled.false_events_per_stream_min ? "minute of stream" : "minute of no action") << ".\n";
+        // Per class, where a stream's frame accuracy hides it: an action missed whole, one taken for another.
+        md << "\nSettled frames per class (recall: its frames labelled with it; precision: the frames labelled with it "
+              "that are it):\n\n| class | frames | recall | precision | F1 | its other frames most often taken for "
+              "|\n|---|---:|---:|---:|---:|---|\n";
+        auto name = [&labels](int label) { return frame_class_name(label, labels); };
+        for (const FrameClassScore& c : frame_class_scores(settled)) {
+            md << "| " << name(c.label) << " | " << c.frames << " | " << c.recall << " | " << c.precision << " | "
+               << c.f1 << " | ";
+            if (c.most_taken_for_frames > 0) md << name(c.most_taken_for) << " (" << c.most_taken_for_frames << ")";
+            md << " |\n";
+        }
         md << "\n";
         for (std::size_t s = 0; s < online->streams.size(); ++s) {
             const std::string file = "timeline_" + std::to_string(s + 1) + ".svg";
