@@ -262,6 +262,76 @@ TEST_CASE("a list entry with an interval reads only the frames inside it") {
     std::filesystem::remove(path);
 }
 
+TEST_CASE("a sensor's up direction: a list's up column or the read options turn every frame upright") {
+    // An upright pose (20 joints, heights along y) as a sensor pitched 20° sees it: each point R·q,
+    // so the sensor's up in the file's coordinates is R·e_y. The second frame is lost (all zeros).
+    const double pitch = 20.0 * 3.14159265358979 / 180.0;
+    const Eigen::Matrix3d tilt = Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    std::vector<Eigen::Vector3d> upright;
+    for (int j = 0; j < 20; ++j) upright.emplace_back(0.05 * (j % 5) - 0.1, 0.1 * j, 2.0 + 0.02 * (j % 3));
+    std::ostringstream text;
+    text.precision(9);
+    for (int f = 0; f < 3; ++f) {
+        text << 190 + 4 * f;
+        for (const Eigen::Vector3d& q : upright) {
+            const Eigen::Vector3d p = f == 1 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(tilt * q);
+            text << ' ' << p.x() << ' ' << p.y() << ' ' << p.z();
+        }
+        text << '\n';
+    }
+    const std::string path = (std::filesystem::temp_directory_path() / "actionstring_up_test.txt").string();
+    write_file(path, text.str());
+    const Eigen::Vector3d up = tilt * Eigen::Vector3d::UnitY();
+    auto check_upright = [&](const Clip& clip) {
+        REQUIRE(clip.frame_count() == 3);
+        for (std::size_t f : {std::size_t{0}, std::size_t{2}})
+            for (std::size_t j = 0; j < 20; ++j)
+                for (std::size_t a = 0; a < 3; ++a)
+                    CHECK(clip.frame(f)[3 * j + a] ==
+                          doctest::Approx(upright[j][static_cast<Eigen::Index>(a)]).epsilon(1e-5));
+        for (std::size_t k = 0; k < 60; ++k) CHECK(clip.frame(1)[k] == 0.0f);  // still lost
+        CHECK(clip.lost[1] == 1);
+    };
+    // Read as stored, the pose is tilted.
+    const Clip stored = read_clip(path);
+    CHECK(std::fabs(stored.frame(0)[3 * 19 + 2] - upright[19].z()) > 0.5);
+    // The read options' up.
+    ReadOptions read;
+    for (int a = 0; a < 3; ++a) read.up[a] = static_cast<float>(up[a]);
+    check_upright(read_clip(path, read));
+    // A list's up column, which a line's own value sets (any length: a direction).
+    std::ostringstream list;
+    list.precision(9);
+    list << "path\tlabel\tsubject\tup\n"
+         << path << "\twave\ts1\t" << 3 * up.x() << ',' << 3 * up.y() << ',' << 3 * up.z() << '\n'
+         << path << "\twave\ts2\t0,0,0\n";
+    const std::vector<ClipListEntry> entries = parse_clip_list("l.tsv", list.str(), "/");
+    REQUIRE(entries.size() == 2);
+    CHECK(entries[0].up[1] == doctest::Approx(3 * up.y()));
+    check_upright(read_clip(entries[0]));
+    // 0,0,0 gives none: the read options' up then applies, else the file as stored.
+    CHECK(read_clip(entries[1]).positions == stored.positions);
+    check_upright(read_clip(entries[1], read));
+    // A line's own up wins over the read options'.
+    ReadOptions other;
+    other.up[0] = 1.0f;
+    check_upright(read_clip(entries[0], other));
+    // An up along the axis turns nothing, bit for bit.
+    ReadOptions along;
+    along.up[1] = 2.5f;
+    CHECK(read_clip(path, along).positions == stored.positions);
+    // Bad values name the line (a list) or the file (turn_upright).
+    const std::string header = "path\tlabel\tsubject\tup\n";
+    check_error([&] { parse_clip_list("l.tsv", header + "a\tb\tc\t0,1\n", "d"); }, 2, "X,Y,Z (three numbers)");
+    check_error([&] { parse_clip_list("l.tsv", header + "a\tb\tc\t0,1,x\n", "d"); }, 2, "up direction");
+    check_error([&] { parse_clip_list("l.tsv", header + "a\tb\tc\t0,1e-9,0\n", "d"); }, 2, "not a direction");
+    check_error([&] { parse_clip_list("l.tsv", header + "a\tb\tc\t\n", "d"); }, 2, "empty up");
+    ReadOptions bad;
+    bad.up[2] = std::numeric_limits<float>::infinity();
+    check_error([&] { read_clip(path, bad); }, 0, "not a direction");
+    std::filesystem::remove(path);
+}
+
 TEST_CASE("joint CSV") {
     const std::string text =
         "timestamp,SpineBase_x,SpineBase_y,SpineBase_z,HipLeft.x,HipLeft.y,HipLeft.z,HipRight X,HipRight Y,HipRight Z\n"

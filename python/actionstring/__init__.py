@@ -45,7 +45,7 @@ PathLike = Union[str, "os.PathLike[str]"]
 
 def read_clip(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis: int = -1,
               roles: Optional[Sequence[str]] = None, skeleton: str = "", time_unit: str = "",
-              body: int = -1, columns: str = "") -> Clip:
+              body: int = -1, columns: str = "", up: Optional[Sequence[float]] = None) -> Clip:
     """Reads one motion file (ASF/AMC with ``skeleton``, BVH, Kinect text, joint CSV,
     NTU RGB+D ``.skeleton``).
 
@@ -55,17 +55,22 @@ def read_clip(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis:
     ``time_unit`` a CSV's time unit ("s", "ms", "us"; default: its column's name,
     else the frame spacing), ``body`` which body of an NTU file (-1: the one that
     moves most), ``columns`` a CSV's layout when no spelling rule fits
-    ("time=COL,JOINT=X:Y:Z,..."). What the reader noticed is in ``clip.notes``.
-    Raises ReadError naming the file, the line and what was expected.
+    ("time=COL,JOINT=X:Y:Z,..."). ``up`` is the sensor's up direction (x, y, z) in
+    the file's coordinates when it is known and tilted from the up axis (a Kinect's
+    floor plane normal): every frame is turned upright as it is read, as
+    ``Annotator(model, up=...)`` turns a device's frames. What the reader noticed
+    is in ``clip.notes``. Raises ReadError naming the file, the line and what was
+    expected (ValueError for an ``up`` that is not three numbers).
     """
-    return _native._read_clip(os.fspath(path), rate, scale, up_axis, roles, skeleton, time_unit, body, columns)
+    return _native._read_clip(os.fspath(path), rate, scale, up_axis, roles, skeleton, time_unit, body, columns, up)
 
 
 def read_clip_list(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis: int = -1,
-                   roles: Optional[Sequence[str]] = None) -> List[Clip]:
+                   roles: Optional[Sequence[str]] = None, up: Optional[Sequence[float]] = None) -> List[Clip]:
     """Reads a clip list (TSV with path, label, subject columns) and every clip it names,
-    each with its ``label`` and ``subject``."""
-    return _native._read_clip_list(os.fspath(path), rate, scale, up_axis, roles)
+    each with its ``label`` and ``subject``. A list's ``up`` column (X,Y,Z) gives each
+    file's sensor up direction; ``up`` here is the one for lines without it."""
+    return _native._read_clip_list(os.fspath(path), rate, scale, up_axis, roles, up)
 
 
 def training_settings() -> List[str]:

@@ -1,6 +1,7 @@
 // actionstring Python bindings: the host library and the runtime, bound with
 // pybind11. Nothing is reimplemented here: reading, training, evaluation and
 // streaming are the C++ functions the command line calls.
+#include <array>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -153,9 +154,30 @@ py::array times_view(const py::object& self) {
     return view;
 }
 
+// The sensor's up direction given as (x, y, z): three numbers, else ValueError
+// (the runtime and the readers then check that it is a direction).
+std::array<float, 3> up_direction(const py::handle& value) {
+    std::vector<float> up;
+    if (!py::isinstance<py::str>(value)) {
+        try {
+            up = value.cast<std::vector<float>>();
+        } catch (const py::cast_error&) {
+            up.clear();
+        }
+    }
+    if (up.size() != 3)
+        throw py::value_error("up: expected (x, y, z), the sensor's up direction, not " + std::string(py::repr(value)));
+    return {up[0], up[1], up[2]};
+}
+
 host::ReadOptions read_options(double rate, double scale, int up_axis, const py::object& roles,
-                               const std::string& time_unit = "", int body = -1, const std::string& columns = "") {
+                               const std::string& time_unit = "", int body = -1, const std::string& columns = "",
+                               const py::object& up = py::none()) {
     host::ReadOptions read;
+    if (!up.is_none()) {
+        const std::array<float, 3> direction = up_direction(up);
+        for (int a = 0; a < 3; ++a) read.up[a] = direction[static_cast<std::size_t>(a)];
+    }
     read.columns = columns;
     if (!time_unit.empty()) read.time_unit_s = host::parse_time_unit(time_unit);
     if (body < -1 || body > 63) throw py::value_error("body: 0 to 63, or -1 for the one that moves most");
@@ -213,17 +235,7 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
         else if (key == "max_gap") config.max_gap_us = std::llround(item.second.cast<double>() * 1e6);
         else if (key == "max_backward") config.max_backward_us = std::llround(item.second.cast<double>() * 1e6);
         else if (key == "up") {  // the sensor's up direction, (x, y, z); (0, 0, 0) for none
-            std::vector<float> up;
-            if (!py::isinstance<py::str>(item.second)) {
-                try {
-                    up = item.second.cast<std::vector<float>>();
-                } catch (const py::cast_error&) {
-                    up.clear();
-                }
-            }
-            if (up.size() != 3)
-                throw py::value_error("up: expected (x, y, z), the sensor's up direction, not " +
-                                      std::string(py::repr(item.second)));
+            const std::array<float, 3> up = up_direction(item.second);
             for (int a = 0; a < 3; ++a) config.up[a] = up[static_cast<std::size_t>(a)];
         } else if (!host::apply_online_setting(setting_name(key), setting_value(item.second), config))
             throw py::value_error(
@@ -501,22 +513,24 @@ PYBIND11_MODULE(_actionstring, m) {
     m.def(
         "_read_clip",
         [](const std::string& path, double rate, double scale, int up_axis, const py::object& roles,
-           const std::string& skeleton, const std::string& time_unit, int body, const std::string& columns) {
+           const std::string& skeleton, const std::string& time_unit, int body, const std::string& columns,
+           const py::object& up) {
             LabelledClip out;
-            out.clip =
-                host::read_clip(path, read_options(rate, scale, up_axis, roles, time_unit, body, columns), skeleton);
+            out.clip = host::read_clip(path, read_options(rate, scale, up_axis, roles, time_unit, body, columns, up),
+                                       skeleton);
             return out;
         },
         py::arg("path"), py::arg("rate") = 0.0, py::arg("scale") = 0.0, py::arg("up_axis") = -1,
         py::arg("roles") = py::none(), py::arg("skeleton") = "", py::arg("time_unit") = "", py::arg("body") = -1,
-        py::arg("columns") = "");
+        py::arg("columns") = "", py::arg("up") = py::none());
     m.def(
         "_read_clip_list",
-        [](const std::string& path, double rate, double scale, int up_axis, const py::object& roles) {
-            return host::load_labelled_clips(path, read_options(rate, scale, up_axis, roles));
+        [](const std::string& path, double rate, double scale, int up_axis, const py::object& roles,
+           const py::object& up) {
+            return host::load_labelled_clips(path, read_options(rate, scale, up_axis, roles, "", -1, "", up));
         },
         py::arg("path"), py::arg("rate") = 0.0, py::arg("scale") = 0.0, py::arg("up_axis") = -1,
-        py::arg("roles") = py::none());
+        py::arg("roles") = py::none(), py::arg("up") = py::none());
 
     py::class_<ModelData, ModelPtr>(m, "_Model")
         .def_static(

@@ -114,3 +114,30 @@ def test_csv_columns_given_by_hand(tmp_path):
     assert clip.joint_names == ["pelvis", "hipleft", "hipright"]
     with pytest.raises(actionstring.ReadError, match="no column 'zz'"):
         actionstring.read_clip(path, columns="time=when,pelvis=a1:a2:zz")
+
+
+def test_a_sensors_up_direction_turns_the_frames_upright(tmp_path):
+    """A CSV recorded by a sensor pitched 30° about x, read with its up direction (here from
+    the list's `up` column or the keyword), gives the upright positions; bad values are refused."""
+    angle = np.radians(30.0)
+    turn = np.array([[1, 0, 0], [0, np.cos(angle), -np.sin(angle)], [0, np.sin(angle), np.cos(angle)]])
+    upright = np.array([[0.0, 1.0, 2.0], [-0.1, 0.95, 2.0], [0.1, 0.95, 2.0]])
+    tilted = upright @ turn.T
+    row = ",".join(f"{v:.9f}" for v in tilted.ravel())
+    path = tmp_path / "tilted.csv"
+    path.write_text("time,HipCenterX,HipCenterY,HipCenterZ,HipLeftX,HipLeftY,HipLeftZ,HipRightX,HipRightY,HipRightZ\n"
+                    + "".join(f"{0.04 * i},{row}\n" for i in range(4)))
+    up = turn @ np.array([0.0, 1.0, 0.0])
+    clip = actionstring.read_clip(path, up=tuple(up))
+    np.testing.assert_allclose(clip.positions[2], upright, atol=1e-5)
+    assert not np.allclose(actionstring.read_clip(path).positions[2], upright, atol=0.05)
+    listed = tmp_path / "list.tsv"
+    listed.write_text("path\tlabel\tsubject\tup\n" f"{path}\twave\ts1\t{up[0]},{up[1]},{up[2]}\n")
+    np.testing.assert_allclose(actionstring.read_clip_list(listed)[0].positions[0], upright, atol=1e-5)
+    with pytest.raises(ValueError, match="up: expected"):
+        actionstring.read_clip(path, up=(0.0, 1.0))
+    with pytest.raises(actionstring.ReadError, match="not a direction"):
+        actionstring.read_clip(path, up=(0.0, 0.0, float("nan")))
+    listed.write_text("path\tlabel\tsubject\tup\n" f"{path}\twave\ts1\t0,1\n")
+    with pytest.raises(actionstring.ReadError, match="X,Y,Z"):
+        actionstring.read_clip_list(listed)

@@ -5,6 +5,8 @@
 #include <string>
 
 #include "io/clip.hpp"
+
+#include "actionstring/normalize.hpp"
 #include "io/text.hpp"
 
 namespace actionstring {
@@ -109,6 +111,22 @@ void require_finite_positions(const Clip& clip, double max_abs_metres) {
                                 "frame " + std::to_string(f + 1) + ", joint " + quoted(clip.joint_names[k / 3]) +
                                     ": position " + std::to_string(p[k]) +
                                     " m is not finite or beyond 1e6 m (check the file's units and angles)");
+    }
+}
+
+void turn_upright(Clip& clip, const float up[3]) {
+    if (up[0] == 0.0f && up[1] == 0.0f && up[2] == 0.0f) return;
+    float r[9];
+    if (up_rotation(up, clip.up_axis, r) != Status::ok)
+        throw ReadError(clip.source, 0,
+                        "the sensor's up direction (" + std::to_string(up[0]) + ", " + std::to_string(up[1]) + ", " +
+                            std::to_string(up[2]) + ") is not a direction: three finite numbers, not all near 0");
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        float* p = clip.frame(f);
+        for (std::size_t j = 0; j < clip.joint_count(); ++j, p += 3) {
+            const float x = p[0], y = p[1], z = p[2];
+            for (int i = 0; i < 3; ++i) p[i] = r[3 * i] * x + r[3 * i + 1] * y + r[3 * i + 2] * z;
+        }
     }
 }
 

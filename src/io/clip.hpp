@@ -83,7 +83,21 @@ struct ReadOptions {
     int body = -1;
     /// Overrides the built-in joint-role mapping.
     RoleNames roles;
+    /// The sensor's up direction in the file's coordinates, when it is known
+    /// and differs from the up axis (a Kinect mounted high or low, whose floor
+    /// plane normal it reports): every frame is turned at reading so that it
+    /// lies along the axis (turn_upright()), as AnnotatorConfig::up turns a
+    /// device's frames. All zeros: as stored.
+    float up[3] = {0.0f, 0.0f, 0.0f};
 };
+
+/// Turns every frame of `clip` by the smallest rotation that puts `up` (the
+/// sensor's up direction in the clip's coordinates) along clip.up_axis: the
+/// runtime's up_rotation(), about the origin (a pose is made relative to its
+/// root, so where it turns about changes nothing). Lost frames (all zeros)
+/// stay lost. `up` all zeros: nothing changes. Throws ReadError naming the
+/// clip's file when `up` is not a direction (not finite, or shorter than 1e-6).
+void turn_upright(Clip& clip, const float up[3]);
 
 /// Sets clip.roles from `names` when given, else from the built-in mappings
 /// (HDM05/CMU ASF, Kinect v1 and v2, the CC_Base rig). Throws ReadError when a

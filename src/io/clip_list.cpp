@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <string>
 
+#include "actionstring/normalize.hpp"
 #include "io/formats.hpp"
 #include "io/text.hpp"
 
@@ -17,7 +18,7 @@ std::vector<ClipListEntry> parse_clip_list(const std::string& name, std::string_
         scanner.fail_at(0, "empty clip list: expected a header 'path label subject [skeleton]'");
     const std::vector<std::string_view> header = split_fields(line, '\t');
     int path_column = -1, label_column = -1, subject_column = -1, skeleton_column = -1, start_column = -1,
-        end_column = -1;
+        end_column = -1, up_column = -1;
     for (std::size_t c = 0; c < header.size(); ++c) {
         int* column = header[c] == "path"       ? &path_column
                       : header[c] == "label"    ? &label_column
@@ -25,6 +26,7 @@ std::vector<ClipListEntry> parse_clip_list(const std::string& name, std::string_
                       : header[c] == "skeleton" ? &skeleton_column
                       : header[c] == "start"    ? &start_column
                       : header[c] == "end"      ? &end_column
+                      : header[c] == "up"       ? &up_column
                                                 : nullptr;
         if (column == nullptr) continue;
         if (*column >= 0) scanner.fail("column " + quoted(header[c]) + " appears twice in the header");
@@ -62,6 +64,21 @@ std::vector<ClipListEntry> parse_clip_list(const std::string& name, std::string_
                              ") not before the start time (" +
                              std::string(fields[static_cast<std::size_t>(start_column)]) + ")");
         }
+        if (up_column >= 0) {
+            const std::string_view given = field(up_column, "up");
+            const std::vector<std::string_view> parts = split_fields(given, ',');
+            if (parts.size() != 3)
+                scanner.fail("expected the sensor's up direction as X,Y,Z (three numbers), got '" + std::string(given) +
+                             "'");
+            for (int a = 0; a < 3; ++a)
+                entry.up[a] = static_cast<float>(
+                    parse_number(scanner, parts[static_cast<std::size_t>(a)], "a coordinate of the up direction"));
+            float turn[9];
+            const bool none = entry.up[0] == 0.0f && entry.up[1] == 0.0f && entry.up[2] == 0.0f;
+            if (!none && up_rotation(entry.up, 1, turn) != Status::ok)
+                scanner.fail("the up direction '" + std::string(given) +
+                             "' is not a direction (finite, longer than 1e-6; 0,0,0 for none)");
+        }
         entry.line = scanner.line_number();
         entries.push_back(std::move(entry));
     }
@@ -76,7 +93,10 @@ std::vector<ClipListEntry> read_clip_list(const std::string& path) {
 }
 
 Clip read_clip(const ClipListEntry& entry, const ReadOptions& options) {
-    Clip whole = read_clip(entry.path, options, entry.skeleton);
+    ReadOptions read = options;
+    if (entry.up[0] != 0.0f || entry.up[1] != 0.0f || entry.up[2] != 0.0f)
+        for (int a = 0; a < 3; ++a) read.up[a] = entry.up[a];
+    Clip whole = read_clip(entry.path, read, entry.skeleton);
     if (!entry.has_interval) return whole;
     Clip cut = whole;
     cut.times.clear();

@@ -23,15 +23,21 @@ struct ClipListEntry {
     /// (seconds, on the file's own time axis) lies in [start_s, end_s].
     bool has_interval = false;
     double start_s = 0, end_s = 0;
+    /// The sensor's up direction in the file's coordinates (ReadOptions::up);
+    /// all zeros when the list has no `up` column or says 0,0,0.
+    float up[3] = {0.0f, 0.0f, 0.0f};
 };
 
 /// TSV with a header naming at least `path`, `label`, `subject` (and optionally
-/// `skeleton`, and `start` and `end` in seconds for labelled intervals of a
-/// continuous recording), in any order; relative paths are resolved against `folder`.
+/// `skeleton`; `start` and `end` in seconds for labelled intervals of a
+/// continuous recording; `up` as X,Y,Z, the sensor's up direction in the
+/// file's coordinates, e.g. a Kinect's floor plane normal, 0,0,0 for none), in
+/// any order; relative paths are resolved against `folder`.
 std::vector<ClipListEntry> parse_clip_list(const std::string& name, std::string_view text, const std::string& folder);
 std::vector<ClipListEntry> read_clip_list(const std::string& path);
 
-/// Reads one entry's clip (only its interval's frames when it has one).
+/// Reads one entry's clip (only its interval's frames when it has one),
+/// turned upright by the entry's `up` when it gives one (else options.up).
 Clip read_clip(const ClipListEntry& entry, const ReadOptions& options = {});
 
 /// True when any entry names an interval of a longer recording.

@@ -23,7 +23,9 @@ std::string extension(const std::string& path) {
 
 }  // namespace
 
-Clip read_clip(const std::string& path, const ReadOptions& options, const std::string& skeleton) {
+namespace {
+
+Clip read_as_stored(const std::string& path, const ReadOptions& options, const std::string& skeleton) {
     const std::string ext = extension(path);
     if (ext == "amc") {
         if (skeleton.empty()) throw ReadError(path, 0, "an AMC file needs its ASF skeleton (--skeleton FILE)");
@@ -48,6 +50,14 @@ Clip read_clip(const std::string& path, const ReadOptions& options, const std::s
     throw ReadError(path, 0,
                     "unknown file type '." + ext +
                         "': expected .amc, .bvh, .csv, .tsv, .skeleton (NTU RGB+D) or .txt (Kinect text)");
+}
+
+}  // namespace
+
+Clip read_clip(const std::string& path, const ReadOptions& options, const std::string& skeleton) {
+    Clip clip = read_as_stored(path, options, skeleton);
+    turn_upright(clip, options.up);
+    return clip;
 }
 
 }  // namespace host

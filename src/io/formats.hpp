@@ -123,7 +123,8 @@ std::vector<std::pair<std::string, std::vector<LabelInterval>>> parse_utkinect_l
 
 /// Reads any supported file by its extension (.amc needs `skeleton`, an ASF
 /// path; .txt is told apart by its first line: 4 values → MSR Action3D,
-/// 1 + 60 → UTKinect). Throws ReadError.
+/// 1 + 60 → UTKinect), then turns it upright when options.up is given
+/// (turn_upright()). Throws ReadError.
 Clip read_clip(const std::string& path, const ReadOptions& options = {}, const std::string& skeleton = {});
 
 }  // namespace host
