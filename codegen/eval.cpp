@@ -49,7 +49,8 @@ void print_eval_usage(std::FILE* out) {
                  "--settle seconds after the frame [2]), its live labels (no delay), and the\n"
                  "paper's latest-window rule, then each class's settled frames: recall, precision,\n"
                  "F1 and what its other frames were most often taken for (in --json the whole\n"
-                 "frame confusion). A list with 'start' and 'end' columns names labelled\n"
+                 "frame confusion), and the settled labels' figures on each stream alone (a\n"
+                 "subject's clips joined, or one recording). A list with 'start' and 'end' columns names labelled\n"
                  "intervals of continuous recordings: clips are the intervals, and --online\n"
                  "streams each recording whole (frames outside every interval: no action).\n"
                  "The online options override the settings the model carries (chosen at\n"
@@ -116,6 +117,21 @@ void print_frame_classes(const host::OnlineResults& r, const std::vector<std::st
         if (c.most_taken_for_frames > 0)
             std::printf("  %s (%zu)", name(c.most_taken_for).c_str(), c.most_taken_for_frames);
         std::printf("\n");
+    }
+}
+
+// The settled labels on each stream alone: which subjects or recordings the pooled figures come from.
+void print_streams(const host::OnlineReport& report) {
+    const bool no_action = report.settled.no_action_frames > 0;
+    std::printf("\nsettled labels per stream (%s):\n  %-32s %7s %9s", report.recordings ? "recordings" : "subjects",
+                "stream", "frames", "accuracy");
+    if (no_action) std::printf(" %9s %9s", "in action", "no action");
+    std::printf(" %8s %10s %8s\n", "frame F1", "segment F1", "event F1");
+    for (std::size_t s = 0; s < report.per_stream.size() && s < report.streams.size(); ++s) {
+        const host::OnlineResults& r = report.per_stream[s];
+        std::printf("  %-32s %7zu %9.3f", report.streams[s].name.c_str(), r.frames, r.frame_accuracy);
+        if (no_action) std::printf(" %9.3f %9.3f", r.action_frame_accuracy, r.no_action_accuracy);
+        std::printf(" %8.3f %10.3f %8.3f\n", r.frame_f1, r.segment_f1, r.event_f1);
     }
 }
 
@@ -195,6 +211,7 @@ void print_evaluation(const Evaluation& e, const std::string& clips_path, std::u
         print_online("segmenter, live labels", e.online_report.live);
         print_online("paper: latest window wins", e.online_report.window);
         print_frame_classes(e.online_report.settled, main.labels);
+        print_streams(e.online_report);
     }
     std::printf(
         "\nannotator per frame (host build, the online figures' settings%s, %zu frames): median %.0f ns, p99 %.0f ns, "

@@ -297,6 +297,21 @@ TEST_CASE("online evaluation streams concatenated toy clips deterministically") 
     CHECK(events_matched == a.settled.iou_matched_events);
     CHECK(2.0 * static_cast<double>(events_matched) / static_cast<double>(events) ==
           doctest::Approx(a.settled.event_segment_f1));
+    // Each stream alone: one per stream, its frames and right frames adding up to the pooled ones;
+    // scored alone, a stream gets what the pooled scoring gives it (its units' right frames).
+    REQUIRE(a.per_stream.size() == a.streams.size());
+    REQUIRE(a.streams.size() >= 2);
+    std::size_t stream_frames = 0;
+    double stream_right = 0;
+    for (std::size_t s = 0; s < a.per_stream.size(); ++s) {
+        CHECK(a.per_stream[s].frames == a.streams[s].times_s.size());
+        stream_frames += a.per_stream[s].frames;
+        stream_right += a.per_stream[s].frame_accuracy * static_cast<double>(a.per_stream[s].frames);
+        CHECK(a.per_stream[s].has_events);
+        CHECK(a.per_stream[s].frame_accuracy == b.per_stream[s].frame_accuracy);
+    }
+    CHECK(stream_frames == a.settled.frames);
+    CHECK(stream_right == doctest::Approx(a.settled.frame_accuracy * static_cast<double>(a.settled.frames)));
     // The frames by class hold every frame, the right ones on the diagonal.
     std::size_t tabled = 0, diagonal = 0;
     for (std::size_t n : a.settled.frame_confusion) tabled += n;

@@ -217,6 +217,11 @@ def test_evaluate_on_toy_clips(toy_model, toy_clips):
             assert classes[name]["frames"] == sum(table[i + 1])
             assert classes[name]["right"] == table[i + 1][i + 1]
             assert classes[name]["recall"] == pytest.approx(table[i + 1][i + 1] / sum(table[i + 1]))
+    streams = report["online"]["per_stream"]  # each subject's clips joined, scored alone
+    assert sorted(s["name"] for s in streams) == sorted({"subject " + c.subject for c in toy_clips})
+    assert sum(s["frames"] for s in streams) == settled["frames"]
+    assert sum(s["frame_accuracy"] * s["frames"] for s in streams) == pytest.approx(
+        settled["frame_accuracy"] * settled["frames"])
     assert report["perturbation"] == "none"
 
 

@@ -359,6 +359,18 @@ struct PooledTimelines {
         report.live = score_timeline(truth, live, times, stream_starts);
         report.window = score_timeline(truth, window, times, stream_starts);
         for (OnlineResults* results : {&report.settled, &report.live, &report.window}) add_intervals(*results);
+        report.per_stream.clear();
+        for (std::size_t s = 0; s + 1 < stream_starts.size(); ++s) {
+            const auto begin = static_cast<std::ptrdiff_t>(stream_starts[s]),
+                       end = static_cast<std::ptrdiff_t>(stream_starts[s + 1]);
+            auto slice = [&](const auto& v) { return std::vector(v.begin() + begin, v.begin() + end); };
+            const std::vector<int> stream_truth = slice(truth);
+            const std::vector<double> stream_times = slice(times), stream_settled_at = slice(settled_at);
+            const std::vector<std::size_t> starts{0, stream_truth.size()};
+            OnlineResults one = score_timeline(stream_truth, slice(settled), stream_times, starts, &stream_settled_at);
+            score_events(one, stream_truth, stream_times, starts, {events[s]});
+            report.per_stream.push_back(std::move(one));
+        }
     }
 };
 

@@ -162,6 +162,11 @@ struct OnlineReport {
     bool recordings = false;
     OnlineResults settled, live, window;
     std::vector<StreamTimeline> streams;
+    /// The settled labels scored on each stream alone, in the order of
+    /// `streams` (a subject's clips joined, or one recording): which people or
+    /// recordings the pooled figures come from. Their units and intervals are
+    /// not filled.
+    std::vector<OnlineResults> per_stream;
 };
 
 /// Concatenates each subject's clips in a seeded shuffled order (the timeline

@@ -232,6 +232,17 @@ void write_report(const std::string& dir, const std::string& title, const std::v
             if (c.most_taken_for_frames > 0) md << name(c.most_taken_for) << " (" << c.most_taken_for_frames << ")";
             md << " |\n";
         }
+        // Each stream alone: which subjects or recordings the pooled figures come from.
+        md << "\nSettled labels per " << (online->recordings ? "recording" : "subject (its clips joined)")
+           << ":\n\n| stream | frames | frame accuracy | in action | no action | frame F1 | segment F1 | event F1 "
+              "|\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+        for (std::size_t s = 0; s < online->per_stream.size() && s < online->streams.size(); ++s) {
+            const OnlineResults& r = online->per_stream[s];
+            md << "| " << online->streams[s].name << " | " << r.frames << " | " << r.frame_accuracy << " | "
+               << r.action_frame_accuracy << " | ";
+            if (r.no_action_frames > 0) md << r.no_action_accuracy;
+            md << " | " << r.frame_f1 << " | " << r.segment_f1 << " | " << r.event_f1 << " |\n";
+        }
         md << "\n";
         for (std::size_t s = 0; s < online->streams.size(); ++s) {
             const std::string file = "timeline_" + std::to_string(s + 1) + ".svg";
