@@ -197,7 +197,10 @@ class Model:
         clip accuracy, per-class precision and recall, per-subject accuracy
         (``per_subject``), confusion, predictions; with
         ``train`` the baselines on the same split (DTW 1-NN among them); with
-        ``online`` the streaming figures over the clips concatenated per subject.
+        ``online`` the streaming figures over the clips concatenated per subject
+        (``report["online"]``: each rule's, the settled rule's frames by class in
+        ``settled["per_class_frames"]`` and ``settled["frame_confusion"]``, and each
+        subject's stream alone in ``per_stream``).
         ``perturb`` changes the evaluated clips (never ``train``) as ``eval --perturb``
         does, e.g. ``"scale=0.7,noise=0.01"``; a bad spec raises ValueError."""
         text = self._native._evaluate_json(list(clips), list(train or []), online, seed, online_settings, name,
