@@ -117,22 +117,8 @@ std::string evaluation_json(const Evaluation& e, const std::string& model_name, 
         write_json(out, e.online_report.window);
         // The settled labels on each stream alone (a subject's clips joined, or one recording).
         out.key("per_stream").begin_array();
-        for (std::size_t s = 0; s < e.online_report.per_stream.size() && s < e.online_report.streams.size(); ++s) {
-            const OnlineResults& r = e.online_report.per_stream[s];
-            out.begin_object()
-                .field("name", e.online_report.streams[s].name)
-                .field("frames", r.frames)
-                .field("frame_accuracy", r.frame_accuracy)
-                .field("no_action_frames", r.no_action_frames)
-                .field("action_frame_accuracy", r.action_frame_accuracy)
-                .field("no_action_accuracy", r.no_action_accuracy)
-                .field("frame_f1", r.frame_f1)
-                .field("segment_f1", r.segment_f1)
-                .field("event_f1", r.event_f1)
-                .field("event_segment_f1", r.event_segment_f1)
-                .field("false_events_per_min", r.false_events_per_min)
-                .end_object();
-        }
+        for (std::size_t s = 0; s < e.online_report.per_stream.size() && s < e.online_report.streams.size(); ++s)
+            write_stream_json(out, e.online_report.streams[s].name, e.online_report.per_stream[s]);
         out.end_array();
         out.end_object();
     }

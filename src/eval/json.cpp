@@ -133,5 +133,21 @@ void write_json(JsonWriter& out, const OnlineResults& r, const std::vector<std::
     out.end_object();
 }
 
+void write_stream_json(JsonWriter& out, const std::string& name, const OnlineResults& r) {
+    out.begin_object()
+        .field("name", name)
+        .field("frames", r.frames)
+        .field("frame_accuracy", r.frame_accuracy)
+        .field("no_action_frames", r.no_action_frames)
+        .field("action_frame_accuracy", r.action_frame_accuracy)
+        .field("no_action_accuracy", r.no_action_accuracy)
+        .field("frame_f1", r.frame_f1)
+        .field("segment_f1", r.segment_f1)
+        .field("event_f1", r.event_f1)
+        .field("event_segment_f1", r.event_segment_f1)
+        .field("false_events_per_min", r.false_events_per_min)
+        .end_object();
+}
+
 }  // namespace host
 }  // namespace actionstring
