@@ -67,7 +67,7 @@ int run_annotate(int argc, char** argv) {
         else if (arg == "--udp") live_source.udp_port = static_cast<int>(args.whole(arg, 1, 65535));
         else if (arg == "--idle-timeout") live_source.idle_timeout_s = args.number(arg, 0.01, 3600);
         else if (parse_online_option(args, arg, overrides)) continue;
-        else if (parse_up_option(args, arg, overrides)) continue;
+        else if (parse_up_option(args, arg, overrides.up)) continue;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;
         else return args.error("more than one FILE given");

@@ -34,7 +34,7 @@ void print_eval_usage(std::FILE* out) {
                  "                         [--skip-penalty X] [--unknown-cost X] [--segment-votes X]\n"
                  "                         [--segment-exemplars X] [--min-action S] [--label-lead S]\n"
                  "                         [--spread-work]\n"
-                 "                         [--report DIR] [--perturb SPEC]\n"
+                 "                         [--report DIR] [--perturb SPEC] [--up X,Y,Z]\n"
                  "\n"
                  "Classifies every clip of LIST with the runtime's own code and reports clip\n"
                  "accuracy, per-class precision and recall, each subject's clip accuracy, the\n"
@@ -66,6 +66,9 @@ void print_eval_usage(std::FILE* out) {
                  "events, each reported up to one string period later (the latency shows it).\n"
                  "--report DIR writes SVG pictures (confusion matrix, true vs predicted timelines)\n"
                  "and a Markdown summary linking them.\n"
+                 "--up X,Y,Z is the sensor's up direction in the files' coordinates, when it is\n"
+                 "tilted and known (a Kinect's floor plane normal): every frame of both lists is\n"
+                 "turned upright as it is read (a list's own 'up' column wins for its lines).\n"
                  "--perturb SPEC changes the evaluated clips and recordings (never the training\n"
                  "clips) as another sensor or person would, so every figure, the baselines'\n"
                  "too, is measured on the changed clips: SPEC is name=value items separated by\n"
@@ -246,6 +249,7 @@ int run_eval(int argc, char** argv) {
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));
         else if (arg == "--report") report_dir = args.value(arg);
         else if (arg == "--perturb") perturb_spec = args.value(arg);
+        else if (parse_up_option(args, arg, read.up)) continue;
         else if (!parse_online_option(args, arg, overrides)) return args.unknown(arg);
     }
     if (!args.ok()) return 2;

@@ -148,38 +148,18 @@ struct OnlineOverrides {
     }
 };
 
-/// Reads `--up X,Y,Z` (the sensor's up direction in the file's coordinates,
-/// AnnotatorConfig::up) of annotate or view into `overrides`. Returns false
-/// when `option` is not it.
-inline bool parse_up_option(ArgumentReader& args, const std::string& option, OnlineOverrides& overrides) {
+/// Reads `--up X,Y,Z` (the sensor's up direction in the file's coordinates;
+/// 0,0,0 for none) into `up`: AnnotatorConfig::up for annotate and view,
+/// ReadOptions::up for eval. Returns false when `option` is not it.
+inline bool parse_up_option(ArgumentReader& args, const std::string& option, float up[3]) {
     if (option != "--up") return false;
     const std::string text = args.value(option);
     if (!args.ok()) return true;
-    float up[3] = {0.0f, 0.0f, 0.0f};
-    std::size_t begin = 0;
-    for (int a = 0; a < 3; ++a) {
-        const std::size_t end = text.find(',', begin);
-        const bool last = a == 2;
-        if ((end == std::string::npos) != last) {
-            args.error("option --up expects X,Y,Z (three numbers), got '" + text + "'");
-            return true;
-        }
-        const std::string item = text.substr(begin, last ? std::string::npos : end - begin);
-        char* stop = nullptr;
-        const double v = std::strtod(item.c_str(), &stop);
-        if (item.empty() || stop != item.c_str() + item.size() || !std::isfinite(v) || std::fabs(v) > 1e6) {
-            args.error("option --up expects X,Y,Z (three numbers), got '" + text + "'");
-            return true;
-        }
-        up[a] = static_cast<float>(v);
-        begin = end + 1;
+    try {
+        host::parse_up_direction(text, up);
+    } catch (const std::invalid_argument& error) {
+        args.error("option --up: " + std::string(error.what()));
     }
-    float rotation[9];
-    if (!(up[0] == 0.0f && up[1] == 0.0f && up[2] == 0.0f) && up_rotation(up, 1, rotation) != Status::ok) {
-        args.error("option --up: '" + text + "' is not a direction (longer than 1e-6 expected, or 0,0,0 for none)");
-        return true;
-    }
-    for (int a = 0; a < 3; ++a) overrides.up[a] = up[a];
     return true;
 }
 

@@ -96,6 +96,9 @@ void print_train_usage(std::FILE* out) {
                  "  --seed N                [%u]\n"
                  "  --rate HZ               frame rate of files without timing (AMC 120, MSR 15)\n"
                  "  --roles R,L,R           root, left hip, right hip joint names\n"
+                 "  --up X,Y,Z              the sensor's up direction in the files' coordinates, when\n"
+                 "                          tilted and known: every frame is turned upright as read\n"
+                 "                          (a list's own 'up' column wins for its lines)\n"
                  "  --config FILE           'option value' lines, same names without dashes\n"
                  "  --validate LIST         report clip accuracy on LIST after training\n"
                  "  --json FILE             write the training report (sizes, stage times) as JSON\n"
@@ -337,7 +340,8 @@ int run_train(int argc, char** argv) {
             const std::string value = args.value(arg);
             if (args.ok() && !apply(args, name, value, options, read)) return args.unknown(arg);
             // Reading, skeleton and cost choices are not tuned settings: self-tuning still runs.
-            if (name != "rate" && name != "roles" && name != "pose-joints" && name != "max-representative-chars" &&
+            if (name != "rate" && name != "roles" && name != "time-unit" && name != "body" && name != "columns" &&
+                name != "up" && name != "pose-joints" && name != "max-representative-chars" &&
                 name != "max-representative-share" && name != "reject" && name != "reject-keep" &&
                 name != "latency-budget")
                 settings_given = true;

@@ -47,7 +47,7 @@ int run_view(int argc, char** argv) {
         else if (arg == "--title") title = args.value(arg);
         else if (parse_read_option(args, arg, read, skeleton)) continue;
         else if (parse_online_option(args, arg, overrides)) continue;
-        else if (parse_up_option(args, arg, overrides)) continue;
+        else if (parse_up_option(args, arg, overrides.up)) continue;
         else if (!arg.empty() && arg[0] == '-') return args.unknown(arg);
         else if (file.empty()) file = arg;
         else return args.error("more than one FILE given");

@@ -330,6 +330,23 @@ TEST_CASE("a sensor's up direction: a list's up column or the read options turn 
     bad.up[2] = std::numeric_limits<float>::infinity();
     check_error([&] { read_clip(path, bad); }, 0, "not a direction");
     std::filesystem::remove(path);
+
+    // The one parser of X,Y,Z (lists, train/eval/annotate --up, training configs).
+    float parsed[3] = {9.0f, 9.0f, 9.0f};
+    parse_up_direction(" 0.1, 0.9 ,-0.2", parsed);
+    CHECK(parsed[0] == 0.1f);
+    CHECK(parsed[1] == 0.9f);
+    CHECK(parsed[2] == -0.2f);
+    parse_up_direction("0,0,0", parsed);
+    CHECK((parsed[0] == 0.0f && parsed[1] == 0.0f && parsed[2] == 0.0f));
+    for (const char* wrong : {"1,2", "1,2,3,4", "a,b,c", "0,nan,1", "0,inf,1", "1,,2", "", "0,1e7,0"}) {
+        CAPTURE(wrong);
+        CHECK_THROWS_WITH_AS(parse_up_direction(wrong, parsed), doctest::Contains("X,Y,Z (three numbers)"),
+                             std::invalid_argument);
+    }
+    CHECK_THROWS_WITH_AS(parse_up_direction("0,1e-9,0", parsed), doctest::Contains("not a direction"),
+                         std::invalid_argument);
+    CHECK(parsed[1] == 0.0f);  // a refused value leaves it as it was
 }
 
 TEST_CASE("joint CSV") {

@@ -297,6 +297,44 @@ def test_annotate_equals_the_cli(hdm05, cli, hdm05_model):
         assert done.returncode != 0 and "--up" in done.stderr, bad
 
 
+def test_eval_and_train_take_the_sensors_up_direction(hdm05, cli, hdm05_model, tmp_path):
+    """`eval --up` turns the listed files upright as read, as read_clip(up=) does; along the
+    axis it changes nothing; bad values are refused by eval and train alike."""
+    folder, _ = hdm05_model
+    lines = (hdm05 / "val.tsv").read_text().splitlines()
+    listed = tmp_path / "few.tsv"
+    header = lines[0].split("\t")
+    rows = [dict(zip(header, line.split("\t"))) for line in lines[1:5]]
+    for row in rows:
+        for key in ("path", "skeleton"):
+            if key in row and not row[key].startswith("/"):
+                row[key] = str(hdm05 / row[key])
+    listed.write_text("\t".join(header) + "\n" + "".join("\t".join(row[k] for k in header) + "\n" for row in rows))
+    model = actionstring.Model.load(folder / "cli.model")
+    clips = actionstring.read_clip_list(listed)
+    axis = [0, 0, 0]
+    axis[clips[0].up_axis] = 1
+    tilted = [0.3, 0.3, 0.3]
+    tilted[clips[0].up_axis] = 1.0
+
+    def evaluated(*more):
+        out = tmp_path / "eval.json"
+        run_cli(cli, "eval", "--model", folder / "cli.model", "--clips", listed, "--json", out, *more)
+        return json.loads(out.read_text())
+
+    plain = evaluated()
+    assert evaluated("--up", ",".join(map(str, axis)))["confusion"] == plain["confusion"]
+    turned = evaluated("--up", ",".join(map(str, tilted)))
+    by_python = model.evaluate(actionstring.read_clip_list(listed, up=tuple(tilted)))
+    assert turned["confusion"] == by_python["confusion"]
+    assert turned["clip_accuracy"] == pytest.approx(by_python["clip_accuracy"])
+    for command in (["eval", "--model", str(folder / "cli.model"), "--clips", str(listed)],
+                    ["train", "--clips", str(listed), "--out", str(tmp_path / "x.model")]):
+        for bad in ["1,2", "0,0,1e-9", "0,nan,1"]:
+            done = subprocess.run([cli, *command, "--up", bad], capture_output=True, text=True)
+            assert done.returncode != 0 and "up direction" in done.stderr, (command, bad, done.stderr)
+
+
 def test_streamed_events_equal_annotate_events(hdm05, cli, hdm05_model):
     folder, _ = hdm05_model
     amc = hdm05 / "val/squat1Reps/HDM_mm_squat1Reps_037_120.amc"

@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <stdexcept>
 #include <string>
 
 #include "io/clip.hpp"
@@ -112,6 +114,28 @@ void require_finite_positions(const Clip& clip, double max_abs_metres) {
                                     ": position " + std::to_string(p[k]) +
                                     " m is not finite or beyond 1e6 m (check the file's units and angles)");
     }
+}
+
+void parse_up_direction(std::string_view text, float up[3]) {
+    const std::vector<std::string_view> parts = split_fields(text, ',');
+    float read[3] = {0.0f, 0.0f, 0.0f};
+    bool numbers = parts.size() == 3;
+    for (std::size_t a = 0; a < 3 && numbers; ++a) {
+        const std::string item(trim(parts[a]));
+        char* stop = nullptr;
+        const double v = item.empty() ? 0.0 : std::strtod(item.c_str(), &stop);
+        numbers = !item.empty() && stop == item.c_str() + item.size() && std::fabs(v) <= 1e6;
+        read[a] = static_cast<float>(v);
+    }
+    if (!numbers)
+        throw std::invalid_argument("expected the sensor's up direction as X,Y,Z (three numbers), got '" +
+                                    std::string(text) + "'");
+    float turn[9];
+    const bool none = read[0] == 0.0f && read[1] == 0.0f && read[2] == 0.0f;
+    if (!none && up_rotation(read, 1, turn) != Status::ok)
+        throw std::invalid_argument("the up direction '" + std::string(text) +
+                                    "' is not a direction (finite, longer than 1e-6; 0,0,0 for none)");
+    for (int a = 0; a < 3; ++a) up[a] = read[a];
 }
 
 void turn_upright(Clip& clip, const float up[3]) {

@@ -91,6 +91,11 @@ struct ReadOptions {
     float up[3] = {0.0f, 0.0f, 0.0f};
 };
 
+/// Reads a sensor's up direction written as X,Y,Z (three numbers; 0,0,0 for
+/// none) into `up`. Throws std::invalid_argument saying what was expected:
+/// not three numbers, or not a direction (not finite, or shorter than 1e-6).
+void parse_up_direction(std::string_view text, float up[3]);
+
 /// Turns every frame of `clip` by the smallest rotation that puts `up` (the
 /// sensor's up direction in the clip's coordinates) along clip.up_axis: the
 /// runtime's up_rotation(), about the origin (a pose is made relative to its

@@ -2,9 +2,9 @@
 #include "io/clip_list.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
-#include "actionstring/normalize.hpp"
 #include "io/formats.hpp"
 #include "io/text.hpp"
 
@@ -65,19 +65,11 @@ std::vector<ClipListEntry> parse_clip_list(const std::string& name, std::string_
                              std::string(fields[static_cast<std::size_t>(start_column)]) + ")");
         }
         if (up_column >= 0) {
-            const std::string_view given = field(up_column, "up");
-            const std::vector<std::string_view> parts = split_fields(given, ',');
-            if (parts.size() != 3)
-                scanner.fail("expected the sensor's up direction as X,Y,Z (three numbers), got '" + std::string(given) +
-                             "'");
-            for (int a = 0; a < 3; ++a)
-                entry.up[a] = static_cast<float>(
-                    parse_number(scanner, parts[static_cast<std::size_t>(a)], "a coordinate of the up direction"));
-            float turn[9];
-            const bool none = entry.up[0] == 0.0f && entry.up[1] == 0.0f && entry.up[2] == 0.0f;
-            if (!none && up_rotation(entry.up, 1, turn) != Status::ok)
-                scanner.fail("the up direction '" + std::string(given) +
-                             "' is not a direction (finite, longer than 1e-6; 0,0,0 for none)");
+            try {
+                parse_up_direction(field(up_column, "up"), entry.up);
+            } catch (const std::invalid_argument& error) {
+                scanner.fail(error.what());
+            }
         }
         entry.line = scanner.line_number();
         entries.push_back(std::move(entry));
