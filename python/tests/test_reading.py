@@ -141,3 +141,10 @@ def test_a_sensors_up_direction_turns_the_frames_upright(tmp_path):
     listed.write_text("path\tlabel\tsubject\tup\n" f"{path}\twave\ts1\t0,1\n")
     with pytest.raises(actionstring.ReadError, match="X,Y,Z"):
         actionstring.read_clip_list(listed)
+
+
+@pytest.mark.parametrize("setting", [dict(up=(0.0, 1.0, 0.0)), dict(rate=30.0), dict(body=0)])
+def test_reading_settings_are_refused_by_train(toy_clips, setting):
+    """What belongs to reading a file is given to read_clip or read_clip_list, never to train."""
+    with pytest.raises(ValueError, match="reading setting"):
+        actionstring.train(toy_clips, **setting)
