@@ -164,8 +164,8 @@ struct OnlineReport {
     std::vector<StreamTimeline> streams;
     /// The settled labels scored on each stream alone, in the order of
     /// `streams` (a subject's clips joined, or one recording): which people or
-    /// recordings the pooled figures come from. Their units and intervals are
-    /// not filled.
+    /// recordings the pooled figures come from. Their 95% intervals are not
+    /// filled (add_intervals() resamples the pooled figures' units).
     std::vector<OnlineResults> per_stream;
 };
 
