@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -411,6 +412,69 @@ TEST_CASE("joint CSV as tools export it: spellings, separators, extra columns, t
     const Clip r = parse_joint_csv("rate.csv", "a_x,a_y,a_z\n1,2,3\n1,2,3\n", rate);
     CHECK(r.times[1] == doctest::Approx(1.0 / 30.0));
     check_error([&] { parse_joint_csv("k.csv", "a_x,a_y,a_z\n1,2,3\n"); }, 1, "expected a time column");
+}
+
+TEST_CASE("joints named after a depth-camera SDK take its bone tree") {
+    // Each joint's parent by name, as the SDKs document their trees.
+    auto parent_names = [](const std::vector<std::string>& names, const std::vector<int>& parents) {
+        std::vector<std::string> out;
+        for (const int p : parents) out.push_back(p < 0 ? "-" : names[static_cast<std::size_t>(p)]);
+        return out;
+    };
+    const std::vector<int> v1 = sdk_parents(kinect_v1_joint_names());
+    CHECK(v1 == std::vector<int>{-1, 0, 1, 2, 2, 4, 5, 6, 2, 8, 9, 10, 0, 12, 13, 14, 0, 16, 17, 18});
+    const std::vector<int> v2 = sdk_parents(kinect_v2_joint_names());
+    CHECK(v2[20] == 1);  // SpineShoulder ← SpineMid
+    CHECK(v2[4] == 20);  // ShoulderLeft ← SpineShoulder
+    CHECK(v2[21] == 7);  // HandTipLeft ← HandLeft
+    const std::vector<int> azure = sdk_parents(azure_kinect_joint_names());
+    REQUIRE(azure.size() == 32);
+    CHECK(azure[4] == 2);    // CLAVICLE_LEFT ← SPINE_CHEST
+    CHECK(azure[10] == 7);   // THUMB_LEFT ← WRIST_LEFT
+    CHECK(azure[26] == 3);   // HEAD ← NECK
+    CHECK(azure[31] == 26);  // EAR_RIGHT ← HEAD
+    CHECK(std::count(azure.begin(), azure.end(), -1) == 1);
+
+    // Any order and any spelling: MSR Action3D's order, then a CSV's upper-case names.
+    const std::vector<std::string>& msr = msr_action3d_joint_names();
+    const std::vector<std::string> by_name = parent_names(msr, sdk_parents(msr));
+    for (std::size_t j = 0; j < msr.size(); ++j) {
+        const auto sdk = std::find(kinect_v1_joint_names().begin(), kinect_v1_joint_names().end(), msr[j]);
+        REQUIRE(sdk != kinect_v1_joint_names().end());
+        const int p = v1[static_cast<std::size_t>(sdk - kinect_v1_joint_names().begin())];
+        CHECK(by_name[j] == (p < 0 ? std::string("-") : kinect_v1_joint_names()[static_cast<std::size_t>(p)]));
+    }
+    CHECK(sdk_parents({"HAND_LEFT", "hip_center", "Shoulder-Left", "spine", "ShoulderCenter"}) ==
+          std::vector<int>{2, -1, 4, 1, 3});  // the hand hangs from the shoulder: no elbow or wrist given
+
+    // Never guessed: a joint no SDK has, one given twice, no root, MediaPipe's names.
+    CHECK(sdk_parents({"HipCenter", "HipLeft", "LeftHandIndex1"}).empty());
+    CHECK(sdk_parents({"HipCenter", "HipLeft", "HIP_LEFT"}).empty());
+    CHECK(sdk_parents({"HipLeft", "KneeLeft", "HipRight"}).empty());
+    CHECK(sdk_parents({"left_hip", "right_hip", "nose"}).empty());
+    CHECK(sdk_parents({}).empty());
+
+    // A joint CSV gets the tree by its names; the same motion as MSR text and as CSV reads the same.
+    std::string msr_text, csv = "time";
+    for (const std::string& name : msr) csv += "," + name + "_x," + name + "_y," + name + "_z";
+    csv += "\n";
+    for (int f = 0; f < 3; ++f) {
+        csv += std::to_string(f / 15.0);
+        for (std::size_t j = 0; j < msr.size(); ++j) {
+            const std::string x = std::to_string(0.01 * static_cast<double>(j) + 0.001 * f),
+                              y = std::to_string(-1.0 + 0.08 * static_cast<double>(j)), z = "2.5";
+            msr_text += x + " " + y + " " + z + " 1\n";
+            csv += "," + x + "," + y + "," + z;
+        }
+        csv += "\n";
+    }
+    const Clip from_text = parse_msr_skeleton("a.txt", msr_text), from_csv = parse_joint_csv("a.csv", csv);
+    CHECK(from_csv.joint_names == from_text.joint_names);
+    CHECK(from_csv.parents == from_text.parents);
+    CHECK(from_csv.parents == sdk_parents(msr));
+    CHECK(from_csv.positions == from_text.positions);
+    // Names of no SDK: no tree, as before.
+    CHECK(parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z\n0,1,2,3\n").parents.empty());
 }
 
 TEST_CASE("clip lists resolve paths against their folder") {

@@ -20,6 +20,18 @@ int Clip::joint_index(std::string_view name) const noexcept {
     return -1;
 }
 
+// A joint name as exports spell it differently: lower case, without '_', '-',
+// '.' or spaces, and without a namespace ("mixamorig:Hips", "Armature|Hips").
+std::string joint_spelling_key(std::string_view name) {
+    const std::size_t cut = name.find_last_of(":|");
+    if (cut != std::string_view::npos) name = name.substr(cut + 1);
+    std::string key;
+    for (const char c : name)
+        if (c != '_' && c != '-' && c != '.' && c != ' ')
+            key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return key;
+}
+
 namespace {
 
 // Built-in role names, tried in order: HDM05/CMU ASF, Kinect v1, Kinect v2,
@@ -43,24 +55,12 @@ constexpr RoleCandidates kBuiltInRoles[] = {
     {"LeftHip", "LeftHip", "RightHip"},
 };
 
-// A joint name as exports spell it differently: lower case, without '_', '-',
-// '.' or spaces, and without a namespace ("mixamorig:Hips", "Armature|Hips").
-std::string spelling_key(std::string_view name) {
-    const std::size_t cut = name.find_last_of(":|");
-    if (cut != std::string_view::npos) name = name.substr(cut + 1);
-    std::string key;
-    for (const char c : name)
-        if (c != '_' && c != '-' && c != '.' && c != ' ')
-            key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return key;
-}
-
 // Index of the joint spelled like `name` (HIP_LEFT, hip_left, HipLeft), or −1; −1 too when two joints match.
 int joint_by_spelling(const Clip& clip, const char* name) {
-    const std::string key = spelling_key(name);
+    const std::string key = joint_spelling_key(name);
     int found = -1;
     for (std::size_t j = 0; j < clip.joint_names.size(); ++j)
-        if (spelling_key(clip.joint_names[j]) == key) {
+        if (joint_spelling_key(clip.joint_names[j]) == key) {
             if (found >= 0) return -1;
             found = static_cast<int>(j);
         }

@@ -104,6 +104,11 @@ void parse_up_direction(std::string_view text, float up[3]);
 /// clip's file when `up` is not a direction (not finite, or shorter than 1e-6).
 void turn_upright(Clip& clip, const float up[3]);
 
+/// A joint name as exports spell it differently, for matching: lower case,
+/// without '_', '-', '.' or spaces, and without a namespace ("HIP_LEFT",
+/// "hip-left" and "mixamorig:HipLeft" all give "hipleft").
+std::string joint_spelling_key(std::string_view name);
+
 /// Sets clip.roles from `names` when given, else from the built-in mappings
 /// (HDM05/CMU ASF, Kinect v1 and v2, the CC_Base rig). Throws ReadError when a
 /// named joint does not exist.

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include "io/clip.hpp"
+#include "io/sdk_skeletons.hpp"  // the SDKs' joint names and trees
 
 namespace actionstring {
 namespace host {
@@ -56,10 +57,6 @@ Clip parse_bvh(const std::string& name, std::string_view text, const ReadOptions
 
 // ---- Kinect skeleton text ----------------------------------------------------------
 
-/// Kinect v1 joints in the SDK's order (UTKinect files, SDK exports).
-const std::vector<std::string>& kinect_v1_joint_names();
-/// Kinect v2 joints in the SDK's order.
-const std::vector<std::string>& kinect_v2_joint_names();
 /// MSR Action3D's own order of the 20 Kinect v1 joints.
 const std::vector<std::string>& msr_action3d_joint_names();
 

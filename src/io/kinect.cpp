@@ -9,27 +9,11 @@
 #include <string>
 
 #include "io/formats.hpp"
+#include "io/sdk_skeletons.hpp"
 #include "io/text.hpp"
 
 namespace actionstring {
 namespace host {
-
-const std::vector<std::string>& kinect_v1_joint_names() {
-    static const std::vector<std::string> names = {
-        "HipCenter", "Spine",         "ShoulderCenter", "Head",       "ShoulderLeft", "ElbowLeft", "WristLeft",
-        "HandLeft",  "ShoulderRight", "ElbowRight",     "WristRight", "HandRight",    "HipLeft",   "KneeLeft",
-        "AnkleLeft", "FootLeft",      "HipRight",       "KneeRight",  "AnkleRight",   "FootRight"};
-    return names;
-}
-
-const std::vector<std::string>& kinect_v2_joint_names() {
-    static const std::vector<std::string> names = {
-        "SpineBase",   "SpineMid",      "Neck",         "Head",       "ShoulderLeft", "ElbowLeft", "WristLeft",
-        "HandLeft",    "ShoulderRight", "ElbowRight",   "WristRight", "HandRight",    "HipLeft",   "KneeLeft",
-        "AnkleLeft",   "FootLeft",      "HipRight",     "KneeRight",  "AnkleRight",   "FootRight", "SpineShoulder",
-        "HandTipLeft", "ThumbLeft",     "HandTipRight", "ThumbRight"};
-    return names;
-}
 
 // MSR Action3D's order, read off the data: per-joint median heights and the
 // joint pairs whose distance stays constant (bones) place each joint; "left"
@@ -44,41 +28,13 @@ const std::vector<std::string>& msr_action3d_joint_names() {
 
 namespace {
 
-// Kinect v1 parents, SDK order.
-const std::vector<int>& kinect_v1_parents() {
-    static const std::vector<int> parents = {-1, 0, 1, 2, 2, 4, 5, 6, 2, 8, 9, 10, 0, 12, 13, 14, 0, 16, 17, 18};
-    return parents;
-}
-
-// Kinect v2 parents, SDK order (NTU RGB+D's too).
-const std::vector<int>& kinect_v2_parents() {
-    static const std::vector<int> parents = {-1, 0,  20, 2, 20, 4,  5,  6, 20, 8, 9,  10, 0,
-                                             12, 13, 14, 0, 16, 17, 18, 1, 7,  7, 11, 11};
-    return parents;
-}
-
-// Parents of Kinect v1 joints given in another order (MSR Action3D's).
-std::vector<int> parents_by_name(const std::vector<std::string>& names) {
-    const auto& sdk = kinect_v1_joint_names();
-    std::vector<int> parents;
-    for (const auto& name : names) {
-        const auto it = std::find(sdk.begin(), sdk.end(), name);
-        const int parent = kinect_v1_parents()[static_cast<std::size_t>(it - sdk.begin())];
-        if (parent < 0) {
-            parents.push_back(-1);
-            continue;
-        }
-        parents.push_back(static_cast<int>(
-            std::find(names.begin(), names.end(), sdk[static_cast<std::size_t>(parent)]) - names.begin()));
-    }
-    return parents;
-}
-
 void finish_kinect_clip(Clip& clip, const ReadOptions& options) {
     const double scale = options.length_scale > 0 ? options.length_scale : 1.0;
     if (scale != 1.0)
         for (float& v : clip.positions) v = static_cast<float>(static_cast<double>(v) * scale);
     clip.up_axis = options.up_axis >= 0 ? options.up_axis : 1;
+    // A CSV names its joints but gives no tree: an SDK's, when the names are all of one.
+    if (clip.parents.empty()) clip.parents = sdk_parents(clip.joint_names);
     flag_lost_frames(clip);
     assign_roles(clip, options.roles);
 }
@@ -91,7 +47,6 @@ Clip parse_msr_skeleton(const std::string& name, std::string_view text, const Re
     Clip clip;
     clip.source = name;
     clip.joint_names = msr_action3d_joint_names();
-    clip.parents = parents_by_name(clip.joint_names);
     std::string_view line;
     std::size_t rows = 0, frame_start_line = 0;
     while (scanner.next_content(line)) {
@@ -121,7 +76,6 @@ Clip parse_utkinect(const std::string& name, std::string_view text, const ReadOp
     Clip clip;
     clip.source = name;
     clip.joint_names = kinect_v1_joint_names();
-    clip.parents = kinect_v1_parents();
     std::string_view line;
     long previous_id = -1;
     while (scanner.next_content(line)) {
@@ -535,7 +489,7 @@ Clip parse_ntu_skeleton(const std::string& name, std::string_view text, const Re
     Clip clip;
     clip.source = name;
     clip.joint_names = kinect_v2_joint_names();
-    clip.parents = kinect_v2_parents();
+    clip.parents = sdk_parents(clip.joint_names);
     clip.positions = std::move(bodies[chosen].positions);
     const double rate = options.frame_rate_hz > 0 ? options.frame_rate_hz : 30.0;
     for (std::size_t f = 0; f < frames; ++f) clip.times.push_back(static_cast<double>(f) / rate);

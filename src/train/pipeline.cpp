@@ -118,8 +118,10 @@ void set_bones(ModelData& m, const std::vector<LabelledClip>& clips) {
     const std::size_t J = first.joint_count();
     if (first.parents.size() != J)
         throw std::invalid_argument(first.source +
-                                    ": bone and torso scaling need the skeleton's parents, which this "
-                                    "format does not give; use --scale none");
+                                    ": bone and torso scaling need the skeleton's tree (each joint's parent), "
+                                    "which the file does not give and its joint names do not name all of one "
+                                    "SDK's (Kinect v1, Kinect v2, Azure Kinect); use --scale none, or in Python "
+                                    "give Clip(..., parents=[...])");
     if (J > max_bone_joints)
         throw std::invalid_argument(first.source + ": " + std::to_string(J) +
                                     " joints; bone-length scaling takes at most " + std::to_string(max_bone_joints));
