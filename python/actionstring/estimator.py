@@ -13,7 +13,9 @@ class ActionStringClassifier:
 
     ``X`` holds Clip objects, or arrays of shape (frames, joints, 3) in metres taken
     at ``frame_rate`` with ``joint_names`` (Kinect v1 or v2 names when omitted and the
-    joint count is 20 or 25). ``groups`` are the subjects: with no training settings
+    joint count is 20 or 25) and ``parents``, each joint's parent (-1 at the root), for
+    a rig that is not a Kinect SDK's (whose tree comes with its names); bone-length
+    scaling needs one. ``groups`` are the subjects: with no training settings
     given, training tunes itself by leave-one-subject-out cross-validation over them.
     Every other keyword is a training setting of ``actionstring.train``.
 
@@ -25,21 +27,23 @@ class ActionStringClassifier:
     _estimator_type = "classifier"
 
     def __init__(self, frame_rate: float = 30.0, joint_names: Optional[Sequence[str]] = None,
-                 tune: Optional[bool] = None, **settings: Any):
+                 tune: Optional[bool] = None, parents: Optional[Sequence[int]] = None, **settings: Any):
         self.frame_rate = frame_rate
         self.joint_names = joint_names
+        self.parents = parents
         self.tune = tune
         self.settings: Dict[str, Any] = dict(settings)
 
     # -- scikit-learn's parameter protocol --------------------------------------
     def get_params(self, deep: bool = True) -> Dict[str, Any]:
-        params = {"frame_rate": self.frame_rate, "joint_names": self.joint_names, "tune": self.tune}
+        params = {"frame_rate": self.frame_rate, "joint_names": self.joint_names, "tune": self.tune,
+                  "parents": self.parents}
         params.update(self.settings)
         return params
 
     def set_params(self, **params: Any) -> "ActionStringClassifier":
         for key, value in params.items():
-            if key in ("frame_rate", "joint_names", "tune"):
+            if key in ("frame_rate", "joint_names", "tune", "parents"):
                 setattr(self, key, value)
             else:
                 self.settings[key] = value
@@ -62,7 +66,7 @@ class ActionStringClassifier:
                 clip = item.relabelled(label or item.label, subject if groups is not None else item.subject)
             else:
                 clip = Clip(np.asarray(item), frame_rate=self.frame_rate, joint_names=self.joint_names,
-                            label=label, subject=subject, source=f"<X[{i}]>")
+                            label=label, subject=subject, source=f"<X[{i}]>", parents=self.parents)
             clips.append(clip)
         return clips
 

@@ -18,6 +18,7 @@
 #include "eval/evaluation.hpp"
 #include "io/clip_list.hpp"
 #include "io/formats.hpp"
+#include "io/sdk_skeletons.hpp"
 #include "io/text.hpp"
 #include "model/artifact.hpp"
 #include "model/blob.hpp"
@@ -71,11 +72,12 @@ py::object label_object(const ModelData& model, LabelId label) {
 // ---- clips -------------------------------------------------------------------
 
 // A clip from arrays: positions (frames, joints, 3) in metres, times in seconds
-// or a frame rate, joint names (Kinect v1 or v2 when omitted and the count says so).
+// or a frame rate, joint names (Kinect v1 or v2 when omitted and the count says so),
+// the skeleton's tree as given, else a Kinect SDK's when the names are all of one.
 LabelledClip clip_from_arrays(const py::handle& positions_object, const py::object& times_object, double frame_rate,
                               const py::object& joint_names_object, const std::string& label,
                               const std::string& subject, int up_axis, const py::object& roles_object,
-                              const std::string& source) {
+                              const std::string& source, const py::object& parents_object) {
     const auto positions = float32_array(positions_object, "positions");
     if (positions.ndim() != 3 || positions.shape(2) != 3)
         throw py::value_error("positions: expected shape (frames, joints, 3), got " +
@@ -128,6 +130,28 @@ LabelledClip clip_from_arrays(const py::handle& positions_object, const py::obje
         const auto names = roles_object.cast<std::vector<std::string>>();
         if (names.size() != 3) throw py::value_error("roles: (root, left hip, right hip) joint names");
         roles = host::RoleNames{names[0], names[1], names[2]};
+    }
+    if (!parents_object.is_none()) {
+        clip.parents = parents_object.cast<std::vector<int>>();
+        if (clip.parents.size() != joints)
+            throw py::value_error("parents: " + std::to_string(clip.parents.size()) + " parents for " +
+                                  std::to_string(joints) + " joints (one per joint, -1 at a root)");
+        for (std::size_t j = 0; j < joints; ++j) {
+            // Up from every joint: a root must come within `joints` steps, or the parents form a cycle.
+            int up = static_cast<int>(j);
+            std::size_t steps = 0;
+            for (; up >= 0 && steps <= joints; ++steps) {
+                const int parent = clip.parents[static_cast<std::size_t>(up)];
+                if (parent < -1 || parent >= static_cast<int>(joints))
+                    throw py::value_error("parents: joint " + std::to_string(up) + "'s parent " +
+                                          std::to_string(parent) + " is not -1 or a joint index below " +
+                                          std::to_string(joints));
+                up = parent;
+            }
+            if (up >= 0) throw py::value_error("parents: joint " + std::to_string(j) + " is in a cycle, not a tree");
+        }
+    } else {
+        clip.parents = host::sdk_parents(clip.joint_names);  // empty unless the names are one SDK's
     }
     host::flag_lost_frames(clip);
     host::assign_roles(clip, roles);
@@ -481,11 +505,15 @@ PYBIND11_MODULE(_actionstring, m) {
         .def(py::init(&clip_from_arrays), py::arg("positions"), py::arg("times") = py::none(),
              py::arg("frame_rate") = 0.0, py::arg("joint_names") = py::none(), py::arg("label") = "",
              py::arg("subject") = "", py::arg("up_axis") = 1, py::arg("roles") = py::none(),
-             py::arg("source") = "<array>")
+             py::arg("source") = "<array>", py::arg("parents") = py::none())
         .def_property_readonly("positions", &positions_view,
                                "(frames, joints, 3) float32, metres; a read-only view of the clip's memory")
         .def_property_readonly("times", &times_view, "(frames,) float64, seconds; a read-only view")
         .def_property_readonly("joint_names", [](const LabelledClip& c) { return c.clip.joint_names; })
+        .def_property_readonly(
+            "parents", [](const LabelledClip& c) { return c.clip.parents; },
+            "Each joint's parent (-1 at a root): the file's tree, the one given, or a Kinect SDK's when the "
+            "joint names are all of one; empty when there is none (bone and torso scaling then refuse)")
         .def_property_readonly("source", [](const LabelledClip& c) { return c.clip.source; })
         .def_property_readonly("up_axis", [](const LabelledClip& c) { return c.clip.up_axis; })
         .def_property_readonly("frame_count", [](const LabelledClip& c) { return c.clip.frame_count(); })

@@ -23,6 +23,14 @@ def hdm05() -> pathlib.Path:
 
 
 @pytest.fixture(scope="session")
+def msr() -> pathlib.Path:
+    folder = data_dir() / "msr-action3d"
+    if not (folder / "train.tsv").is_file():
+        pytest.skip(f"MSR Action3D data absent: {folder}/train.tsv not found (set ACTIONSTRING_DATA)")
+    return folder
+
+
+@pytest.fixture(scope="session")
 def cli() -> str:
     path = os.environ.get("ACTIONSTRING_CLI")
     if not path or not os.access(path, os.X_OK):

@@ -36,6 +36,18 @@ def test_arrays_in_place_of_clips(toy_clips):
     assert estimator.score([X[i] for i in test], [y[i] for i in test]) >= 0.75
 
 
+def test_arrays_of_a_rig_of_no_sdk_scale_their_bones_with_the_parents_given(toy_clips):
+    X = [np.asarray(c.positions) for c in toy_clips]
+    y = [c.label for c in toy_clips]
+    names, parents = toy_clips[0].joint_names, toy_clips[0].parents
+    bones = dict(TOY_SETTINGS, scale="bones")
+    with pytest.raises(ValueError, match="skeleton's tree"):
+        actionstring.ActionStringClassifier(frame_rate=60.0, joint_names=names, **bones).fit(X, y)
+    estimator = actionstring.ActionStringClassifier(frame_rate=60.0, joint_names=names, parents=parents, **bones)
+    assert estimator.get_params()["parents"] == parents
+    assert estimator.fit(X, y).score(X, y) >= 0.9
+
+
 def test_group_k_fold_cross_validation_by_hand(toy_clips):
     """Without scikit-learn: held-out subjects, a fresh estimator per fold from get_params()."""
     X, y, groups = toy_data(toy_clips)

@@ -50,6 +50,45 @@ def test_clip_from_arrays():
     assert clip.label == "stand" and clip.subject == "s1"
 
 
+def test_clip_from_arrays_takes_a_kinect_sdks_tree_or_the_one_given():
+    frames = np.zeros((5, 20, 3), dtype=np.float32)
+    v1 = actionstring.Clip(frames, frame_rate=30.0)  # Kinect v1 names: the SDK's tree
+    assert v1.parents == [-1, 0, 1, 2, 2, 4, 5, 6, 2, 8, 9, 10, 0, 12, 13, 14, 0, 16, 17, 18]
+    names = ["PELVIS", "HIP_LEFT", "HIP_RIGHT", "SPINE_NAVEL", "SPINE_CHEST", "NECK", "HEAD", "NOSE"]
+    azure = actionstring.Clip(np.zeros((5, 8, 3)), frame_rate=30.0, joint_names=names)
+    assert azure.parents == [-1, 0, 0, 0, 3, 4, 5, 6]
+    own = ["hips", "left_hip", "right_hip", "head"]  # names of no SDK: no tree unless given
+    assert actionstring.Clip(np.zeros((5, 4, 3)), frame_rate=30.0, joint_names=own).parents == []
+    given = actionstring.Clip(np.zeros((5, 4, 3)), frame_rate=30.0, joint_names=own, parents=[-1, 0, 0, 0])
+    assert given.parents == [-1, 0, 0, 0]
+
+
+@pytest.mark.parametrize(
+    "parents, message",
+    [
+        ([-1, 0, 0], "3 parents for 4 joints"),
+        ([-1, 0, 0, 4], "parent 4 is not -1 or a joint index below 4"),
+        ([-1, 0, -2, 0], "parent -2"),
+        ([-1, 3, 0, 1], "joint 1 is in a cycle"),
+    ],
+)
+def test_bad_parents_are_refused(parents, message):
+    with pytest.raises(ValueError, match=re.escape(message)):
+        actionstring.Clip(np.zeros((5, 4, 3)), frame_rate=30.0, joint_names=["a", "b", "c", "d"], parents=parents)
+
+
+def test_arrays_train_the_model_the_files_train(msr):
+    """Clips rebuilt from the read arrays (no tree given) train bit for bit the model the files do,
+    with bone lengths: the Kinect tree comes from the joint names."""
+    read = actionstring.read_clip_list(msr / "train.tsv")
+    read = [c for c in read if c.subject in ("s01", "s03")][:40]
+    rebuilt = [actionstring.Clip(np.array(c.positions), times=np.array(c.times), joint_names=c.joint_names,
+                                 label=c.label, subject=c.subject) for c in read]
+    assert all(r.parents == c.parents for r, c in zip(rebuilt, read))
+    settings = dict(scale="bones", velocity=1.0, components=0, pca=8, string_rate=10, keep_singletons=True)
+    assert actionstring.train(rebuilt, **settings).to_blob() == actionstring.train(read, **settings).to_blob()
+
+
 @pytest.mark.parametrize(
     "positions, kwargs, message",
     [
