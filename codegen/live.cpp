@@ -183,7 +183,8 @@ int run_live(const host::ModelData& model, const AnnotatorConfig& config, const 
         ++line_number;
         if (line.empty() || line[0] == '#') continue;
         double raw_time = 0;
-        if (!layout.parse_row(line, raw_time, row.data(), error)) {
+        bool untracked = false;  // a lost frame: zeros, which the annotator reports as tracking lost
+        if (!layout.parse_row(line, raw_time, row.data(), error, untracked)) {
             if (++skipped <= 10)
                 std::fprintf(stderr, "actionstring annotate: line %zu skipped: %s\n", line_number, error.c_str());
             continue;

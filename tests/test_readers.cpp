@@ -414,6 +414,34 @@ TEST_CASE("joint CSV as tools export it: spellings, separators, extra columns, t
     check_error([&] { parse_joint_csv("k.csv", "a_x,a_y,a_z\n1,2,3\n"); }, 1, "expected a time column");
 }
 
+TEST_CASE("joint CSV rows with joints not tracked are lost frames, kept and counted") {
+    // As exporters write a frame without a body: empty fields (pandas), nan (numpy), null (JavaScript);
+    // one joint missing is no pose either. A malformed coordinate is still refused with its line.
+    const std::string header = "time,HipCenter_x,HipCenter_y,HipCenter_z,HipLeft_x,HipLeft_y,HipLeft_z\n";
+    const std::string text = header +
+                             "0.000,0,1,2,-0.1,1,2\n"
+                             "0.033,,,,,,\n"
+                             "0.067,nan,NaN,-nan,nan,nan,nan\n"
+                             "0.100,null,null,null,None,NA,n/a\n"
+                             "0.133,0,1,2,,,\n"
+                             "0.167,0,1,2,-0.1,1,2,\n";
+    const Clip clip = parse_joint_csv("k.csv", text);
+    REQUIRE(clip.frame_count() == 6);
+    CHECK(clip.lost == std::vector<std::uint8_t>{0, 1, 1, 1, 1, 0});
+    for (std::size_t f = 1; f <= 4; ++f)
+        for (std::size_t k = 0; k < 6; ++k) CHECK(clip.frame(f)[k] == 0.0f);
+    CHECK(clip.frame(5)[3] == doctest::Approx(-0.1f));
+    CHECK(clip.times[4] == doctest::Approx(0.133));
+    REQUIRE(clip.notes.size() == 1);
+    CHECK(clip.notes[0] == "4 rows with a joint not tracked (an empty or NaN coordinate; the first at line 3) read as "
+                           "lost frames");
+    check_error([&] { parse_joint_csv("k.csv", header + "0,0,1,2,-0.1,1,2\n0.033,0,1,x,-0.1,1,2\n"); }, 3,
+                "expected a coordinate (or an empty field or NaN for a joint not tracked), got 'x'");
+    check_error([&] { parse_joint_csv("k.csv", header + "0,0,1,2,-0.1,1,2\n,0,1,2,-0.1,1,2\n"); }, 3,
+                "expected a timestamp, got ''");
+    check_error([&] { parse_joint_csv("k.csv", header + "0,0,1,2,-0.1,1\n"); }, 2, "expected 7 columns, got 6");
+}
+
 TEST_CASE("joints named after a depth-camera SDK take its bone tree") {
     // Each joint's parent by name, as the SDKs document their trees.
     auto parent_names = [](const std::vector<std::string>& names, const std::vector<int>& parents) {

@@ -87,8 +87,13 @@ public:
     /// Seconds per time unit: given, or stated by the column's name; 0 when neither.
     double time_unit_s() const noexcept { return time_unit_s_; }
     /// One row: its raw time (in the file's unit) and joint_names().size() × 3
-    /// positions. False with `error` saying what was expected when the row is malformed.
-    bool parse_row(std::string_view line, double& raw_time, float* positions, std::string& error) const;
+    /// positions. A coordinate left empty or written as NaN (nan, NaN, null,
+    /// None, NA) is a joint the tracker did not see: the row is then a lost
+    /// frame, every position 0 as the readers and the runtime mark lost
+    /// tracking, and `untracked` is set. False with `error` saying what was
+    /// expected when the row is malformed (a bad or missing timestamp too).
+    bool parse_row(std::string_view line, double& raw_time, float* positions, std::string& error,
+                   bool& untracked) const;
 
 private:
     void explicit_columns(const std::vector<std::string_view>& header, const ReadOptions& options);

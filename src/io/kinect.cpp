@@ -306,8 +306,29 @@ void JointCsvLayout::explicit_columns(const std::vector<std::string_view>& heade
     if (time_column_ >= 0) time_unit_s_ = options.time_unit_s;
 }
 
-bool JointCsvLayout::parse_row(std::string_view line, double& raw_time, float* positions, std::string& error) const {
-    const std::vector<std::string_view> fields = csv_fields(line, delimiter_);
+namespace {
+
+// A coordinate a tracker left out: an empty field, or NaN as numpy, pandas and
+// JavaScript exporters spell it ("nan", "NaN", "-nan", "null", "None", "NA").
+bool untracked_token(std::string_view token) {
+    if (token.empty()) return true;
+    const std::string word = lowercase(token);
+    if (word == "null" || word == "none" || word == "na" || word == "n/a") return true;
+    const std::string text(token);
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    return end == text.c_str() + text.size() && std::isnan(v);
+}
+
+}  // namespace
+
+bool JointCsvLayout::parse_row(std::string_view line, double& raw_time, float* positions, std::string& error,
+                               bool& untracked) const {
+    // Trailing separators leave empty fields, dropped only beyond the header's
+    // columns: an untracked last joint is an empty field, not a missing column.
+    std::vector<std::string_view> fields = split_fields(line, delimiter_);
+    for (std::string_view& f : fields) f = trim(f);
+    while (fields.size() > columns_ && fields.back().empty()) fields.pop_back();
     if (fields.size() != columns_) {
         error = "expected " + std::to_string(columns_) + " columns, got " + std::to_string(fields.size());
         return false;
@@ -321,12 +342,21 @@ bool JointCsvLayout::parse_row(std::string_view line, double& raw_time, float* p
     raw_time = 0;
     if (time_column_ >= 0 && !number(fields[static_cast<std::size_t>(time_column_)], "a timestamp", raw_time))
         return false;
+    untracked = false;
     for (std::size_t j = 0; j < axes_.size(); ++j)
         for (std::size_t a = 0; a < 3; ++a) {
+            const std::string_view token = fields[static_cast<std::size_t>(axes_[j][a])];
+            if (untracked_token(token)) {
+                untracked = true;
+                continue;
+            }
             double v = 0;
-            if (!number(fields[static_cast<std::size_t>(axes_[j][a])], "a coordinate", v)) return false;
+            if (!number(token, "a coordinate (or an empty field or NaN for a joint not tracked)", v)) return false;
             positions[3 * j + a] = static_cast<float>(v);
         }
+    // A pose with a joint missing is no pose: the row is a lost frame, as the
+    // readers and the runtime mark lost tracking (every joint at the origin).
+    if (untracked) std::fill(positions, positions + 3 * axes_.size(), 0.0f);
     return true;
 }
 
@@ -345,9 +375,12 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
     std::vector<double> raw_times;
     std::vector<float> frame(3 * layout.joint_names().size());
     std::string error;
+    std::size_t untracked_rows = 0, first_untracked_line = 0;
     while (scanner.next_content(line, '#')) {
         double t = 0;
-        if (!layout.parse_row(line, t, frame.data(), error)) scanner.fail(error);
+        bool untracked = false;
+        if (!layout.parse_row(line, t, frame.data(), error, untracked)) scanner.fail(error);
+        if (untracked && ++untracked_rows == 1) first_untracked_line = scanner.line_number();
         if (time_column >= 0) {
             if (!raw_times.empty() && t < raw_times.back())
                 scanner.fail("timestamp " + std::to_string(t) + " is earlier than the previous row's");
@@ -358,6 +391,10 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
         clip.positions.insert(clip.positions.end(), frame.begin(), frame.end());
     }
     if (raw_times.empty()) scanner.fail("no data rows after the header");
+    if (untracked_rows > 0)
+        clip.notes.push_back(std::to_string(untracked_rows) + " row" + (untracked_rows == 1 ? "" : "s") +
+                             " with a joint not tracked (an empty or NaN coordinate; the first at line " +
+                             std::to_string(first_untracked_line) + ") read as lost frames");
 
     // Time units: given, stated by the column's name, or read from the frame spacing.
     double unit = time_column < 0 ? 1.0 : layout.time_unit_s();

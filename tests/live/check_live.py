@@ -22,6 +22,8 @@ def check(stdout: str, stderr: str, what: str) -> None:
     assert settled, f"{what}: no settled label came out"
     assert started and len(started) == len(ended), f"{what}: events not in pairs: {started} {ended}"
     assert "2 malformed lines skipped" in stderr, f"{what}: {stderr}"
+    # the frame without a body is no malformed line: a lost frame, which the annotator rejects
+    assert "1 frames rejected by the annotator" in stderr, f"{what}: {stderr}"
     print(f"{what}: {len(settled)} label changes, {len(started)} actions, malformed lines skipped and counted")
 
 

@@ -1,6 +1,7 @@
 """Writes a joint CSV stream of the toy skeleton (root, lhipjoint, rhipjoint,
 lhand, rhand) as a live source would: a header, then one frame per line,
-hands going up and down, with two malformed lines on the way (none with --clean).
+hands going up and down, with two malformed lines and one frame without a body
+(every joint field empty, as trackers export it) on the way (none with --clean).
     toy_stream.py [SECONDS] [--clean]"""
 import math
 import sys
@@ -20,4 +21,6 @@ for f in range(frames):
         print("this is not a frame")
     if f == 80 and not clean:
         print("1.0,2.0")
+    if f == 120 and not clean:
+        print(f"{t * 1000 + 10:.1f}," + "," * 14 + ",7")
     sys.stdout.flush()
