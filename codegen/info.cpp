@@ -103,6 +103,15 @@ int run_info(int argc, char** argv) {
         std::printf("up axis:   %c\nroles:     root %s, left hip %s, right hip %s\n", "xyz"[clip.up_axis],
                     name_of(clip.roles.root).c_str(), name_of(clip.roles.left_hip).c_str(),
                     name_of(clip.roles.right_hip).c_str());
+        // The tree bone and torso scaling need: the file's, or a depth-camera SDK's by the joint names.
+        std::size_t bones = 0;
+        for (const int parent : clip.parents) bones += parent >= 0 ? 1 : 0;
+        if (clip.parents.empty())
+            std::printf(
+                "tree:      none (the file gives none and its joint names are not all one Kinect SDK's): "
+                "train with --scale none\n");
+        else
+            std::printf("tree:      %zu bones (--scale bones and torso can use them; --joints lists parents)\n", bones);
         if (list_joints)
             for (std::size_t j = 0; j < clip.joint_count(); ++j)
                 std::printf("  %3zu %-28s parent %s\n", j, clip.joint_names[j].c_str(),

@@ -146,6 +146,20 @@ def test_csv_as_exported_with_its_notes(tmp_path):
         actionstring.read_clip(path, time_unit="minutes")
 
 
+def test_a_kinect_csv_brings_its_sdks_tree_and_info_says_so(tmp_path, cli):
+    from conftest import run_cli
+    kinect = tmp_path / "kinect.csv"  # Kinect v1 names as an exporter spells them, a subset with the root
+    kinect.write_text("time,HIP_CENTER_x,HIP_CENTER_y,HIP_CENTER_z,hip_left_x,hip_left_y,hip_left_z,"
+                      "HipRight_x,HipRight_y,HipRight_z,Spine_x,Spine_y,Spine_z\n"
+                      + "".join(f"{i / 30:.4f},0,1,2,-0.1,1,2,0.1,1,2,0,1.2,2\n" for i in range(5)))
+    assert actionstring.read_clip(kinect).parents == [-1, 0, 0, 0]
+    assert "tree:      3 bones" in run_cli(cli, "info", kinect)
+    own = tmp_path / "own.csv"
+    own.write_text("time,hips_x,hips_y,hips_z\n0,0,1,2\n0.04,0,1,2\n")
+    assert actionstring.read_clip(own).parents == []
+    assert "tree:      none" in run_cli(cli, "info", own)
+
+
 def test_csv_columns_given_by_hand(tmp_path):
     path = tmp_path / "odd.csv"
     path.write_text("when;a1;a2;a3;b1;b2;b3;c1;c2;c3\n0;0;1;2;-0.1;1;2;0.1;1;2\n0.04;0;1;2;-0.1;1;2;0.1;1;2\n")
