@@ -195,6 +195,13 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
                  "train: no settings given: choosing them by leave-one-subject-out cross-validation over "
                  "%zu subjects (--no-tune to skip)\n",
                  subjects.size());
+    // Self-tuning normalises size only through the skeleton's tree; say so when there is none.
+    const host::Clip& first = clips.front().clip;
+    if (first.parents.size() != first.joint_count())
+        std::fprintf(stderr,
+                     "train: note: %s has no bone tree (the file gives none and its joint names are not all one "
+                     "Kinect SDK's), so size is left alone: people of other sizes will be measured in metres\n",
+                     first.source.c_str());
     const host::TuningResult tuned = host::tune_training(clips, start, [](const host::TuningStep& step) {
         std::fprintf(stderr, "train:   %-28s fold mean %.3f  margin %+.3f%s\n", step.setting.c_str(),
                      step.mean_accuracy, step.mean_margin, step.kept ? "  <- kept" : "");

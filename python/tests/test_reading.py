@@ -160,6 +160,24 @@ def test_a_kinect_csv_brings_its_sdks_tree_and_info_says_so(tmp_path, cli):
     assert "tree:      none" in run_cli(cli, "info", own)
 
 
+def test_self_tuning_says_when_size_cannot_be_normalised(tmp_path, cli):
+    import subprocess
+    rows = ["path\tlabel\tsubject"]
+    for subject in range(3):
+        for label, rise in (("up", 0.5), ("down", -0.5)):
+            path = tmp_path / f"{label}_{subject}.csv"  # Mixamo's names in a CSV: roles, but no tree
+            path.write_text("time,Hips_x,Hips_y,Hips_z,LeftUpLeg_x,LeftUpLeg_y,LeftUpLeg_z,RightUpLeg_x,"
+                            "RightUpLeg_y,RightUpLeg_z,RightHand_x,RightHand_y,RightHand_z\n" + "".join(
+                                f"{i / 30:.4f},0,1,2,-0.1,1,2,0.1,1,2,0.3,{1 + rise * i / 30 + 0.01 * subject:.4f},2\n"
+                                for i in range(40)))
+            rows.append(f"{path.name}\t{label}\ts{subject}")
+    (tmp_path / "list.tsv").write_text("\n".join(rows) + "\n")
+    done = subprocess.run([cli, "train", "--clips", tmp_path / "list.tsv", "--out", tmp_path / "m.model"],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "has no bone tree" in done.stderr and "size is left alone" in done.stderr
+
+
 def test_csv_columns_given_by_hand(tmp_path):
     path = tmp_path / "odd.csv"
     path.write_text("when;a1;a2;a3;b1;b2;b3;c1;c2;c3\n0;0;1;2;-0.1;1;2;0.1;1;2\n0.04;0;1;2;-0.1;1;2;0.1;1;2\n")
