@@ -178,6 +178,8 @@ int run_live(const host::ModelData& model, const AnnotatorConfig& config, const 
             wrote = show(annotator->flushed_label(i), annotator->flushed_label_time_us(i)) || wrote;
         return wrote;
     };
+    // A live stream's unit cannot be read off a whole recording: metres unless --length-unit says.
+    const float metres_per_unit = read.length_scale > 0 ? static_cast<float>(read.length_scale) : 1.0f;
     std::string error;
     while (lines.next(line)) {
         ++line_number;
@@ -192,7 +194,7 @@ int run_live(const host::ModelData& model, const AnnotatorConfig& config, const 
         const double time_s = layout.time_column() >= 0 ? raw_time * unit
                                                         : static_cast<double>(frames) / read.frame_rate_hz;
         for (std::size_t j = 0; j < view.joint_count; ++j)
-            for (std::size_t a = 0; a < 3; ++a) frame[3 * j + a] = row[3 * from[j] + a];
+            for (std::size_t a = 0; a < 3; ++a) frame[3 * j + a] = row[3 * from[j] + a] * metres_per_unit;
         const FrameResult r = annotator->push_frame(host::seconds_to_us(time_s), frame.data());
         ++frames;
         if (r.status != Status::ok && r.status != Status::stream_restarted) ++rejected;

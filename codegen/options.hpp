@@ -104,8 +104,18 @@ inline double parse_time_unit(ArgumentReader& args, const std::string& text) {
     }
 }
 
+/// "m", "dm", "cm", "mm" or "in" (a message through `args` otherwise).
+inline double parse_length_unit(ArgumentReader& args, const std::string& text) {
+    try {
+        return host::parse_length_unit(text);
+    } catch (const std::invalid_argument& error) {
+        args.error(error.what());
+        return 0.0;
+    }
+}
+
 /// Reads one of the options every command that reads a motion file takes
-/// (--skeleton ASF, --rate HZ, --roles R,L,R, --time-unit s|ms|us, --body N,
+/// (--skeleton ASF, --rate HZ, --roles R,L,R, --time-unit s|ms|us, --length-unit m|dm|cm|mm|in, --body N,
 /// --columns SPEC) into `read` and `skeleton`. Returns false when `option` is not one.
 inline bool parse_read_option(ArgumentReader& args, const std::string& option, host::ReadOptions& read,
                               std::string& skeleton) {
@@ -113,6 +123,7 @@ inline bool parse_read_option(ArgumentReader& args, const std::string& option, h
     else if (option == "--rate") read.frame_rate_hz = args.number(option, 0.001, 1e6);
     else if (option == "--roles") read.roles = parse_roles(args, args.value(option));
     else if (option == "--time-unit") read.time_unit_s = parse_time_unit(args, args.value(option));
+    else if (option == "--length-unit") read.length_scale = parse_length_unit(args, args.value(option));
     else if (option == "--body") read.body = static_cast<int>(args.whole(option, 0, 63));
     else if (option == "--columns") read.columns = args.value(option);
     else return false;

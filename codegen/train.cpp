@@ -96,6 +96,8 @@ void print_train_usage(std::FILE* out) {
                  "  --seed N                [%u]\n"
                  "  --rate HZ               frame rate of files without timing (AMC 120, MSR 15)\n"
                  "  --roles R,L,R           root, left hip, right hip joint names\n"
+                 "  --length-unit U         m, dm, cm, mm or in: the length unit of files that state\n"
+                 "                          none (a CSV's is read off the body's height otherwise)\n"
                  "  --up X,Y,Z              the sensor's up direction in the files' coordinates, when\n"
                  "                          tilted and known: every frame is turned upright as read\n"
                  "                          (a list's own 'up' column wins for its lines)\n"
@@ -347,8 +349,8 @@ int run_train(int argc, char** argv) {
             const std::string value = args.value(arg);
             if (args.ok() && !apply(args, name, value, options, read)) return args.unknown(arg);
             // Reading, skeleton and cost choices are not tuned settings: self-tuning still runs.
-            if (name != "rate" && name != "roles" && name != "time-unit" && name != "body" && name != "columns" &&
-                name != "up" && name != "pose-joints" && name != "max-representative-chars" &&
+            if (name != "rate" && name != "roles" && name != "time-unit" && name != "length-unit" && name != "body" &&
+                name != "columns" && name != "up" && name != "pose-joints" && name != "max-representative-chars" &&
                 name != "max-representative-share" && name != "reject" && name != "reject-keep" &&
                 name != "latency-budget")
                 settings_given = true;

@@ -30,6 +30,7 @@ int run_view(int argc, char** argv) {
                 "usage: actionstring view FILE --model MODEL --out PAGE.html [--label NAME] [--title TEXT]\n"
                 "                         [--skeleton ASF] [--rate HZ] [--roles R,L,R] [--time-unit s|ms|us]\n"
                 "                         [--body N] [--columns time=COL,JOINT=X:Y:Z,...] [--up X,Y,Z]\n"
+                "                         [--length-unit m|dm|cm|mm|in]\n"
                 "                         [segmenter options]\n\n"
                 "Streams FILE through the annotator as 'annotate' does and writes one\n"
                 "self-contained HTML page (no network access, no external scripts) to look at\n"

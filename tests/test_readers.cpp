@@ -442,6 +442,49 @@ TEST_CASE("joint CSV rows with joints not tracked are lost frames, kept and coun
     check_error([&] { parse_joint_csv("k.csv", header + "0,0,1,2,-0.1,1\n"); }, 2, "expected 7 columns, got 6");
 }
 
+TEST_CASE("joint CSV length units: read off the body's height unless given") {
+    // A 1.7 m body (head above hips above feet) written in metres, centimetres and millimetres.
+    auto body_csv = [](double unit) {
+        std::string text =
+            "time,Head_x,Head_y,Head_z,HipCenter_x,HipCenter_y,HipCenter_z,FootLeft_x,FootLeft_y,FootLeft_z\n";
+        for (int f = 0; f < 4; ++f) {
+            const double sway = 0.01 * f;
+            text += std::to_string(f / 30.0);
+            for (const double y : {1.7, 0.9, 0.0})
+                for (const double v : {sway, y, 2.5}) text += "," + std::to_string(v * unit);
+            text += "\n";
+        }
+        return text;
+    };
+    const Clip metres = parse_joint_csv("m.csv", body_csv(1.0));
+    CHECK(metres.notes.empty());
+    for (const double unit : {100.0, 1000.0}) {
+        const Clip clip = parse_joint_csv("u.csv", body_csv(unit));
+        REQUIRE(clip.positions.size() == metres.positions.size());
+        for (std::size_t k = 0; k < clip.positions.size(); ++k)
+            CHECK(clip.positions[k] == doctest::Approx(metres.positions[k]).epsilon(1e-5));
+        REQUIRE(clip.notes.size() == 1);
+        CHECK(clip.notes[0].find(unit == 100.0 ? "lengths taken as centimetres: the body spans 170 units"
+                                               : "lengths taken as millimetres: the body spans 1700 units") == 0);
+    }
+    // Given, the unit wins and nothing is guessed; lost frames (zeros) do not move the guess.
+    ReadOptions given;
+    given.length_scale = metres_per_unit("m");
+    const Clip kept = parse_joint_csv("u.csv", body_csv(1000.0), given);
+    CHECK(kept.frame(0)[1] == doctest::Approx(1700.0f));
+    CHECK(kept.notes.empty());
+    const Clip with_lost = parse_joint_csv(
+        "u.csv", body_csv(1000.0) + "0.2,,,,,,,,,\n0.3,,,,,,,,,\n0.4,,,,,,,,,\n0.5,,,,,,,,,\n0.6,,,,,,,,,\n");
+    CHECK(with_lost.frame(0)[1] == doctest::Approx(1.7f));
+    // A skeleton of the hips alone spans nothing along the vertical: metres, as stated nowhere else.
+    CHECK(parse_joint_csv("h.csv",
+                          "time,HipLeft_x,HipLeft_y,HipLeft_z,HipRight_x,HipRight_y,HipRight_z\n0,-0.1,1,2,0.1,1,2\n")
+              .notes.empty());
+    CHECK(metres_per_unit("in") == doctest::Approx(0.0254));
+    CHECK_THROWS_WITH_AS(metres_per_unit("yard"), "expected a length unit: m, dm, cm, mm or in, got 'yard'",
+                         std::invalid_argument);
+}
+
 TEST_CASE("joints named after a depth-camera SDK take its bone tree") {
     // Each joint's parent by name, as the SDKs document their trees.
     auto parent_names = [](const std::vector<std::string>& names, const std::vector<int>& parents) {

@@ -281,7 +281,8 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
         const std::string key = item.first.cast<std::string>();
         if (!host::apply_training_setting(setting_name(key), setting_value(item.second), options, unused))
             throw py::value_error("unknown training setting '" + key + "'");
-        if (key == "rate" || key == "roles" || key == "time_unit" || key == "body" || key == "columns" || key == "up")
+        if (key == "rate" || key == "roles" || key == "time_unit" || key == "length_unit" || key == "body" ||
+            key == "columns" || key == "up")
             throw py::value_error("'" + key + "' is a reading setting: give it to read_clip or read_clip_list");
     }
     if (clips.empty()) throw py::value_error("no clips to train on");

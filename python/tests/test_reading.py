@@ -178,6 +178,16 @@ def test_self_tuning_says_when_size_cannot_be_normalised(tmp_path, cli):
     assert "has no bone tree" in done.stderr and "size is left alone" in done.stderr
 
 
+def test_a_csv_in_millimetres_reads_in_metres(tmp_path):
+    path = tmp_path / "mm.csv"
+    path.write_text("time,Head_x,Head_y,Head_z,HipCenter_x,HipCenter_y,HipCenter_z,FootLeft_x,FootLeft_y,FootLeft_z\n"
+                    + "".join(f"{i / 30:.4f},0,1700,2500,0,900,2500,0,0,2500\n" for i in range(5)))
+    clip = actionstring.read_clip(path)
+    assert clip.positions[0, 0, 1] == pytest.approx(1.7)
+    assert any(note.startswith("lengths taken as millimetres") for note in clip.notes)
+    assert actionstring.read_clip(path, scale=1.0).positions[0, 0, 1] == pytest.approx(1700.0)
+
+
 def test_csv_columns_given_by_hand(tmp_path):
     path = tmp_path / "odd.csv"
     path.write_text("when;a1;a2;a3;b1;b2;b3;c1;c2;c3\n0;0;1;2;-0.1;1;2;0.1;1;2\n0.04;0;1;2;-0.1;1;2;0.1;1;2\n")
@@ -214,7 +224,7 @@ def test_a_sensors_up_direction_turns_the_frames_upright(tmp_path):
         actionstring.read_clip_list(listed)
 
 
-@pytest.mark.parametrize("setting", [dict(up=(0.0, 1.0, 0.0)), dict(rate=30.0), dict(body=0)])
+@pytest.mark.parametrize("setting", [dict(up=(0.0, 1.0, 0.0)), dict(rate=30.0), dict(body=0), dict(length_unit="mm")])
 def test_reading_settings_are_refused_by_train(toy_clips, setting):
     """What belongs to reading a file is given to read_clip or read_clip_list, never to train."""
     with pytest.raises(ValueError, match="reading setting"):

@@ -122,15 +122,6 @@ void parse_joint_body(TokenStream& tokens, std::vector<BvhJoint>& joints, std::u
     }
 }
 
-// Metres per file unit from the body's height in file units: m, cm, mm or inches.
-double guess_scale(double height) {
-    if (height < 3.0) return 1.0;
-    if (height < 30.0) return 0.1;      // decimetres: unusual, but keeps the figure human
-    if (height < 110.0) return 0.0254;  // inches (a 1.0–2.8 m person is 40–110 in)
-    if (height < 300.0) return 0.01;    // centimetres
-    return 0.001;                       // millimetres
-}
-
 }  // namespace
 
 Clip parse_bvh(const std::string& name, std::string_view text, const ReadOptions& options) {
@@ -268,7 +259,7 @@ Clip parse_bvh(const std::string& name, std::string_view text, const ReadOptions
             heights.push_back(high - low);
         }
         std::nth_element(heights.begin(), heights.begin() + static_cast<long>(heights.size() / 2), heights.end());
-        scale = heights.empty() ? 1.0 : guess_scale(heights[heights.size() / 2]);
+        scale = heights.empty() ? 1.0 : metres_per_unit_for_height(heights[heights.size() / 2]);
     }
     for (float& v : clip.positions) v = static_cast<float>(static_cast<double>(v) * scale);
     flag_lost_frames(clip);

@@ -32,6 +32,23 @@ std::string joint_spelling_key(std::string_view name) {
     return key;
 }
 
+double metres_per_unit(std::string_view unit) {
+    if (unit == "m") return 1.0;
+    if (unit == "dm") return 0.1;
+    if (unit == "cm") return 0.01;
+    if (unit == "mm") return 0.001;
+    if (unit == "in") return 0.0254;
+    throw std::invalid_argument("expected a length unit: m, dm, cm, mm or in, got '" + std::string(unit) + "'");
+}
+
+double metres_per_unit_for_height(double height) {
+    if (height < 3.0) return 1.0;
+    if (height < 30.0) return 0.1;      // decimetres: unusual, but keeps the figure human
+    if (height < 110.0) return 0.0254;  // inches (a 1.0–2.8 m person is 40–110 in)
+    if (height < 300.0) return 0.01;    // centimetres
+    return 0.001;                       // millimetres
+}
+
 namespace {
 
 // Built-in role names, tried in order: HDM05/CMU ASF, Kinect v1, Kinect v2,

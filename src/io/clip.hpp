@@ -68,7 +68,7 @@ struct ReadOptions {
     /// UTKinect ids: 30). 0 keeps the format's default.
     double frame_rate_hz = 0.0;
     /// Metres per file unit. 0 keeps the format's own rule (ASF from :units,
-    /// BVH guessed from the skeleton's height, Kinect text in metres).
+    /// BVH and joint CSV guessed from the body's height, Kinect text in metres).
     double length_scale = 0.0;
     /// Vertical axis, or −1 for the format's rule (BVH: detected).
     int up_axis = -1;
@@ -90,6 +90,15 @@ struct ReadOptions {
     /// device's frames. All zeros: as stored.
     float up[3] = {0.0f, 0.0f, 0.0f};
 };
+
+/// Metres per unit of a length unit's name: m, dm, cm, mm or in. Throws
+/// std::invalid_argument saying what was expected.
+double metres_per_unit(std::string_view unit);
+
+/// Metres per file unit for a body `height` units tall along its up axis,
+/// for files that do not state their unit (BVH, joint CSV): m below 3, dm
+/// below 30, inches below 110 (a 1.0–2.8 m person), cm below 300, else mm.
+double metres_per_unit_for_height(double height);
 
 /// Reads a sensor's up direction written as X,Y,Z (three numbers; 0,0,0 for
 /// none) into `up`. Throws std::invalid_argument saying what was expected:

@@ -103,6 +103,14 @@ double parse_time_unit(const std::string& text) {
     throw std::invalid_argument("option --time-unit expects s, ms or us, got '" + text + "'");
 }
 
+double parse_length_unit(const std::string& text) {
+    try {
+        return metres_per_unit(text);
+    } catch (const std::invalid_argument&) {
+        throw std::invalid_argument("option --length-unit expects m, dm, cm, mm or in, got '" + text + "'");
+    }
+}
+
 RoleNames parse_role_names(const std::string& text) {
     RoleNames names;
     const std::size_t first = text.find(','), second = first == std::string::npos ? first : text.find(',', first + 1);
@@ -181,6 +189,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (apply_segmenter_setting(name, value, o.online)) return true;
     else if (name == "rate") read.frame_rate_hz = num(0.001, 1e6);
     else if (name == "time-unit") read.time_unit_s = parse_time_unit(value);
+    else if (name == "length-unit") read.length_scale = parse_length_unit(value);
     else if (name == "body") read.body = static_cast<int>(whole(0, 63));
     else if (name == "columns") read.columns = value;
     else if (name == "roles") read.roles = parse_role_names(value);
@@ -259,6 +268,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "rate",
                                                 "roles",
                                                 "time-unit",
+                                                "length-unit",
                                                 "body",
                                                 "columns",
                                                 "up"};

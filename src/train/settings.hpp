@@ -55,6 +55,9 @@ void read_training_config(const std::string& path, TrainingOptions& options, Rea
 /// "s", "ms" or "us" → seconds per unit; throws std::invalid_argument.
 double parse_time_unit(const std::string& text);
 
+/// "m", "dm", "cm", "mm" or "in" → metres per unit (a file's length unit); throws std::invalid_argument.
+double parse_length_unit(const std::string& text);
+
 /// "ROOT,LEFT_HIP,RIGHT_HIP" → role names; throws std::invalid_argument.
 RoleNames parse_role_names(const std::string& text);
 
