@@ -248,18 +248,7 @@ Clip parse_bvh(const std::string& name, std::string_view text, const ReadOptions
     double scale = options.length_scale;
     if (!(scale > 0)) {
         // The body's median height along the vertical, in file units.
-        std::vector<double> heights;
-        for (std::size_t f = 0; f < frames; ++f) {
-            const float* p = clip.frame(f);
-            double low = p[up], high = p[up];
-            for (std::size_t j = 1; j < J; ++j) {
-                low = std::min(low, static_cast<double>(p[3 * j + static_cast<std::size_t>(up)]));
-                high = std::max(high, static_cast<double>(p[3 * j + static_cast<std::size_t>(up)]));
-            }
-            heights.push_back(high - low);
-        }
-        std::nth_element(heights.begin(), heights.begin() + static_cast<long>(heights.size() / 2), heights.end());
-        scale = heights.empty() ? 1.0 : metres_per_unit_for_height(heights[heights.size() / 2]);
+        scale = metres_per_unit_for_height(median_body_height(clip, up));
     }
     for (float& v : clip.positions) v = static_cast<float>(static_cast<double>(v) * scale);
     flag_lost_frames(clip);

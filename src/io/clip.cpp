@@ -49,6 +49,24 @@ double metres_per_unit_for_height(double height) {
     return 0.001;                       // millimetres
 }
 
+double median_body_height(const Clip& clip, int up_axis) {
+    const std::size_t up = static_cast<std::size_t>(up_axis), J = clip.joint_count();
+    std::vector<double> heights;
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        const float* p = clip.frame(f);
+        if (std::all_of(p, p + 3 * J, [](float v) { return v == 0.0f; })) continue;  // lost: says nothing
+        double low = p[up], high = p[up];
+        for (std::size_t j = 1; j < J; ++j) {
+            low = std::min(low, static_cast<double>(p[3 * j + up]));
+            high = std::max(high, static_cast<double>(p[3 * j + up]));
+        }
+        heights.push_back(high - low);
+    }
+    if (heights.empty()) return 0.0;
+    std::nth_element(heights.begin(), heights.begin() + static_cast<long>(heights.size() / 2), heights.end());
+    return heights[heights.size() / 2];
+}
+
 namespace {
 
 // Built-in role names, tried in order: HDM05/CMU ASF, Kinect v1, Kinect v2,

@@ -100,6 +100,11 @@ double metres_per_unit(std::string_view unit);
 /// below 30, inches below 110 (a 1.0–2.8 m person), cm below 300, else mm.
 double metres_per_unit_for_height(double height);
 
+/// The body's median height along `up_axis` (the span from its lowest to its
+/// highest joint) over the frames that are not all zeros (lost), in the
+/// clip's units; 0 when every frame is lost.
+double median_body_height(const Clip& clip, int up_axis);
+
 /// Reads a sensor's up direction written as X,Y,Z (three numbers; 0,0,0 for
 /// none) into `up`. Throws std::invalid_argument saying what was expected:
 /// not three numbers, or not a direction (not finite, or shorter than 1e-6).

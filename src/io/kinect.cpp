@@ -425,36 +425,18 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
     for (const double t : raw_times) clip.times.push_back(t * unit);
     // Length unit: given, else read off the body's median height along the up axis over
     // the tracked frames (a CSV states none; depth SDKs and mocap tools export mm or cm too).
-    if (!(options.length_scale > 0)) {
-        const std::size_t up = static_cast<std::size_t>(options.up_axis >= 0 ? options.up_axis : 1);
-        std::vector<double> heights;
-        for (std::size_t f = 0; f < clip.frame_count(); ++f) {
-            const float* p = clip.frame(f);
-            double low = p[up], high = p[up];
-            bool tracked = false;
-            for (std::size_t k = 0; k < 3 * clip.joint_count(); ++k) tracked = tracked || p[k] != 0.0f;
-            if (!tracked) continue;  // a lost frame's zeros say nothing of the unit
-            for (std::size_t j = 1; j < clip.joint_count(); ++j) {
-                low = std::min(low, static_cast<double>(p[3 * j + up]));
-                high = std::max(high, static_cast<double>(p[3 * j + up]));
-            }
-            heights.push_back(high - low);
-        }
-        if (!heights.empty()) {
-            std::nth_element(heights.begin(), heights.begin() + static_cast<long>(heights.size() / 2), heights.end());
-            const double height = heights[heights.size() / 2], scale = metres_per_unit_for_height(height);
-            if (scale != 1.0) {
-                for (float& v : clip.positions) v = static_cast<float>(static_cast<double>(v) * scale);
-                const char* unit_name = scale == 0.001    ? "millimetres"
-                                        : scale == 0.01   ? "centimetres"
-                                        : scale == 0.0254 ? "inches"
-                                                          : "decimetres";
-                char spans[64];
-                std::snprintf(spans, sizeof spans, "%.0f", height);
-                clip.notes.push_back(std::string("lengths taken as ") + unit_name + ": the body spans " + spans +
-                                     " units along the up axis (give --length-unit m|dm|cm|mm|in to say otherwise)");
-            }
-        }
+    const double height = median_body_height(clip, options.up_axis >= 0 ? options.up_axis : 1);
+    const double scale = options.length_scale > 0 ? 1.0 : metres_per_unit_for_height(height);
+    if (scale != 1.0) {
+        for (float& v : clip.positions) v = static_cast<float>(static_cast<double>(v) * scale);
+        const char* unit_name = scale == 0.001    ? "millimetres"
+                                : scale == 0.01   ? "centimetres"
+                                : scale == 0.0254 ? "inches"
+                                                  : "decimetres";
+        char spans[64];
+        std::snprintf(spans, sizeof spans, "%.0f", height);
+        clip.notes.push_back(std::string("lengths taken as ") + unit_name + ": the body spans " + spans +
+                             " units along the up axis (give --length-unit m|dm|cm|mm|in to say otherwise)");
     }
     if (step > 0 && !plausible(1.0 / (step * unit)))
         clip.notes.push_back("warning: the median frame spacing gives " + std::to_string(1.0 / (step * unit)) +
