@@ -50,7 +50,8 @@ def read_clip(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis:
     NTU RGB+D ``.skeleton``).
 
     ``rate`` is the frame rate of files without timing (0: the format's default),
-    ``scale`` metres per file unit (0: the format's rule), ``up_axis`` 0/1/2 (-1:
+    ``scale`` metres per file unit (0: the format's rule; a CSV's unit is read off
+    the body's height, m, cm or mm, and said in ``clip.notes``), ``up_axis`` 0/1/2 (-1:
     the format's rule), ``roles`` the (root, left hip, right hip) joint names,
     ``time_unit`` a CSV's time unit ("s", "ms", "us"; default: its column's name,
     else the frame spacing), ``body`` which body of an NTU file (-1: the one that
@@ -76,7 +77,7 @@ def read_clip_list(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_
 def training_settings() -> List[str]:
     """Names ``train`` accepts as keywords (dashes as underscores), as ``actionstring train`` takes them."""
     return [name.replace("-", "_") for name in _native._training_setting_names()
-            if name not in ("rate", "roles", "time-unit", "body", "columns", "up")]
+            if name not in ("rate", "roles", "time-unit", "length-unit", "body", "columns", "up")]
 
 
 class Classification(tuple):

@@ -163,6 +163,7 @@ def test_settings_are_checked(toy_clips):
     with pytest.raises(ValueError, match="no clips"):
         actionstring.train([])
     assert "string_rate" in actionstring.training_settings()
+    assert "length_unit" not in actionstring.training_settings()  # a reading setting: read_clip(scale=...)
 
 
 def test_save_load_blob_and_header_round_trip(toy_model, tmp_path):
