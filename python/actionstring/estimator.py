@@ -12,8 +12,8 @@ class ActionStringClassifier:
     """Classifies motion clips by action strings: ``fit(X, y, groups=...)``, ``predict``, ``score``.
 
     ``X`` holds Clip objects, or arrays of shape (frames, joints, 3) in metres taken
-    at ``frame_rate`` with ``joint_names`` (Kinect v1 or v2 names when omitted and the
-    joint count is 20 or 25) and ``parents``, each joint's parent (-1 at the root), for
+    at ``frame_rate`` with ``joint_names`` (Kinect v1, Kinect v2 or Azure Kinect names
+    when omitted and the joint count is 20, 25 or 32) and ``parents``, each joint's parent (-1 at the root), for
     a rig that is not a Kinect SDK's (whose tree comes with its names); bone-length
     scaling needs one. ``groups`` are the subjects: with no training settings
     given, training tunes itself by leave-one-subject-out cross-validation over them.

@@ -72,7 +72,7 @@ py::object label_object(const ModelData& model, LabelId label) {
 // ---- clips -------------------------------------------------------------------
 
 // A clip from arrays: positions (frames, joints, 3) in metres, times in seconds
-// or a frame rate, joint names (Kinect v1 or v2 when omitted and the count says so),
+// or a frame rate, joint names (Kinect v1, v2 or Azure Kinect when omitted and the count says so),
 // the skeleton's tree as given, else a Kinect SDK's when the names are all of one.
 LabelledClip clip_from_arrays(const py::handle& positions_object, const py::object& times_object, double frame_rate,
                               const py::object& joint_names_object, const std::string& label,
@@ -119,9 +119,11 @@ LabelledClip clip_from_arrays(const py::handle& positions_object, const py::obje
         clip.joint_names = host::kinect_v1_joint_names();
     } else if (joints == host::kinect_v2_joint_names().size()) {
         clip.joint_names = host::kinect_v2_joint_names();
+    } else if (joints == host::azure_kinect_joint_names().size()) {
+        clip.joint_names = host::azure_kinect_joint_names();
     } else {
         throw py::value_error("joint_names: needed for a skeleton of " + std::to_string(joints) +
-                              " joints (20 and 25 are taken as Kinect v1 and v2)");
+                              " joints (20, 25 and 32 are taken as Kinect v1, Kinect v2 and Azure Kinect)");
     }
     if (up_axis < 0 || up_axis > 2) throw py::value_error("up_axis: 0, 1 or 2");
     clip.up_axis = up_axis;

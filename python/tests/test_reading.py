@@ -57,6 +57,8 @@ def test_clip_from_arrays_takes_a_kinect_sdks_tree_or_the_one_given():
     names = ["PELVIS", "HIP_LEFT", "HIP_RIGHT", "SPINE_NAVEL", "SPINE_CHEST", "NECK", "HEAD", "NOSE"]
     azure = actionstring.Clip(np.zeros((5, 8, 3)), frame_rate=30.0, joint_names=names)
     assert azure.parents == [-1, 0, 0, 0, 3, 4, 5, 6]
+    azure_default = actionstring.Clip(np.zeros((5, 32, 3)), frame_rate=30.0)  # 32 joints: Azure Kinect's
+    assert azure_default.joint_names[1] == "SPINE_NAVEL" and azure_default.parents[26] == 3
     own = ["hips", "left_hip", "right_hip", "head"]  # names of no SDK: no tree unless given
     assert actionstring.Clip(np.zeros((5, 4, 3)), frame_rate=30.0, joint_names=own).parents == []
     given = actionstring.Clip(np.zeros((5, 4, 3)), frame_rate=30.0, joint_names=own, parents=[-1, 0, 0, 0])
