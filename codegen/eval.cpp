@@ -30,6 +30,7 @@ void print_eval_usage(std::FILE* out) {
     std::fprintf(out,
                  "usage: actionstring eval --model MODEL --clips LIST [--train LIST] [--json FILE]\n"
                  "                         [--online] [--seed N] [--rate HZ] [--roles R,L,R] [--length-unit U]\n"
+                 "                         [--parents P,P,...]\n"
                  "                         [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
                  "                         [--skip-penalty X] [--unknown-cost X] [--segment-votes X]\n"
                  "                         [--segment-exemplars X] [--min-action S] [--label-lead S]\n"
@@ -245,6 +246,7 @@ int run_eval(int argc, char** argv) {
         else if (arg == "--json") json_path = args.value(arg);
         else if (arg == "--rate") read.frame_rate_hz = args.number(arg, 0.001, 1e6);
         else if (arg == "--length-unit") read.length_scale = parse_length_unit(args, args.value(arg));
+        else if (arg == "--parents") read.parents = parse_parents(args, args.value(arg));
         else if (arg == "--online") online = true;
         else if (arg == "--seed") seed = static_cast<std::uint32_t>(args.whole(arg, 0, 4294967295.0));
         else if (arg == "--roles") read.roles = parse_roles(args, args.value(arg));

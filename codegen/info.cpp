@@ -17,7 +17,7 @@ void print_info_usage(std::FILE* out) {
     std::fprintf(out,
                  "usage: actionstring info FILE [--skeleton ASF] [--rate HZ] [--scale M] [--up 0|1|2]\n"
                  "                         [--roles ROOT,LEFT_HIP,RIGHT_HIP] [--time-unit s|ms|us] [--joints]\n"
-                 "                         [--length-unit m|dm|cm|mm|in]\n"
+                 "                         [--length-unit m|dm|cm|mm|in] [--parents P,P,...]\n"
                  "\n"
                  "Reads a motion file (.amc with --skeleton, .asf, .bvh, .csv/.tsv, Kinect .txt, NTU .skeleton) and\n"
                  "prints its joints, frames, duration, frame rate, bounding box, up axis, joint\n"
@@ -29,6 +29,8 @@ void print_info_usage(std::FILE* out) {
                  "  --roles R,L,R   joint names for root, left hip and right hip\n"
                  "  --time-unit U   unit of a CSV's time column (default: its name's, else from the spacing)\n"
                  "  --length-unit U m, dm, cm, mm or in (as --scale; default: a CSV's from the body's height)\n"
+                 "  --parents P,... each joint's parent by name in the file's order, - for a root (a tree\n"
+                 "                  for a file that gives none; --joints shows it)\n"
                  "  --body N        body N (from 0) of an NTU RGB+D .skeleton (default: the one that moves most)\n"
                  "  --columns SPEC  a CSV's layout when no spelling rule fits: time=COL,JOINT=X:Y:Z,...\n"
                  "  --joints        list every joint with its parent\n");

@@ -114,8 +114,19 @@ inline double parse_length_unit(ArgumentReader& args, const std::string& text) {
     }
 }
 
+/// "-,Hips,Spine,..." (a message through `args` otherwise).
+inline std::vector<std::string> parse_parents(ArgumentReader& args, const std::string& text) {
+    try {
+        return host::parse_parent_names(text);
+    } catch (const std::invalid_argument& error) {
+        args.error("option --parents: " + std::string(error.what()));
+        return {};
+    }
+}
+
 /// Reads one of the options every command that reads a motion file takes
-/// (--skeleton ASF, --rate HZ, --roles R,L,R, --time-unit s|ms|us, --length-unit m|dm|cm|mm|in, --body N,
+/// (--skeleton ASF, --rate HZ, --roles R,L,R, --time-unit s|ms|us, --length-unit m|dm|cm|mm|in,
+/// --parents P,P,..., --body N,
 /// --columns SPEC) into `read` and `skeleton`. Returns false when `option` is not one.
 inline bool parse_read_option(ArgumentReader& args, const std::string& option, host::ReadOptions& read,
                               std::string& skeleton) {
@@ -124,6 +135,7 @@ inline bool parse_read_option(ArgumentReader& args, const std::string& option, h
     else if (option == "--roles") read.roles = parse_roles(args, args.value(option));
     else if (option == "--time-unit") read.time_unit_s = parse_time_unit(args, args.value(option));
     else if (option == "--length-unit") read.length_scale = parse_length_unit(args, args.value(option));
+    else if (option == "--parents") read.parents = parse_parents(args, args.value(option));
     else if (option == "--body") read.body = static_cast<int>(args.whole(option, 0, 63));
     else if (option == "--columns") read.columns = args.value(option);
     else return false;

@@ -98,6 +98,9 @@ void print_train_usage(std::FILE* out) {
                  "  --roles R,L,R           root, left hip, right hip joint names\n"
                  "  --length-unit U         m, dm, cm, mm or in: the length unit of files that state\n"
                  "                          none (a CSV's is read off the body's height otherwise)\n"
+                 "  --parents P,P,...       each joint's parent by name in the files' joint order, - for\n"
+                 "                          a root: the bone tree of a rig whose files give none (a CSV\n"
+                 "                          of joints no Kinect SDK names), for --scale bones or torso\n"
                  "  --up X,Y,Z              the sensor's up direction in the files' coordinates, when\n"
                  "                          tilted and known: every frame is turned upright as read\n"
                  "                          (a list's own 'up' column wins for its lines)\n"
@@ -202,7 +205,8 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
     if (first.parents.size() != first.joint_count())
         std::fprintf(stderr,
                      "train: note: %s has no bone tree (the file gives none and its joint names are not all one "
-                     "Kinect SDK's), so size is left alone: people of other sizes will be measured in metres\n",
+                     "Kinect SDK's), so size is left alone: people of other sizes will be measured in metres "
+                     "(--parents gives a tree)\n",
                      first.source.c_str());
     const host::TuningResult tuned = host::tune_training(clips, start, [](const host::TuningStep& step) {
         std::fprintf(stderr, "train:   %-28s fold mean %.3f  margin %+.3f%s\n", step.setting.c_str(),
@@ -350,9 +354,9 @@ int run_train(int argc, char** argv) {
             if (args.ok() && !apply(args, name, value, options, read)) return args.unknown(arg);
             // Reading, skeleton and cost choices are not tuned settings: self-tuning still runs.
             if (name != "rate" && name != "roles" && name != "time-unit" && name != "length-unit" && name != "body" &&
-                name != "columns" && name != "up" && name != "pose-joints" && name != "max-representative-chars" &&
-                name != "max-representative-share" && name != "reject" && name != "reject-keep" &&
-                name != "latency-budget")
+                name != "columns" && name != "parents" && name != "up" && name != "pose-joints" &&
+                name != "max-representative-chars" && name != "max-representative-share" && name != "reject" &&
+                name != "reject-keep" && name != "latency-budget")
                 settings_given = true;
         } else {
             return args.unknown(arg);

@@ -548,6 +548,38 @@ TEST_CASE("joints named after a depth-camera SDK take its bone tree") {
     CHECK(parse_joint_csv("k.csv", "timestamp,a_x,a_y,a_z\n0,1,2,3\n").parents.empty());
 }
 
+TEST_CASE("a tree given by parent names: any rig's CSV gets its bones") {
+    const std::string text =
+        "time,hips_x,hips_y,hips_z,spine_x,spine_y,spine_z,l_hand_x,l_hand_y,l_hand_z,R-HAND_x,R-HAND_y,R-HAND_z\n"
+        "0,0,1,2,0,1.3,2,-0.5,1.3,2,0.5,1.3,2\n";
+    const Clip clip = parse_joint_csv("rig.csv", text);
+    REQUIRE(clip.parents.empty());  // names of no SDK
+    CHECK(parents_from_names(clip, {"-", "hips", "SPINE", "spine"}) == std::vector<int>{-1, 0, 1, 1});
+    CHECK(parse_parent_names(" -, hips ,spine,spine") == std::vector<std::string>{"-", "hips", "spine", "spine"});
+    auto refused = [&](const std::vector<std::string>& names, const std::string& fragment) {
+        try {
+            parents_from_names(clip, names);
+            FAIL("accepted " << names.size() << " names; expected '" << fragment << "'");
+        } catch (const std::invalid_argument& error) {
+            CHECK(std::string(error.what()).find(fragment) != std::string::npos);
+        }
+    };
+    refused({"-", "hips", "spine"}, "3 names for 4 joints");
+    refused({"-", "hips", "neck", "spine"}, "'neck' (the parent of l_hand) is not a joint of the file");
+    refused({"-", "l_hand", "spine", "spine"}, "joint 1 is in a cycle");
+    CHECK_THROWS_AS(parse_parent_names(""), std::invalid_argument);
+
+    // Through read_clip, as every command reads files: the option wins over the file's (here none).
+    const std::string path = (std::filesystem::temp_directory_path() / "actionstring_parents_test.csv").string();
+    { std::ofstream(path) << text; }
+    ReadOptions options;
+    options.parents = {"-", "hips", "spine", "spine"};
+    CHECK(read_clip(path, options).parents == std::vector<int>{-1, 0, 1, 1});
+    options.parents = {"-", "hips"};
+    check_error([&] { read_clip(path, options); }, 0, "2 names for 4 joints");
+    std::filesystem::remove(path);
+}
+
 TEST_CASE("clip lists resolve paths against their folder") {
     const auto entries = parse_clip_list(
         "l.tsv", "path\tlabel\tsubject\tskeleton\nx/a.amc\tjump\tbd\tasf/b.asf\n/abs/c.amc\trun\tmm\ts.asf\n", "/data");

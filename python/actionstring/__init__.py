@@ -77,7 +77,7 @@ def read_clip_list(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_
 def training_settings() -> List[str]:
     """Names ``train`` accepts as keywords (dashes as underscores), as ``actionstring train`` takes them."""
     return [name.replace("-", "_") for name in _native._training_setting_names()
-            if name not in ("rate", "roles", "time-unit", "length-unit", "body", "columns", "up")]
+            if name not in ("rate", "roles", "time-unit", "length-unit", "parents", "body", "columns", "up")]
 
 
 class Classification(tuple):

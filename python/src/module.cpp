@@ -134,24 +134,7 @@ LabelledClip clip_from_arrays(const py::handle& positions_object, const py::obje
         roles = host::RoleNames{names[0], names[1], names[2]};
     }
     if (!parents_object.is_none()) {
-        clip.parents = parents_object.cast<std::vector<int>>();
-        if (clip.parents.size() != joints)
-            throw py::value_error("parents: " + std::to_string(clip.parents.size()) + " parents for " +
-                                  std::to_string(joints) + " joints (one per joint, -1 at a root)");
-        for (std::size_t j = 0; j < joints; ++j) {
-            // Up from every joint: a root must come within `joints` steps, or the parents form a cycle.
-            int up = static_cast<int>(j);
-            std::size_t steps = 0;
-            for (; up >= 0 && steps <= joints; ++steps) {
-                const int parent = clip.parents[static_cast<std::size_t>(up)];
-                if (parent < -1 || parent >= static_cast<int>(joints))
-                    throw py::value_error("parents: joint " + std::to_string(up) + "'s parent " +
-                                          std::to_string(parent) + " is not -1 or a joint index below " +
-                                          std::to_string(joints));
-                up = parent;
-            }
-            if (up >= 0) throw py::value_error("parents: joint " + std::to_string(j) + " is in a cycle, not a tree");
-        }
+        host::set_parents(clip, parents_object.cast<std::vector<int>>());  // std::invalid_argument: ValueError
     } else {
         clip.parents = host::sdk_parents(clip.joint_names);  // empty unless the names are one SDK's
     }
@@ -284,7 +267,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
         if (!host::apply_training_setting(setting_name(key), setting_value(item.second), options, unused))
             throw py::value_error("unknown training setting '" + key + "'");
         if (key == "rate" || key == "roles" || key == "time_unit" || key == "length_unit" || key == "body" ||
-            key == "columns" || key == "up")
+            key == "columns" || key == "up" || key == "parents")
             throw py::value_error("'" + key + "' is a reading setting: give it to read_clip or read_clip_list");
     }
     if (clips.empty()) throw py::value_error("no clips to train on");

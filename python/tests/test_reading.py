@@ -178,6 +178,14 @@ def test_self_tuning_says_when_size_cannot_be_normalised(tmp_path, cli):
                           capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     assert "has no bone tree" in done.stderr and "size is left alone" in done.stderr
+    # Told the tree, the same files scale their bones; not told, bone scaling says how to tell it.
+    bones = [cli, "train", "--clips", tmp_path / "list.tsv", "--out", tmp_path / "b.model", "--scale", "bones",
+             "--no-tune", "--pca", "6"]
+    refused = subprocess.run(bones, capture_output=True, text=True, timeout=300)
+    assert refused.returncode != 0 and "--parents" in refused.stderr
+    done = subprocess.run(bones + ["--parents", "-,Hips,Hips,Hips"], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "--scale none" not in done.stderr
 
 
 def test_a_csv_in_millimetres_reads_in_metres(tmp_path):

@@ -67,6 +67,65 @@ double median_body_height(const Clip& clip, int up_axis) {
     return heights[heights.size() / 2];
 }
 
+void set_parents(Clip& clip, const std::vector<int>& parents) {
+    const std::size_t joints = clip.joint_count();
+    if (parents.size() != joints)
+        throw std::invalid_argument("parents: " + std::to_string(parents.size()) + " parents for " +
+                                    std::to_string(joints) + " joints (one per joint, -1 at a root)");
+    for (std::size_t j = 0; j < joints; ++j) {
+        // Up from every joint: a root must come within `joints` steps, or the parents form a cycle.
+        int up = static_cast<int>(j);
+        for (std::size_t steps = 0; up >= 0 && steps <= joints; ++steps) {
+            const int parent = parents[static_cast<std::size_t>(up)];
+            if (parent < -1 || parent >= static_cast<int>(joints))
+                throw std::invalid_argument("parents: joint " + std::to_string(up) + "'s parent " +
+                                            std::to_string(parent) + " is not -1 or a joint index below " +
+                                            std::to_string(joints));
+            up = parent;
+        }
+        if (up >= 0) throw std::invalid_argument("parents: joint " + std::to_string(j) + " is in a cycle, not a tree");
+    }
+    clip.parents = parents;
+}
+
+std::vector<int> parents_from_names(const Clip& clip, const std::vector<std::string>& names) {
+    const std::size_t joints = clip.joint_count();
+    if (names.size() != joints)
+        throw std::invalid_argument("parents: " + std::to_string(names.size()) + " names for " +
+                                    std::to_string(joints) +
+                                    " joints (one per joint in the file's order, - for a root)");
+    std::vector<int> parents;
+    for (std::size_t j = 0; j < joints; ++j) {
+        if (names[j] == "-") {
+            parents.push_back(-1);
+            continue;
+        }
+        int found = clip.joint_index(names[j]);
+        if (found < 0) {
+            const std::string key = joint_spelling_key(names[j]);
+            for (std::size_t k = 0; k < joints; ++k)
+                if (joint_spelling_key(clip.joint_names[k]) == key) found = found == -1 ? static_cast<int>(k) : -2;
+        }
+        if (found < 0)
+            throw std::invalid_argument(
+                "parents: '" + names[j] + "' (the parent of " + clip.joint_names[j] + ") " +
+                (found == -2 ? "matches two joints of the file" : "is not a joint of the file"));
+        parents.push_back(found);
+    }
+    Clip checked;  // the tree's checks, without touching `clip`
+    checked.joint_names = clip.joint_names;
+    set_parents(checked, parents);
+    return parents;
+}
+
+std::vector<std::string> parse_parent_names(std::string_view text) {
+    std::vector<std::string> names;
+    for (const std::string_view field : split_fields(text, ',')) names.emplace_back(trim(field));
+    if (names.empty() || (names.size() == 1 && names[0].empty()))
+        throw std::invalid_argument("expected one parent name per joint (- for a root), comma-separated");
+    return names;
+}
+
 namespace {
 
 // Built-in role names, tried in order: HDM05/CMU ASF, Kinect v1, Kinect v2,

@@ -83,6 +83,11 @@ struct ReadOptions {
     int body = -1;
     /// Overrides the built-in joint-role mapping.
     RoleNames roles;
+    /// Each joint's parent by name, in the file's joint order, "-" for a root:
+    /// the skeleton's tree for a file that gives none (a CSV of a rig no
+    /// depth-camera SDK names), or instead of the file's. Empty: the file's
+    /// own, else a depth-camera SDK's by the joint names (sdk_parents()).
+    std::vector<std::string> parents;
     /// The sensor's up direction in the file's coordinates, when it is known
     /// and differs from the up axis (a Kinect mounted high or low, whose floor
     /// plane normal it reports): every frame is turned at reading so that it
@@ -122,6 +127,20 @@ void turn_upright(Clip& clip, const float up[3]);
 /// without '_', '-', '.' or spaces, and without a namespace ("HIP_LEFT",
 /// "hip-left" and "mixamorig:HipLeft" all give "hipleft").
 std::string joint_spelling_key(std::string_view name);
+
+/// Sets clip.parents to `parents` (one per joint, −1 at a root) after checking
+/// it is a tree: throws std::invalid_argument saying what is wrong (a count
+/// that is not the joints', an index out of range, a cycle).
+void set_parents(Clip& clip, const std::vector<int>& parents);
+
+/// The parents `names` give (one per joint in the clip's order: a joint's
+/// name, matched as exports spell it, or "-" for a root), checked by
+/// set_parents(). Throws std::invalid_argument naming the name it cannot place.
+std::vector<int> parents_from_names(const Clip& clip, const std::vector<std::string>& names);
+
+/// "-,Hips,Spine,…" → one parent name per joint; throws std::invalid_argument
+/// when it names none.
+std::vector<std::string> parse_parent_names(std::string_view text);
 
 /// Sets clip.roles from `names` when given, else from the built-in mappings
 /// (HDM05/CMU ASF, Kinect v1 and v2, the CC_Base rig). Throws ReadError when a

@@ -56,6 +56,13 @@ Clip read_as_stored(const std::string& path, const ReadOptions& options, const s
 
 Clip read_clip(const std::string& path, const ReadOptions& options, const std::string& skeleton) {
     Clip clip = read_as_stored(path, options, skeleton);
+    if (!options.parents.empty()) {
+        try {
+            clip.parents = parents_from_names(clip, options.parents);
+        } catch (const std::invalid_argument& error) {
+            throw ReadError(path, 0, error.what());
+        }
+    }
     turn_upright(clip, options.up);
     return clip;
 }

@@ -120,8 +120,8 @@ void set_bones(ModelData& m, const std::vector<LabelledClip>& clips) {
         throw std::invalid_argument(first.source +
                                     ": bone and torso scaling need the skeleton's tree (each joint's parent), "
                                     "which the file does not give and its joint names do not name all of one "
-                                    "SDK's (Kinect v1, Kinect v2, Azure Kinect); use --scale none, or in Python "
-                                    "give Clip(..., parents=[...])");
+                                    "SDK's (Kinect v1, Kinect v2, Azure Kinect); give one with --parents P,P,... "
+                                    "(Python: Clip(..., parents=[...])), or use --scale none");
     if (J > max_bone_joints)
         throw std::invalid_argument(first.source + ": " + std::to_string(J) +
                                     " joints; bone-length scaling takes at most " + std::to_string(max_bone_joints));

@@ -193,6 +193,7 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "body") read.body = static_cast<int>(whole(0, 63));
     else if (name == "columns") read.columns = value;
     else if (name == "roles") read.roles = parse_role_names(value);
+    else if (name == "parents") read.parents = parse_parent_names(value);
     else if (name == "up") parse_up_direction(value, read.up);
     else return false;
     return true;
@@ -269,6 +270,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "roles",
                                                 "time-unit",
                                                 "length-unit",
+                                                "parents",
                                                 "body",
                                                 "columns",
                                                 "up"};
