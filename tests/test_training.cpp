@@ -186,6 +186,19 @@ TEST_CASE("EM: degenerate data gives finite tables or a clear error") {
     CHECK_THROWS_AS(fit_gmm(bad, 2, Covariance::full, 1e-4, 10, 1e-8, 1), std::invalid_argument);
 }
 
+TEST_CASE("a PCA wider than the input says how wide it may be") {
+    Eigen::MatrixXd samples = Eigen::MatrixXd::Random(9, 40);  // a 3-joint rig's 9 coordinates, 40 poses
+    Eigen::VectorXd mean;
+    Eigen::MatrixXd axes;
+    fit_pca(samples, 9, mean, axes);
+    CHECK(axes.rows() == 9);
+    CHECK_THROWS_WITH_AS(fit_pca(samples, 24, mean, axes),
+                         doctest::Contains("PCA dimension 24 must be between 1 and the input's 9 coordinates"),
+                         std::invalid_argument);
+    CHECK_THROWS_WITH_AS(fit_pca(samples, 0, mean, axes), doctest::Contains("give --pca 9 or less"),
+                         std::invalid_argument);
+}
+
 TEST_CASE("the tree splits exactly while the L1 diameter reaches ε") {
     // Four corners of a square of side 1 in 2-D: L1 diameter 2, pairs at 1.
     const std::vector<float> corners = {0, 0, 1, 0, 0, 1, 1, 1};

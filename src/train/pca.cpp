@@ -3,12 +3,19 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <stdexcept>
+#include <string>
+
 namespace actionstring {
 namespace host {
 
 void fit_pca(const Eigen::MatrixXd& samples, int dim, Eigen::VectorXd& mean, Eigen::MatrixXd& axes) {
     if (dim <= 0 || dim > samples.rows())
-        throw std::invalid_argument("PCA dimension must be between 1 and the pose dimension");
+        throw std::invalid_argument("PCA dimension " + std::to_string(dim) + " must be between 1 and the input's " +
+                                    std::to_string(samples.rows()) +
+                                    " coordinates (the pose's, and its velocity's and acceleration's when "
+                                    "weighed): give --pca " +
+                                    std::to_string(samples.rows()) + " or less");
     if (samples.cols() < 2) throw std::invalid_argument("PCA needs at least two samples");
     mean = samples.rowwise().mean();
     const Eigen::MatrixXd centred = samples.colwise() - mean;
