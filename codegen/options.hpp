@@ -84,44 +84,36 @@ private:
     bool ok_ = true;
 };
 
+/// `parse(text)`, a host parser that throws std::invalid_argument, with its
+/// message (after `prefix`) through `args` instead, and an empty value.
+template <class Parse>
+auto parse_through(ArgumentReader& args, Parse parse, const std::string& text, const char* prefix = "") {
+    try {
+        return parse(text);
+    } catch (const std::invalid_argument& error) {
+        args.error(prefix + std::string(error.what()));
+        return decltype(parse(text)){};
+    }
+}
+
 /// "ROOT,LEFT_HIP,RIGHT_HIP" → role names (a message through `args` when malformed).
 inline host::RoleNames parse_roles(ArgumentReader& args, const std::string& text) {
-    try {
-        return host::parse_role_names(text);
-    } catch (const std::invalid_argument& error) {
-        args.error(error.what());
-        return {};
-    }
+    return parse_through(args, host::parse_role_names, text);
 }
 
-/// "s", "ms" or "us" (a message through `args` otherwise).
+/// "s", "ms" or "us" → seconds per unit (a message through `args` otherwise).
 inline double parse_time_unit(ArgumentReader& args, const std::string& text) {
-    try {
-        return host::parse_time_unit(text);
-    } catch (const std::invalid_argument& error) {
-        args.error(error.what());
-        return 0.0;
-    }
+    return parse_through(args, host::parse_time_unit, text);
 }
 
-/// "m", "dm", "cm", "mm" or "in" (a message through `args` otherwise).
+/// "m", "dm", "cm", "mm" or "in" → metres per unit (a message through `args` otherwise).
 inline double parse_length_unit(ArgumentReader& args, const std::string& text) {
-    try {
-        return host::parse_length_unit(text);
-    } catch (const std::invalid_argument& error) {
-        args.error(error.what());
-        return 0.0;
-    }
+    return parse_through(args, host::parse_length_unit, text);
 }
 
-/// "-,Hips,Spine,..." (a message through `args` otherwise).
+/// "-,Hips,Spine,..." → one parent name per joint (a message through `args` otherwise).
 inline std::vector<std::string> parse_parents(ArgumentReader& args, const std::string& text) {
-    try {
-        return host::parse_parent_names(text);
-    } catch (const std::invalid_argument& error) {
-        args.error("option --parents: " + std::string(error.what()));
-        return {};
-    }
+    return parse_through(args, host::parse_parent_names, text, "option --parents: ");
 }
 
 /// Reads one of the options every command that reads a motion file takes
