@@ -45,7 +45,8 @@ PathLike = Union[str, "os.PathLike[str]"]
 
 def read_clip(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis: int = -1,
               roles: Optional[Sequence[str]] = None, skeleton: str = "", time_unit: str = "",
-              body: int = -1, columns: str = "", up: Optional[Sequence[float]] = None) -> Clip:
+              body: int = -1, columns: str = "", up: Optional[Sequence[float]] = None,
+              parents: Optional[Sequence[Optional[str]]] = None) -> Clip:
     """Reads one motion file (ASF/AMC with ``skeleton``, BVH, Kinect text, joint CSV,
     NTU RGB+D ``.skeleton``).
 
@@ -59,19 +60,25 @@ def read_clip(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis:
     ("time=COL,JOINT=X:Y:Z,..."). ``up`` is the sensor's up direction (x, y, z) in
     the file's coordinates when it is known and tilted from the up axis (a Kinect's
     floor plane normal): every frame is turned upright as it is read, as
-    ``Annotator(model, up=...)`` turns a device's frames. What the reader noticed
+    ``Annotator(model, up=...)`` turns a device's frames. ``parents`` gives the
+    skeleton's tree by name, one per joint in the file's order (None or "-" for a
+    root), for a file that gives none and whose joints no Kinect SDK names (as
+    ``--parents``); ``clip.parents`` shows the tree read. What the reader noticed
     is in ``clip.notes``. Raises ReadError naming the file, the line and what was
     expected (ValueError for an ``up`` that is not three numbers).
     """
-    return _native._read_clip(os.fspath(path), rate, scale, up_axis, roles, skeleton, time_unit, body, columns, up)
+    return _native._read_clip(os.fspath(path), rate, scale, up_axis, roles, skeleton, time_unit, body, columns, up,
+                              parents)
 
 
 def read_clip_list(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis: int = -1,
-                   roles: Optional[Sequence[str]] = None, up: Optional[Sequence[float]] = None) -> List[Clip]:
+                   roles: Optional[Sequence[str]] = None, up: Optional[Sequence[float]] = None,
+                   parents: Optional[Sequence[Optional[str]]] = None) -> List[Clip]:
     """Reads a clip list (TSV with path, label, subject columns) and every clip it names,
     each with its ``label`` and ``subject``. A list's ``up`` column (X,Y,Z) gives each
-    file's sensor up direction; ``up`` here is the one for lines without it."""
-    return _native._read_clip_list(os.fspath(path), rate, scale, up_axis, roles, up)
+    file's sensor up direction; ``up`` here is the one for lines without it. ``parents``
+    is every file's tree by joint name, as ``read_clip`` takes it."""
+    return _native._read_clip_list(os.fspath(path), rate, scale, up_axis, roles, up, parents)
 
 
 def training_settings() -> List[str]:

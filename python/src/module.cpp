@@ -181,8 +181,12 @@ std::array<float, 3> up_direction(const py::handle& value) {
 
 host::ReadOptions read_options(double rate, double scale, int up_axis, const py::object& roles,
                                const std::string& time_unit = "", int body = -1, const std::string& columns = "",
-                               const py::object& up = py::none()) {
+                               const py::object& up = py::none(), const py::object& parents = py::none()) {
     host::ReadOptions read;
+    if (!parents.is_none()) {  // each joint's parent by name, None or "-" for a root (as --parents)
+        for (const py::handle name : parents) read.parents.push_back(name.is_none() ? "-" : name.cast<std::string>());
+        if (read.parents.empty()) throw py::value_error("parents: one parent name per joint (None or '-' for a root)");
+    }
     if (!up.is_none()) {
         const std::array<float, 3> direction = up_direction(up);
         for (int a = 0; a < 3; ++a) read.up[a] = direction[static_cast<std::size_t>(a)];
@@ -528,23 +532,23 @@ PYBIND11_MODULE(_actionstring, m) {
         "_read_clip",
         [](const std::string& path, double rate, double scale, int up_axis, const py::object& roles,
            const std::string& skeleton, const std::string& time_unit, int body, const std::string& columns,
-           const py::object& up) {
+           const py::object& up, const py::object& parents) {
             LabelledClip out;
-            out.clip = host::read_clip(path, read_options(rate, scale, up_axis, roles, time_unit, body, columns, up),
-                                       skeleton);
+            out.clip = host::read_clip(
+                path, read_options(rate, scale, up_axis, roles, time_unit, body, columns, up, parents), skeleton);
             return out;
         },
         py::arg("path"), py::arg("rate") = 0.0, py::arg("scale") = 0.0, py::arg("up_axis") = -1,
         py::arg("roles") = py::none(), py::arg("skeleton") = "", py::arg("time_unit") = "", py::arg("body") = -1,
-        py::arg("columns") = "", py::arg("up") = py::none());
+        py::arg("columns") = "", py::arg("up") = py::none(), py::arg("parents") = py::none());
     m.def(
         "_read_clip_list",
         [](const std::string& path, double rate, double scale, int up_axis, const py::object& roles,
-           const py::object& up) {
-            return host::load_labelled_clips(path, read_options(rate, scale, up_axis, roles, "", -1, "", up));
+           const py::object& up, const py::object& parents) {
+            return host::load_labelled_clips(path, read_options(rate, scale, up_axis, roles, "", -1, "", up, parents));
         },
         py::arg("path"), py::arg("rate") = 0.0, py::arg("scale") = 0.0, py::arg("up_axis") = -1,
-        py::arg("roles") = py::none(), py::arg("up") = py::none());
+        py::arg("roles") = py::none(), py::arg("up") = py::none(), py::arg("parents") = py::none());
 
     py::class_<ModelData, ModelPtr>(m, "_Model")
         .def_static(

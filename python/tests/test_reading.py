@@ -157,8 +157,13 @@ def test_a_kinect_csv_brings_its_sdks_tree_and_info_says_so(tmp_path, cli):
     assert actionstring.read_clip(kinect).parents == [-1, 0, 0, 0]
     assert "tree:      3 bones" in run_cli(cli, "info", kinect)
     own = tmp_path / "own.csv"
-    own.write_text("time,hips_x,hips_y,hips_z\n0,0,1,2\n0.04,0,1,2\n")
+    own.write_text("time,hips_x,hips_y,hips_z,head_x,head_y,head_z\n0,0,1,2,0,1.7,2\n0.04,0,1,2,0,1.7,2\n")
     assert actionstring.read_clip(own).parents == []
+    assert actionstring.read_clip(own, parents=[None, "hips"]).parents == [-1, 0]
+    with pytest.raises(actionstring.ReadError, match="'neck' \\(the parent of head\\) is not a joint"):
+        actionstring.read_clip(own, parents=["-", "neck"])
+    (tmp_path / "own.tsv").write_text("path\tlabel\tsubject\nown.csv\tstand\ts1\n")
+    assert actionstring.read_clip_list(tmp_path / "own.tsv", parents=["-", "hips"])[0].parents == [-1, 0]
     assert "tree:      none" in run_cli(cli, "info", own)
 
 
