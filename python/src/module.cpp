@@ -134,7 +134,8 @@ LabelledClip clip_from_arrays(const py::handle& positions_object, const py::obje
         roles = host::RoleNames{names[0], names[1], names[2]};
     }
     if (!parents_object.is_none()) {
-        host::set_parents(clip, parents_object.cast<std::vector<int>>());  // std::invalid_argument: ValueError
+        clip.parents = parents_object.cast<std::vector<int>>();
+        host::check_tree(clip.parents, joints);  // std::invalid_argument: ValueError
     } else {
         clip.parents = host::sdk_parents(clip.joint_names);  // empty unless the names are one SDK's
     }

@@ -32,6 +32,17 @@ std::string joint_spelling_key(std::string_view name) {
     return key;
 }
 
+int joint_by_spelling(const Clip& clip, std::string_view name) {
+    const std::string key = joint_spelling_key(name);
+    int found = -1;
+    for (std::size_t j = 0; j < clip.joint_names.size(); ++j)
+        if (joint_spelling_key(clip.joint_names[j]) == key) {
+            if (found >= 0) return -2;
+            found = static_cast<int>(j);
+        }
+    return found;
+}
+
 double metres_per_unit(std::string_view unit) {
     if (unit == "m") return 1.0;
     if (unit == "dm") return 0.1;
@@ -67,8 +78,7 @@ double median_body_height(const Clip& clip, int up_axis) {
     return heights[heights.size() / 2];
 }
 
-void set_parents(Clip& clip, const std::vector<int>& parents) {
-    const std::size_t joints = clip.joint_count();
+void check_tree(const std::vector<int>& parents, std::size_t joints) {
     if (parents.size() != joints)
         throw std::invalid_argument("parents: " + std::to_string(parents.size()) + " parents for " +
                                     std::to_string(joints) + " joints (one per joint, -1 at a root)");
@@ -85,7 +95,6 @@ void set_parents(Clip& clip, const std::vector<int>& parents) {
         }
         if (up >= 0) throw std::invalid_argument("parents: joint " + std::to_string(j) + " is in a cycle, not a tree");
     }
-    clip.parents = parents;
 }
 
 std::vector<int> parents_from_names(const Clip& clip, const std::vector<std::string>& names) {
@@ -101,20 +110,14 @@ std::vector<int> parents_from_names(const Clip& clip, const std::vector<std::str
             continue;
         }
         int found = clip.joint_index(names[j]);
-        if (found < 0) {
-            const std::string key = joint_spelling_key(names[j]);
-            for (std::size_t k = 0; k < joints; ++k)
-                if (joint_spelling_key(clip.joint_names[k]) == key) found = found == -1 ? static_cast<int>(k) : -2;
-        }
+        if (found < 0) found = joint_by_spelling(clip, names[j]);
         if (found < 0)
             throw std::invalid_argument(
                 "parents: '" + names[j] + "' (the parent of " + clip.joint_names[j] + ") " +
                 (found == -2 ? "matches two joints of the file" : "is not a joint of the file"));
         parents.push_back(found);
     }
-    Clip checked;  // the tree's checks, without touching `clip`
-    checked.joint_names = clip.joint_names;
-    set_parents(checked, parents);
+    check_tree(parents, joints);
     return parents;
 }
 
@@ -148,18 +151,6 @@ constexpr RoleCandidates kBuiltInRoles[] = {
     {"Hips", "LeftUpperLeg", "RightUpperLeg"}, // Unity's humanoid bone names
     {"LeftHip", "LeftHip", "RightHip"},
 };
-
-// Index of the joint spelled like `name` (HIP_LEFT, hip_left, HipLeft), or −1; −1 too when two joints match.
-int joint_by_spelling(const Clip& clip, const char* name) {
-    const std::string key = joint_spelling_key(name);
-    int found = -1;
-    for (std::size_t j = 0; j < clip.joint_names.size(); ++j)
-        if (joint_spelling_key(clip.joint_names[j]) == key) {
-            if (found >= 0) return -1;
-            found = static_cast<int>(j);
-        }
-    return found;
-}
 
 }  // namespace
 

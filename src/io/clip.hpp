@@ -128,14 +128,18 @@ void turn_upright(Clip& clip, const float up[3]);
 /// "hip-left" and "mixamorig:HipLeft" all give "hipleft").
 std::string joint_spelling_key(std::string_view name);
 
-/// Sets clip.parents to `parents` (one per joint, −1 at a root) after checking
-/// it is a tree: throws std::invalid_argument saying what is wrong (a count
-/// that is not the joints', an index out of range, a cycle).
-void set_parents(Clip& clip, const std::vector<int>& parents);
+/// Index of the joint spelled like `name` (joint_spelling_key(): HIP_LEFT,
+/// hip_left, HipLeft), −1 when none is, −2 when two are.
+int joint_by_spelling(const Clip& clip, std::string_view name);
+
+/// Checks that `parents` (one per joint, −1 at a root) is a tree of `joints`
+/// joints: throws std::invalid_argument saying what is wrong (a count that is
+/// not the joints', an index out of range, a cycle).
+void check_tree(const std::vector<int>& parents, std::size_t joints);
 
 /// The parents `names` give (one per joint in the clip's order: a joint's
 /// name, matched as exports spell it, or "-" for a root), checked by
-/// set_parents(). Throws std::invalid_argument naming the name it cannot place.
+/// check_tree(). Throws std::invalid_argument naming the name it cannot place.
 std::vector<int> parents_from_names(const Clip& clip, const std::vector<std::string>& names);
 
 /// "-,Hips,Spine,…" → one parent name per joint; throws std::invalid_argument

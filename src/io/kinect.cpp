@@ -425,8 +425,9 @@ Clip parse_joint_csv(const std::string& name, std::string_view text, const ReadO
     for (const double t : raw_times) clip.times.push_back(t * unit);
     // Length unit: given, else read off the body's median height along the up axis over
     // the tracked frames (a CSV states none; depth SDKs and mocap tools export mm or cm too).
-    const double height = median_body_height(clip, options.up_axis >= 0 ? options.up_axis : 1);
-    const double scale = options.length_scale > 0 ? 1.0 : metres_per_unit_for_height(height);
+    const double height =
+        options.length_scale > 0 ? 0.0 : median_body_height(clip, options.up_axis >= 0 ? options.up_axis : 1);
+    const double scale = metres_per_unit_for_height(height);  // 1 when given: finish_kinect_clip() applies it
     if (scale != 1.0) {
         for (float& v : clip.positions) v = static_cast<float>(static_cast<double>(v) * scale);
         const char* unit_name = scale == 0.001    ? "millimetres"
