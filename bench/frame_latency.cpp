@@ -568,12 +568,13 @@ int main(int argc, char** argv) {
                                    read);
         const host::ModelData described = host::train_model(training, accurate, nullptr);
         const ModelView view = described.view();
-        std::vector<std::vector<float>> features;
+        std::vector<std::vector<float>> features, records;
         std::vector<std::vector<Character>> strings;
         std::size_t characters = 0, longest = 0;
         for (const host::Clip& clip : clips) {
-            host::EncodedClip encoded = host::encode_clip(view, clip, true);
+            host::EncodedClip encoded = host::encode_clip(view, clip, true, view.has_directions());
             features.push_back(std::move(encoded.features));
+            records.push_back(std::move(encoded.records));
             strings.push_back(std::move(encoded.string));
             characters += strings.back().size();
             longest = std::max(longest, strings.back().size());
@@ -620,6 +621,7 @@ int main(int argc, char** argv) {
                 const std::int64_t ns = timed([&] {
                     g_counting.store(true, std::memory_order_relaxed);
                     const Classification c = classify_clip(view, strings[i].data(), features[i].data(),
+                                                           records[i].empty() ? nullptr : records[i].data(),
                                                            strings[i].size(), clip_scratch.data(), cells.data());
                     g_counting.store(false, std::memory_order_relaxed);
                     g_sink = c.label;

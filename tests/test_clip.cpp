@@ -22,7 +22,7 @@ using namespace actionstring::host;
 
 namespace {
 
-// A model with votes, exemplars and a clip descriptor, so every stage adds something.
+// A model with votes, exemplars, a clip descriptor and motion directions, so every stage adds something.
 ModelData described_model(const std::vector<LabelledClip>& train) {
     TrainingOptions options = test::toy_options();
     options.components = 0;
@@ -34,29 +34,37 @@ ModelData described_model(const std::vector<LabelledClip>& train) {
     options.descriptor_levels = 2;
     options.descriptor_ridge = 100.0;
     options.descriptor_weight = 1.0;
+    options.direction_levels = 2;
+    options.direction_ridge = 100.0;
+    options.direction_weight = 1.0;
     return train_model(train, options);
 }
 
-// The clip's characters and their features, as a device collects them from a StringEncoder.
+// The clip's characters, their features and records (pose, facing), as a device collects them from a StringEncoder.
 struct Collected {
     std::vector<Character> string;
     std::vector<float> features;
+    std::vector<float> records;
 };
 
 Collected collect(const ModelView& model, const Clip& clip) {
     Stateful<StringEncoder> encoder;
     REQUIRE(encoder.init(model, EncoderConfig{}) == Status::ok);
     Collected out;
-    const std::size_t d = model.feature_dim;
+    const std::size_t d = model.feature_dim, D = model.pose_dim();
     for (std::size_t f = 0; f < clip.frame_count(); ++f) {
         const EncodedFrame e = encoder->push_frame(static_cast<std::int64_t>(clip.times[f] * 1e6), clip.frame(f));
         for (std::uint32_t k = 0; k < e.from_previous; ++k) {
             out.string.push_back(e.previous);
             out.features.insert(out.features.end(), e.previous_feature, e.previous_feature + d);
+            out.records.insert(out.records.end(), e.previous_pose, e.previous_pose + D);
+            out.records.insert(out.records.end(), e.previous_facing, e.previous_facing + 2);
         }
         for (std::uint32_t k = 0; k < e.from_current; ++k) {
             out.string.push_back(e.current);
             out.features.insert(out.features.end(), e.current_feature, e.current_feature + d);
+            out.records.insert(out.records.end(), e.current_pose, e.current_pose + D);
+            out.records.insert(out.records.end(), e.current_facing, e.current_facing + 2);
         }
     }
     return out;
@@ -92,6 +100,12 @@ Classification by_hand(const ModelView& model, const Collected& c, bool with_fea
         for (std::size_t l = 0; l < L; ++l) penalties[l] += described[l];
         any = true;
     }
+    if (with_features && model.has_directions()) {
+        std::vector<float> scratch(model.direction_size()), directed(L);
+        direction_penalties(model, c.records.data(), n, scratch.data(), directed.data());
+        for (std::size_t l = 0; l < L; ++l) penalties[l] += directed[l];
+        any = true;
+    }
     return classify_distances(model, distances.data(), any ? penalties.data() : nullptr);
 }
 
@@ -122,7 +136,9 @@ TEST_CASE("clip: the runtime's whole-clip label is its stages composed, bit for 
     REQUIRE(view.has_votes());
     REQUIRE(view.has_exemplars());
     REQUIRE(view.has_descriptor());
-    CHECK(clip_scratch_floats(view) == view.representative_count + 4u * view.label_count + view.descriptor_size());
+    REQUIRE(view.has_directions());
+    CHECK(clip_scratch_floats(view) ==
+          view.representative_count + 5u * view.label_count + std::max(view.descriptor_size(), view.direction_size()));
     std::uint32_t longest = 0;
     for (std::size_t r = 0; r < view.representative_count; ++r)
         longest = std::max(longest, view.representative_length(r));
@@ -136,29 +152,31 @@ TEST_CASE("clip: the runtime's whole-clip label is its stages composed, bit for 
         // Scratch filled with garbage first: every float is written before it is read.
         std::vector<float> scratch(clip_scratch_floats(view), 12345.0f);
         std::vector<detail::Cell> cells(clip_cells(view, collected.string.size()));
-        const Classification runtime = classify_clip(view, collected.string.data(), collected.features.data(),
-                                                     collected.string.size(), scratch.data(), cells.data());
+        REQUIRE(collected.records.size() == collected.string.size() * view.direction_record_floats());
+        const Classification runtime =
+            classify_clip(view, collected.string.data(), collected.features.data(), collected.records.data(),
+                          collected.string.size(), scratch.data(), cells.data());
         check_same(runtime, by_hand(view, collected, true));
         check_same(runtime, host::classify_clip(view, c.clip));
         right += runtime.label != unknown_label && view.label_names[runtime.label] == c.label;
         // Without features: the strings and the votes alone.
         std::fill(scratch.begin(), scratch.end(), -7.0f);
-        check_same(classify_clip(view, collected.string.data(), nullptr, collected.string.size(), scratch.data(),
-                                 cells.data()),
+        check_same(classify_clip(view, collected.string.data(), nullptr, nullptr, collected.string.size(),
+                                 scratch.data(), cells.data()),
                    by_hand(view, collected, false));
     }
     CHECK(static_cast<double>(right) >= 0.9 * static_cast<double>(held_out.size()));
 
     // Nothing to classify: unknown, and nothing read past what was given.
     std::vector<float> scratch(clip_scratch_floats(view));
-    const Classification empty = classify_clip(view, nullptr, nullptr, 0, scratch.data(), nullptr);
+    const Classification empty = classify_clip(view, nullptr, nullptr, nullptr, 0, scratch.data(), nullptr);
     CHECK(empty.label == unknown_label);
-    CHECK(classify_clip(view, nullptr, nullptr, 0, nullptr, nullptr).label == unknown_label);
+    CHECK(classify_clip(view, nullptr, nullptr, nullptr, 0, nullptr, nullptr).label == unknown_label);
     // A string too long for a path is compared with nothing, as string_distance() refuses it.
     std::vector<Character> too_long(0x10000, 0);
     std::vector<detail::Cell> one_cell(1);
-    CHECK(classify_clip(view, too_long.data(), nullptr, too_long.size(), scratch.data(), one_cell.data()).label ==
-          unknown_label);
+    CHECK(classify_clip(view, too_long.data(), nullptr, nullptr, too_long.size(), scratch.data(), one_cell.data())
+              .label == unknown_label);
 }
 
 TEST_CASE("clip: the scratch a generated header's model needs is known at compile time") {
@@ -167,8 +185,8 @@ TEST_CASE("clip: the scratch a generated header's model needs is known at compil
     constexpr std::size_t cells = clip_cells(model::kModel, 64);
     static_assert(floats >= model::kModel.representative_count, "one distance per representative");
     static_assert(cells >= 65, "a 64-character clip needs more than its own row");
-    CHECK(floats == model::kModel.representative_count + 4u * model::kModel.label_count +
-                        model::kModel.descriptor_size());
+    CHECK(floats == model::kModel.representative_count + 5u * model::kModel.label_count +
+                        std::max(model::kModel.descriptor_size(), model::kModel.direction_size()));
     CHECK(cells == string_distance_cells(64, longest_representative(model::kModel)));
 }
 
@@ -190,6 +208,9 @@ TEST_CASE("clip: a recorder collects what an encoder gives and labels it as clas
     ModelView broken = view;
     broken.descriptor_levels = 9;  // more than the runtime's 8
     CHECK(recorder.init(broken, capacity, EncoderConfig{}, storage, bytes) == Status::invalid_model);
+    broken = view;
+    broken.direction_levels = 9;
+    CHECK(recorder.init(broken, capacity, EncoderConfig{}, storage, bytes) == Status::invalid_model);
     CHECK(ClipRecorder::required_bytes(view, unsatisfiable_bytes / 2) == unsatisfiable_bytes);
     REQUIRE(recorder.init(view, capacity, EncoderConfig{}, storage, bytes) == Status::ok);
     CHECK(recorder.classify().label == unknown_label);  // nothing yet
@@ -203,6 +224,8 @@ TEST_CASE("clip: a recorder collects what an encoder gives and labels it as clas
         REQUIRE(recorder.length() == collected.string.size());
         CHECK(std::equal(collected.string.begin(), collected.string.end(), recorder.characters()));
         CHECK(std::equal(collected.features.begin(), collected.features.end(), recorder.features()));
+        REQUIRE(recorder.records() != nullptr);
+        CHECK(std::equal(collected.records.begin(), collected.records.end(), recorder.records()));
         CHECK_FALSE(recorder.overflowed());
         check_same(recorder.classify(), by_hand(view, collected, true));
     }
@@ -224,6 +247,8 @@ TEST_CASE("clip: a recorder collects what an encoder gives and labels it as clas
     Collected first;
     first.string.assign(all.string.begin(), all.string.begin() + static_cast<long>(small));
     first.features.assign(all.features.begin(), all.features.begin() + static_cast<long>(small * view.feature_dim));
+    first.records.assign(all.records.begin(),
+                         all.records.begin() + static_cast<long>(small * view.direction_record_floats()));
     check_same(short_one.classify(), by_hand(view, first, true));
     short_one.reset();
     CHECK(short_one.length() == 0);

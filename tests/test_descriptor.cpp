@@ -354,7 +354,7 @@ TEST_CASE(
     CHECK(clip_accuracy(view, held_out) >= 0.9);
     for (const LabelledClip& c : held_out) {
         const EncodedClip encoded = encode_clip(view, c.clip, true);
-        const std::vector<float> penalties = clip_descriptor_penalties(view, encoded.features);
+        const std::vector<float> penalties = clip_descriptor_penalties(view, encoded.features, encoded.records);
         CHECK(*std::min_element(penalties.begin(), penalties.end()) == 0.0f);
         const Classification with = classify_string(view, encoded.string, {}, nullptr, penalties.data());
         CHECK(with.label == classify_clip(view, c.clip).label);

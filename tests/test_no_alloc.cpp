@@ -159,19 +159,23 @@ TEST_CASE("classifying whole clips with votes, exemplars and a clip descriptor a
     options.exemplar_weight = 1.0;
     options.descriptor_levels = 2;
     options.descriptor_weight = 1.0;
+    options.direction_levels = 2;
+    options.direction_weight = 1.0;
     const actionstring::host::ModelData model = actionstring::host::train_model(train, options);
     const actionstring::ModelView view = model.view();
     REQUIRE(view.has_exemplars());
     REQUIRE(view.has_descriptor());
+    REQUIRE(view.has_directions());
     // Each clip's characters and features, collected before the measurement.
     std::vector<std::vector<actionstring::Character>> strings;
-    std::vector<std::vector<float>> features;
+    std::vector<std::vector<float>> features, records;
     std::size_t longest = 0;
     for (const auto& c : actionstring::host::toy_clips(world, 2, 9000, 30.0)) {
         actionstring::host::Stateful<actionstring::StringEncoder> encoder;
         REQUIRE(encoder.init(view, actionstring::EncoderConfig{}) == actionstring::Status::ok);
         strings.emplace_back();
         features.emplace_back();
+        records.emplace_back();
         for (std::size_t f = 0; f < c.clip.frame_count(); ++f) {
             const auto e = encoder->push_frame(static_cast<std::int64_t>(c.clip.times[f] * 1e6), c.clip.frame(f));
             for (std::uint32_t k = 0; k < e.count(); ++k) {
@@ -179,6 +183,10 @@ TEST_CASE("classifying whole clips with votes, exemplars and a clip descriptor a
                 strings.back().push_back(previous ? e.previous : e.current);
                 const float* x = previous ? e.previous_feature : e.current_feature;
                 features.back().insert(features.back().end(), x, x + view.feature_dim);
+                const float* pose = previous ? e.previous_pose : e.current_pose;
+                const float* facing = previous ? e.previous_facing : e.current_facing;
+                records.back().insert(records.back().end(), pose, pose + view.pose_dim());
+                records.back().insert(records.back().end(), facing, facing + 2);
             }
         }
         longest = std::max(longest, strings.back().size());
@@ -190,8 +198,8 @@ TEST_CASE("classifying whole clips with votes, exemplars and a clip descriptor a
     const Counts before = snapshot();
     std::size_t labelled = 0;
     for (std::size_t i = 0; i < strings.size(); ++i)
-        labelled += actionstring::classify_clip(view, strings[i].data(), features[i].data(), strings[i].size(),
-                                                scratch.data(), cells.data())
+        labelled += actionstring::classify_clip(view, strings[i].data(), features[i].data(), records[i].data(),
+                                                strings[i].size(), scratch.data(), cells.data())
                         .label != actionstring::unknown_label;
     const Counts after = snapshot();
     Eigen::internal::set_is_malloc_allowed(true);

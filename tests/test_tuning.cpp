@@ -99,6 +99,12 @@ TEST_CASE("self-tuning is deterministic and keeps a setting only when its folds 
             step.setting.rfind("descriptor-levels 3, descriptor-ridge 3000, descriptor-weight ", 0) == 0;
     CHECK(descriptor_steps == 3);
     CHECK((config.find("descriptor-levels 3\n") != std::string::npos) == (a.options.descriptor_levels == 3));
+    // So are the motion directions (three weights over three levels).
+    int direction_steps = 0;
+    for (const TuningStep& step : a.steps)
+        direction_steps += step.setting.rfind("direction-levels 3, direction-ridge 3000, direction-weight ", 0) == 0;
+    CHECK(direction_steps == 3);
+    CHECK((config.find("direction-levels 3\n") != std::string::npos) == (a.options.direction_levels == 3));
     // The toy skeleton has parents: size is normalised by the torso, never searched.
     CHECK(a.options.scale_mode == actionstring::ScaleMode::torso);
     CHECK(config.find("scale torso\n") != std::string::npos);
@@ -410,9 +416,9 @@ TEST_CASE("the events' shortest action: the shortest within one standard error o
 TEST_CASE("counts and indices refuse a fraction rather than truncate it") {
     TrainingOptions options;
     ReadOptions read;
-    for (const char* name :
-         {"components", "pca", "em-iterations", "em-restarts", "max-characters", "max-representative-chars",
-          "neighbours", "exemplars", "exemplar-dims", "descriptor-levels", "descriptor-dims", "seed", "body"}) {
+    for (const char* name : {"components", "pca", "em-iterations", "em-restarts", "max-characters",
+                             "max-representative-chars", "neighbours", "exemplars", "exemplar-dims",
+                             "descriptor-levels", "descriptor-dims", "direction-levels", "seed", "body"}) {
         CAPTURE(name);
         CHECK_THROWS_WITH_AS(apply_training_setting(name, "2.5", options, read),
                              doctest::Contains("expects a whole number"), std::invalid_argument);
@@ -451,6 +457,24 @@ TEST_CASE("counts and indices refuse a fraction rather than truncate it") {
     CHECK(back.descriptor_weight == 24.0);
     CHECK_THROWS_AS(apply_training_setting("descriptor-dims", "65", options, read), std::invalid_argument);
     CHECK_THROWS_AS(apply_training_setting("descriptor-levels", "9", options, read), std::invalid_argument);
+    // And the motion directions'.
+    CHECK(apply_training_setting("direction-ridge", "3000", options, read));
+    CHECK(apply_training_setting("direction-weight", "8", options, read));
+    const std::string with_directions = options_as_config(options);
+    for (const char* line : {"direction-levels 3\n", "direction-ridge 3000\n", "direction-weight 8\n"})
+        CHECK(with_directions.find(line) != std::string::npos);
+    TrainingOptions again;
+    std::istringstream directed(with_directions);
+    for (std::string line; std::getline(directed, line);) {
+        const std::size_t space = line.find(' ');
+        if (space != std::string::npos)
+            apply_training_setting(line.substr(0, space), line.substr(space + 1), again, read);
+    }
+    CHECK(again.direction_levels == 3);
+    CHECK(again.direction_ridge == 3000.0);
+    CHECK(again.direction_weight == 8.0);
+    CHECK_THROWS_AS(apply_training_setting("direction-levels", "9", options, read), std::invalid_argument);
+    CHECK_THROWS_AS(apply_training_setting("direction-weight", "-1", options, read), std::invalid_argument);
 }
 
 TEST_CASE("yes/no settings take true/false (or on/off, yes/no, 1/0) and refuse anything else") {

@@ -53,7 +53,8 @@ constexpr std::size_t clip_cells(const ModelView& model, std::size_t length) noe
 /// penalties, the descriptor's penalties, all of them added) and the clip
 /// descriptor's scratch.
 constexpr std::size_t clip_scratch_floats(const ModelView& model) noexcept {
-    return model.representative_count + 4u * model.label_count + model.descriptor_size();
+    return model.representative_count + 5u * model.label_count +
+           (model.descriptor_size() > model.direction_size() ? model.descriptor_size() : model.direction_size());
 }
 
 /// The batch string distance (the model's variant and normalisation) from a
@@ -111,7 +112,7 @@ inline bool clip_penalties(const ModelView& model, const Character* string, std:
         exemplar_penalties(model, sums, length, row);
         for (std::size_t l = 0; l < L; ++l) penalties[l] += row[l];
     }
-    const bool described = model.has_descriptor() && descriptor != nullptr;
+    const bool described = (model.has_descriptor() || model.has_directions()) && descriptor != nullptr;
     if (described)
         for (std::size_t l = 0; l < L; ++l) penalties[l] += descriptor[l];
     return model.has_votes() || exemplars || described;
@@ -124,11 +125,16 @@ inline bool clip_penalties(const ModelView& model, const Character* string, std:
 /// @param features  length × feature_dim floats, the features those characters
 ///                  were made from, in order; null to leave out the exemplars
 ///                  and the clip descriptor (a model without them needs none)
+/// @param records   length × direction_record_floats() floats, those
+///                  characters' poses and facings, in order (EncodedFrame's
+///                  previous_pose / previous_facing …); read only by a model
+///                  with motion directions, which leave the label alone when null
 /// @param scratch   clip_scratch_floats(model) floats (caller-owned), overwritten
 /// @param cells     clip_cells(model, length) cells (caller-owned), overwritten
 /// @return the label (unknown_label for an empty clip, or when nothing is near enough)
 inline Classification classify_clip(const ModelView& model, const Character* string, const float* features,
-                                    std::size_t length, float* scratch, detail::Cell* cells) noexcept {
+                                    const float* records, std::size_t length, float* scratch,
+                                    detail::Cell* cells) noexcept {
     if (scratch == nullptr) return Classification{};
     const std::size_t L = model.label_count;
     float* const distances = scratch;
@@ -136,14 +142,22 @@ inline Classification classify_clip(const ModelView& model, const Character* str
     float* const row = sums + L;
     float* const described = row + L;
     float* const penalties = described + L;
-    float* const descriptor_scratch = penalties + L;
+    float* const directed = penalties + L;
+    float* const descriptor_scratch = directed + L;
     representative_distances(model, string, length, cells, distances);
     const bool with_descriptor = model.has_descriptor() && features != nullptr;
+    const bool with_directions = model.has_directions() && records != nullptr;
     const bool with_exemplars = model.has_exemplars() && features != nullptr;
+    // The clip descriptors' penalties: the descriptor's, then the directions' added.
+    for (std::size_t l = 0; l < L; ++l) described[l] = 0.0f;
     if (with_descriptor) descriptor_penalties(model, features, length, descriptor_scratch, described);
+    if (with_directions) {
+        direction_penalties(model, records, length, descriptor_scratch, directed);
+        for (std::size_t l = 0; l < L; ++l) described[l] += directed[l];
+    }
     if (with_exemplars) exemplar_sums(model, features, length, row, sums);
     const bool any = clip_penalties(model, string, length, with_exemplars ? sums : nullptr,
-                                    with_descriptor ? described : nullptr, row, penalties);
+                                    with_descriptor || with_directions ? described : nullptr, row, penalties);
     return classify_distances(model, distances, any ? penalties : nullptr);
 }
 
@@ -182,6 +196,7 @@ public:
         if (status != Status::ok) return status;
         characters_ = detail::storage_at<Character>(storage, p.characters);
         features_ = detail::storage_at<float>(storage, p.features);
+        records_ = detail::storage_at<float>(storage, p.records);
         scratch_ = detail::storage_at<float>(storage, p.scratch);
         cells_ = detail::storage_at<detail::Cell>(storage, p.cells);
         capacity_ = max_characters;
@@ -217,6 +232,15 @@ public:
             characters_[length_] = previous ? e.previous : e.current;
             const float* feature = previous ? e.previous_feature : e.current_feature;
             for (std::size_t i = 0; i < d; ++i) features_[length_ * d + i] = feature[i];
+            if (model_->has_directions()) {
+                const std::size_t D = model_->pose_dim(), n = model_->direction_record_floats();
+                const float* pose = previous ? e.previous_pose : e.current_pose;
+                const float* facing = previous ? e.previous_facing : e.current_facing;
+                float* record = records_ + length_ * n;
+                for (std::size_t i = 0; i < D; ++i) record[i] = pose[i];
+                record[D] = facing[0];
+                record[D + 1u] = facing[1];
+            }
             ++length_;
         }
         overflowed_ = overflowed_ || dropped;
@@ -228,7 +252,8 @@ public:
     /// goes on recording.
     Classification classify() noexcept {
         if (model_ == nullptr) return Classification{};
-        return classify_clip(*model_, characters_, features_, length_, scratch_, cells_);
+        return classify_clip(*model_, characters_, features_, model_->has_directions() ? records_ : nullptr, length_,
+                             scratch_, cells_);
     }
 
     std::size_t length() const noexcept { return length_; }
@@ -239,10 +264,14 @@ public:
     const Character* characters() const noexcept { return characters_; }
     /// Their features, feature_dim floats each.
     const float* features() const noexcept { return features_; }
+    /// Their poses and facings, direction_record_floats() each, kept only for
+    /// a model with motion directions (else null).
+    const float* records() const noexcept { return model_ != nullptr && model_->has_directions() ? records_ : nullptr; }
 
 private:
     struct Plan {
-        std::size_t encoder = 0, encoder_bytes = 0, characters = 0, features = 0, scratch = 0, cells = 0, bytes = 0;
+        std::size_t encoder = 0, encoder_bytes = 0, characters = 0, features = 0, records = 0, scratch = 0, cells = 0,
+                    bytes = 0;
     };
     // Every character and its feature as its frame comes: never deferred, so
     // required_bytes() and init() size the encoder alike whatever is asked.
@@ -259,9 +288,12 @@ private:
         p.characters = layout.add<Character>(max_characters);
         const std::size_t d = model.feature_dim;
         // Counts whose product would wrap are no storage at all.
+        const std::size_t n = model.has_directions() ? model.direction_record_floats() : 0u;  // kept records
         const bool too_many = (d != 0 && max_characters > unsatisfiable_bytes / d) ||
+                              (n != 0 && max_characters > unsatisfiable_bytes / n) ||
                               max_characters >= unsatisfiable_bytes / (longest_representative(model) + 1u);
         p.features = layout.add<float>(too_many ? unsatisfiable_bytes : max_characters * d);
+        p.records = layout.add<float>(too_many ? unsatisfiable_bytes : max_characters * n);
         p.scratch = layout.add<float>(clip_scratch_floats(model));
         p.cells = layout.add<detail::Cell>(too_many ? unsatisfiable_bytes : clip_cells(model, max_characters));
         p.bytes = p.encoder_bytes == unsatisfiable_bytes ? unsatisfiable_bytes : layout.bytes();
@@ -272,6 +304,7 @@ private:
     StringEncoder encoder_;
     Character* characters_ = nullptr;
     float* features_ = nullptr;
+    float* records_ = nullptr;  // with motion directions: each character's pose and facing
     float* scratch_ = nullptr;
     detail::Cell* cells_ = nullptr;
     std::size_t capacity_ = 0, length_ = 0;

@@ -20,8 +20,12 @@
 // fixed order, so a generated header, a loaded model, a host and a Cortex-M4
 // give the same bits, and the trainer, which calls clip_descriptor() itself,
 // fits the classifier on exactly what the runtime computes.
+//
+// Beside it, the clip's motion directions (below): which way each pose joint
+// steps, part by part, scored by a second linear classifier.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 
 #include "actionstring/detail/math.hpp"
@@ -126,6 +130,121 @@ inline void descriptor_penalties(const ModelView& model, const float* features, 
         if (penalties[l] > best) best = penalties[l];
     }
     for (std::size_t l = 0; l < L; ++l) penalties[l] = finite ? model.descriptor_weight * (best - penalties[l]) : 0.0f;
+}
+
+// ---- The clip's motion directions ------------------------------------------
+//
+// The descriptor's covariances see which coordinates move together, not which
+// way: a motion and its reverse share them. The direction histograms see that
+// (as the histograms of oriented displacements of skeleton action
+// recognition): per part of a temporal pyramid, for each pose joint and each
+// coordinate plane, how far the joint stepped in each of eight directions. A
+// second linear classifier scores them beside the descriptor's.
+//
+// The pose each frame gives has its facing taken out (normalize_pose()); the
+// facing's frame-to-frame jitter would turn every joint a little each step.
+// So each pose is turned back to the facing of the clip's first character
+// (its record keeps the turn that was taken out): the clip keeps one frame,
+// whichever way it was performed, and a stream knows it from the start.
+
+/// The sector of a step (u, v) in its plane: 0 … 7 for the angles [0°, 45°),
+/// [45°, 90°), … counter-clockwise from +u, decided by comparisons alone (no
+/// trigonometry), so every platform bins alike. (0, 0), which adds nothing
+/// (its length is 0), falls in sector 3.
+constexpr std::size_t direction_sector(float u, float v) noexcept {
+    return v < 0.0f ? 4u + direction_sector(-u, -v) : (u > 0.0f ? (v < u ? 0u : 1u) : (v > -u ? 2u : 3u));
+}
+
+/// The direction histograms of a clip of `n` records (each
+/// direction_record_floats(): 3 × `joints` pose coordinates, x y z per
+/// joint, then the facing turn {cos, sin} taken out of that pose): for level
+/// v = 1 … `levels` and part i = 0 … v − 1 (the parts of clip_descriptor()),
+/// for each joint and each plane (xy, yz, xz, in that order), every step of
+/// the part (record t − 1 → t for its t ≥ 1), both poses turned about
+/// `up_axis` to the facing of record 0, adds its length in the plane to its
+/// direction's sector (direction_sector()); every histogram is then divided
+/// by its sum (left 0 when the joint does not move there). Sums in order.
+/// All zeros when n < 2.
+/// @param records n × (3 × joints + 2) floats; read only during the call
+/// @param out     receives descriptor_parts(levels) × joints × 3 × 8 floats (caller-owned)
+inline void clip_directions(const float* records, std::size_t n, std::size_t joints, std::size_t up_axis,
+                            std::size_t levels, float* out) noexcept {
+    if (out == nullptr) return;
+    constexpr std::size_t bins = ModelView::direction_bins;
+    constexpr std::size_t planes[3][2] = {{0, 1}, {1, 2}, {0, 2}};
+    const std::size_t stride = 3u * joints + 2u, part_size = joints * 3u * bins;
+    const std::size_t h1 = (up_axis + 1u) % 3u, h2 = (up_axis + 2u) % 3u;
+    // Record t's joint j as it faced at record 0: the turn taken out of it
+    // (normalize_pose() turned by −θ_t) put back, then record 0's taken out,
+    // one turn by θ_t − θ_0.
+    auto turned = [&](std::size_t t, std::size_t j, float* v) {
+        const float* record = records + t * stride;
+        const float* first = records + 3u * joints;  // record 0's facing
+        const float c = record[3u * joints] * first[0] + record[3u * joints + 1u] * first[1];
+        const float s = record[3u * joints + 1u] * first[0] - record[3u * joints] * first[1];
+        const float* p = record + 3u * j;
+        v[up_axis] = p[up_axis];
+        v[h1] = c * p[h1] - s * p[h2];
+        v[h2] = s * p[h1] + c * p[h2];
+    };
+    for (std::size_t level = 1; level <= levels; ++level)
+        for (std::size_t part = 0; part < level; ++part, out += part_size) {
+            for (std::size_t k = 0; k < part_size; ++k) out[k] = 0.0f;
+            if (n < 2 || records == nullptr || up_axis > 2) continue;
+            const std::size_t begin = descriptor_part_begin(n, level, part), end = descriptor_part_end(n, level, part);
+            for (std::size_t t = begin > 0 ? begin : 1u; t < end; ++t) {
+                float* histogram = out;
+                for (std::size_t j = 0; j < joints; ++j) {
+                    float now[3], before[3];
+                    turned(t, j, now);
+                    turned(t - 1u, j, before);
+                    for (const auto& plane : planes) {
+                        const float u = now[plane[0]] - before[plane[0]], v = now[plane[1]] - before[plane[1]];
+                        histogram[direction_sector(u, v)] += std::sqrt(u * u + v * v);
+                        histogram += bins;
+                    }
+                }
+            }
+            for (float* histogram = out; histogram < out + part_size; histogram += bins) {
+                float sum = 0.0f;
+                for (std::size_t b = 0; b < bins; ++b) sum += histogram[b];
+                if (sum > 0.0f)
+                    for (std::size_t b = 0; b < bins; ++b) histogram[b] /= sum;
+            }
+        }
+}
+
+/// What the motion directions add to the distance of each label's
+/// representatives, from a clip's `n` records (direction_record_floats()
+/// each: EncodedFrame's previous_pose / current_pose, its first pose_dim()
+/// floats, then previous_facing / current_facing):
+///   direction_weight · (max over labels of score − score(label)),
+/// score(l) = direction_bias[l] + Σ_p direction_weights[l · P + p] · h[p] over
+/// the clip's clip_directions() h, summed in p order. ≥ 0, and 0 for the label
+/// scored highest. All 0 without directions or records, or when a score is
+/// not finite (no opinion).
+/// @param records   n × direction_record_floats() floats; read only during the call
+/// @param scratch   direction_size() floats (caller-owned), overwritten
+/// @param penalties receives label_count floats (caller-owned)
+inline void direction_penalties(const ModelView& model, const float* records, std::size_t n, float* scratch,
+                                float* penalties) noexcept {
+    if (penalties == nullptr) return;
+    const std::size_t L = model.label_count;
+    for (std::size_t l = 0; l < L; ++l) penalties[l] = 0.0f;
+    if (!model.has_directions() || records == nullptr || n == 0 || scratch == nullptr) return;
+    clip_directions(records, n, model.pose_joint_count, model.up_axis, model.direction_levels, scratch);
+    const std::size_t P = model.direction_size();
+    float best = -detail::infinity();
+    bool finite = true;
+    for (std::size_t l = 0; l < L; ++l) {
+        const float* w = model.direction_weights + l * P;
+        float sum = model.direction_bias[l];
+        for (std::size_t p = 0; p < P; ++p) sum += w[p] * scratch[p];
+        penalties[l] = sum;
+        finite = finite && detail::is_finite(sum);
+        if (sum > best) best = sum;
+    }
+    for (std::size_t l = 0; l < L; ++l) penalties[l] = finite ? model.direction_weight * (best - penalties[l]) : 0.0f;
 }
 
 }  // namespace actionstring

@@ -41,6 +41,15 @@ struct EncodedFrame {
     /// valid until the next push_frame(); for exemplars.hpp.
     const float* previous_feature = nullptr;
     const float* current_feature = nullptr;
+    /// The normalised poses those features were projected from (input_dim()
+    /// floats: the pose, then with motion its velocity and acceleration), and
+    /// the facing turn each was taken out of ({cos, sin}, normalize_pose()),
+    /// null when not emitted; valid until the next push_frame(); for the
+    /// clip's motion directions (descriptor.hpp).
+    const float* previous_pose = nullptr;
+    const float* current_pose = nullptr;
+    const float* previous_facing = nullptr;
+    const float* current_facing = nullptr;
 
     std::uint32_t count() const noexcept { return from_previous + from_current; }
     bool accepted() const noexcept { return status == Status::ok || status == Status::stream_restarted; }
@@ -53,6 +62,8 @@ struct DeferredCharacter {
     Character character = 0;
     std::uint32_t count = 0;
     const float* feature = nullptr;
+    const float* pose = nullptr;    ///< the pose it was projected from (input_dim() floats), as long as `feature`
+    const float* facing = nullptr;  ///< that pose's facing turn ({cos, sin}), as long as `feature`
 };
 
 /// Stream timing of an encoder (AnnotatorConfig carries the same two), and
@@ -162,10 +173,14 @@ public:
         if (out.from_previous > 0) {
             out.previous = character(1u - previous_);
             out.previous_feature = feature(1u - previous_);
+            out.previous_pose = poses_[1u - previous_];
+            out.previous_facing = facings_[1u - previous_];
         }
         if (out.from_current > 0) {
             out.current = character(previous_);
             out.current_feature = feature(previous_);
+            out.current_pose = poses_[previous_];
+            out.current_facing = facings_[previous_];
         }
         return out;
     }
@@ -183,7 +198,7 @@ public:
         const std::size_t current = has_previous_ ? 1u - previous_ : 0u;
         out.status =
             normalize_pose(*model_, positions, poses_[current], uses_bones(model_->scale_mode) ? skeleton_ : nullptr,
-                           turned_ ? rotation_ : nullptr);
+                           turned_ ? rotation_ : nullptr, facings_[current]);
         if (out.status != Status::ok) return out;
         const SamplePlan plan = sampler_.advance(time_us);
         out.status = plan.status;
@@ -306,7 +321,8 @@ public:
     /// else null. Valid until pop_character().
     const DeferredCharacter* ready_character() noexcept {
         if (queued_ == 0 || entries_[head_].stage != Stage::ready) return nullptr;
-        ready_out_ = DeferredCharacter{entries_[head_].character, entries_[head_].count, queue_features_[head_]};
+        ready_out_ = DeferredCharacter{entries_[head_].character, entries_[head_].count, queue_features_[head_],
+                                       queue_poses_[head_], queue_facings_[head_]};
         return &ready_out_;
     }
 
@@ -347,6 +363,8 @@ private:
         const std::size_t e = (head_ + queued_) % 2;
         const std::size_t n = model_->input_dim();
         for (std::size_t i = 0; i < n; ++i) queue_poses_[e][i] = poses_[slot][i];
+        queue_facings_[e][0] = facings_[slot][0];
+        queue_facings_[e][1] = facings_[slot][1];
         entries_[e] = Entry{};
         entries_[e].count = count;
         ready_[slot] = true;  // its motion is taken (accept_frame())
@@ -453,6 +471,8 @@ private:
     const ModelView* model_ = nullptr;
     StringSampler sampler_;
     float* poses_[2] = {};  // input_dim() floats each: the pose, then with motion its velocity and acceleration
+    float facings_[2][2] = {};        // each slot's facing turn, {cos, sin}
+    float queue_facings_[2][2] = {};  // deferred: the queued poses' facing turns
     MotionRing motion_;
     float* skeleton_ = nullptr;  // the rebuilt skeleton (bone-length scaling)
     float rotation_[9] = {};     // EncoderConfig::up's turn (up_rotation()), used when turned_

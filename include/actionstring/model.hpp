@@ -157,6 +157,22 @@ struct ModelView {
         return std::size_t{descriptor_levels} * (descriptor_levels + 1u) / 2u *
                (descriptor_dims() + descriptor_dims() * (descriptor_dims() + 1u) / 2u);
     }
+    /// Whether clip classification adds the motion directions' penalties (descriptor.hpp).
+    constexpr bool has_directions() const noexcept {
+        return direction_weight > 0.0f && direction_levels > 0 && direction_weights != nullptr &&
+               direction_bias != nullptr;
+    }
+    /// Sectors of a step direction's histogram (descriptor.hpp): 45° each.
+    static constexpr std::size_t direction_bins = 8;
+    /// Floats per character the motion directions read (clip_directions()):
+    /// its normalised pose (pose_dim()), then the facing turn taken out of it ({cos, sin}).
+    constexpr std::size_t direction_record_floats() const noexcept { return pose_dim() + 2u; }
+    /// Floats of one clip's direction histograms: per part of every level (1 +
+    /// 2 + … + direction_levels parts), per pose joint, per coordinate plane
+    /// (xy, yz, xz), direction_bins sectors; 0 without levels.
+    constexpr std::size_t direction_size() const noexcept {
+        return std::size_t{direction_levels} * (direction_levels + 1u) / 2u * pose_joint_count * 3u * direction_bins;
+    }
     /// Whether the exemplars include centres of "no action" (labelled
     /// unknown_label, after every label's): the segmenter then weighs "no
     /// action" by its exemplars too. Learned from the unlabelled stretches of
@@ -471,6 +487,18 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
             return refuse(problem, "descriptor_weights: missing, non-finite or beyond 1e6");
         if (!detail::all_within(m.descriptor_bias, m.label_count, -max_table_value, max_table_value))
             return refuse(problem, "descriptor_bias: missing, non-finite or beyond 1e6");
+    }
+    // The motion directions: a linear classifier over the pose joints' histograms.
+    if (!(m.direction_weight >= 0.0f && m.direction_weight <= 1000.0f))
+        return refuse(problem, "direction_weight: negative, non-finite or beyond 1000");
+    if (m.direction_levels > 8) return refuse(problem, "direction_levels: more than 8");
+    if (m.direction_levels > 0) {
+        if (m.pose_joint_count == 0) return refuse(problem, "direction_levels: no pose joints to follow");
+        if (!detail::all_within(m.direction_weights, std::size_t{m.label_count} * m.direction_size(), -max_table_value,
+                                max_table_value))
+            return refuse(problem, "direction_weights: missing, non-finite or beyond 1e6");
+        if (!detail::all_within(m.direction_bias, m.label_count, -max_table_value, max_table_value))
+            return refuse(problem, "direction_bias: missing, non-finite or beyond 1e6");
     }
     // Matching.
     if (m.variant > MatchVariant::subsequence) return refuse(problem, "variant: unknown");

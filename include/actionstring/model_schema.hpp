@@ -116,6 +116,13 @@
     /* label by label, descriptor_size() weights each (the training standardisation folded in) */      \
     TABLE(float, descriptor_weights, std::size_t{m.label_count} * m.descriptor_size(), 0, 0)               \
     TABLE(float, descriptor_bias, (m.descriptor_levels > 0 ? m.label_count : 0u), 0, 0)                   \
+    /* the clip's motion directions (design §1.8, descriptor.hpp): per part of a temporal pyramid,   */ \
+    /* each pose joint's histogram of step directions in the three coordinate planes (the clip     */ \
+    /* turned by its first facing), scored per label by a second ridge classifier beside the first */ \
+    SCALAR(float, direction_weight, 0.0f, 0, 0)            /* 0 = none */                                 \
+    SCALAR(std::uint8_t, direction_levels, 0, 0, 8)        /* level v cuts the clip in v parts; 0 = none */ \
+    TABLE(float, direction_weights, std::size_t{m.label_count} * m.direction_size(), 0, 0)                 \
+    TABLE(float, direction_bias, (m.direction_levels > 0 ? m.label_count : 0u), 0, 0)                     \
     /* --- online settings of the segmenter (design §1.8), chosen at training --- */                      \
     SCALAR(std::uint32_t, settle_delay_us, 2000000, 0, 600000000) /* a character's label is final then */ \
     SCALAR(float, segment_penalty, 3.0f, 0, 0)             /* cost of starting another segment */         \

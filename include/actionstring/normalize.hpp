@@ -88,12 +88,18 @@ inline Status up_rotation(const float* up, int up_axis, float* rotation) noexcep
 /// @param rotation  up_rotation()'s 3 × 3 turn, applied to every position
 ///                  first (about the root, which nothing else depends on);
 ///                  null for none
+/// @param facing    receives the facing turn taken out, {cos, sin} of the
+///                  horizontal hip vector's angle from the first horizontal
+///                  axis (after `rotation`); null for none. Turning the pose's
+///                  horizontal coordinates back by it gives the body as it
+///                  faced (clip_directions() does, to turn a clip by its first
+///                  facing rather than each frame by its own).
 /// @return ok, non_finite_input, tracking_lost (every joint the model reads is
 ///         exactly at the origin, as Kinect reports lost tracking),
 ///         degenerate_pose (no facing direction), pose_out_of_range, or
 ///         invalid_argument (a null pointer the model needs)
 inline Status normalize_pose(const ModelView& model, const float* input, float* pose_out, float* skeleton = nullptr,
-                             const float* rotation = nullptr) noexcept {
+                             const float* rotation = nullptr, float* facing = nullptr) noexcept {
     if (input == nullptr || pose_out == nullptr || model.up_axis > 2) return Status::invalid_argument;
     const bool bones = uses_bones(model.scale_mode);
     const bool tree = uses_kinematic_tree(model.scale_mode);
@@ -181,6 +187,7 @@ inline Status normalize_pose(const ModelView& model, const float* input, float* 
     if (!(horizontal > 1.0e-6f) || !(horizontal > 1.0e-3f * hip_width)) return Status::degenerate_pose;
     const float cos_a = hips[h1] / horizontal;
     const float sin_a = hips[h2] / horizontal;
+    if (facing != nullptr) facing[0] = cos_a, facing[1] = sin_a;
     float scale = model.scale_mode == ScaleMode::hip_width ? model.reference_scale / hip_width : 1.0f;
     if (model.scale_mode == ScaleMode::torso) {
         // The torso's reference length over this frame's, each summed in joint order.

@@ -32,10 +32,10 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
     {  // The classifier's rejection of synthetic non-actions made from these clips
         // (with exemplars, each character's exemplar distances spliced and warped
         // with it, and summed as classify_clip() sums a clip's).
-        // With a clip descriptor, the negatives' features, cut with them, give their
+        // With a clip descriptor, the negatives' features (and records), cut with them, give their
         // descriptor's penalties, as classify_clip() adds them.
         const std::size_t L = view.label_count;
-        const bool exemplars = view.has_exemplars(), described = view.has_descriptor();
+        const bool exemplars = view.has_exemplars(), described = view.has_descriptor() || view.has_directions();
         std::vector<std::vector<Character>> strings;
         std::vector<std::vector<float>> rows, features;
         std::vector<LabelId> labels;
@@ -43,19 +43,20 @@ Evaluation evaluate(const ModelView& view, std::vector<LabelledClip> clips, std:
         for (const LabelledClip& c : e.clips) {
             const auto at = std::find(names.begin(), names.end(), c.label);
             if (at == names.end()) continue;
-            EncodedClip encoded = encode_clip(view, c.clip, exemplars || described);
+            EncodedClip encoded = encode_clip(view, c.clip, exemplars || described, view.has_directions());
             strings.push_back(std::move(encoded.string));
             rows.push_back(exemplar_rows(view, encoded.features));
-            features.push_back(std::move(encoded.features));
+            features.push_back(described ? descriptor_rows(view, encoded.features, encoded.records)
+                                         : std::vector<float>{});
             labels.push_back(static_cast<LabelId>(at - names.begin()));
         }
         std::vector<PerCharacterRows> per_character;
         if (exemplars) per_character.push_back({&rows, L});
-        if (described) per_character.push_back({&features, view.feature_dim});
+        if (described) per_character.push_back({&features, descriptor_row_width(view)});
         for (const SyntheticNegative& n : synthetic_negatives(strings, labels, seed, per_character)) {
             const std::vector<float> sums = exemplars ? sum_exemplar_rows(n.rows.front(), L) : std::vector<float>{};
             const std::vector<float> penalties =
-                described ? clip_descriptor_penalties(view, n.rows.back()) : std::vector<float>{};
+                described ? descriptor_row_penalties(view, n.rows.back()) : std::vector<float>{};
             const Classification c = classify_string(view, n.string, {}, exemplars ? sums.data() : nullptr,
                                                      described ? penalties.data() : nullptr);
             if (n.own != unknown_label && c.nearest_label == n.own) continue;  // still its own action

@@ -164,6 +164,7 @@ int field_since(std::string_view name) {
     if (name == "acceleration_weight") return 7;
     if (name == "min_action_us") return 8;
     if (name == "exemplar_dim") return 9;
+    if (name.substr(0, 9) == "direction") return 12;
     if (name.substr(0, 10) == "descriptor") return 10;
     if (name == "label_lead_us") return 11;
     return name.find("exemplar") != std::string_view::npos ? 6 : 0;

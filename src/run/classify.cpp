@@ -2,6 +2,7 @@
 #include "run/classify.hpp"
 
 #include <limits>
+#include <stdexcept>
 
 #include "actionstring/clip.hpp"
 #include "actionstring/descriptor.hpp"
@@ -27,12 +28,58 @@ Classification classify_string(const ModelView& model, const std::vector<Charact
     return classify_distances(model, distances.data(), any ? penalties.data() : nullptr);
 }
 
-std::vector<float> clip_descriptor_penalties(const ModelView& model, const std::vector<float>& features) {
-    std::vector<float> penalties(model.label_count, 0.0f);
-    if (!model.has_descriptor() || model.feature_dim == 0) return penalties;
-    std::vector<float> scratch(model.descriptor_size());
-    descriptor_penalties(model, features.data(), features.size() / model.feature_dim, scratch.data(), penalties.data());
+std::vector<float> clip_descriptor_penalties(const ModelView& model, const std::vector<float>& features,
+                                             const std::vector<float>& records) {
+    const std::size_t L = model.label_count;
+    std::vector<float> penalties(L, 0.0f);
+    if (model.feature_dim == 0) return penalties;
+    const std::size_t n = features.size() / model.feature_dim;
+    if (model.has_descriptor()) {
+        std::vector<float> scratch(model.descriptor_size());
+        descriptor_penalties(model, features.data(), n, scratch.data(), penalties.data());
+    }
+    if (model.has_directions()) {
+        if (records.size() != n * model.direction_record_floats())
+            throw std::logic_error("clip_descriptor_penalties: the motion directions need every character's record");
+        std::vector<float> scratch(model.direction_size()), directed(L);
+        direction_penalties(model, records.data(), n, scratch.data(), directed.data());
+        for (std::size_t l = 0; l < L; ++l) penalties[l] += directed[l];
+    }
     return penalties;
+}
+
+std::size_t descriptor_row_width(const ModelView& model) {
+    return model.feature_dim + (model.has_directions() ? model.direction_record_floats() : 0u);
+}
+
+std::vector<float> descriptor_rows(const ModelView& model, const std::vector<float>& features,
+                                   const std::vector<float>& records) {
+    const std::size_t d = model.feature_dim, width = descriptor_row_width(model), extra = width - d;
+    const std::size_t n = d == 0 ? 0 : features.size() / d;
+    if (extra != 0 && records.size() != n * extra)
+        throw std::logic_error("descriptor_rows: the motion directions need every character's record");
+    std::vector<float> rows;
+    rows.reserve(n * width);
+    for (std::size_t t = 0; t < n; ++t) {
+        rows.insert(rows.end(), features.begin() + static_cast<std::ptrdiff_t>(t * d),
+                    features.begin() + static_cast<std::ptrdiff_t>((t + 1) * d));
+        rows.insert(rows.end(), records.begin() + static_cast<std::ptrdiff_t>(t * extra),
+                    records.begin() + static_cast<std::ptrdiff_t>((t + 1) * extra));
+    }
+    return rows;
+}
+
+std::vector<float> descriptor_row_penalties(const ModelView& model, const std::vector<float>& rows) {
+    const std::size_t d = model.feature_dim, width = descriptor_row_width(model);
+    if (width == 0) return std::vector<float>(model.label_count, 0.0f);
+    std::vector<float> features, records;
+    for (std::size_t at = 0; at + width <= rows.size(); at += width) {
+        features.insert(features.end(), rows.begin() + static_cast<std::ptrdiff_t>(at),
+                        rows.begin() + static_cast<std::ptrdiff_t>(at + d));
+        records.insert(records.end(), rows.begin() + static_cast<std::ptrdiff_t>(at + d),
+                       rows.begin() + static_cast<std::ptrdiff_t>(at + width));
+    }
+    return clip_descriptor_penalties(model, features, records);
 }
 
 std::vector<float> exemplar_rows(const ModelView& model, const std::vector<float>& features) {
@@ -64,11 +111,13 @@ std::vector<float> exemplar_sums(const ModelView& model, const std::vector<float
 }
 
 Classification classify_clip(const ModelView& model, const Clip& clip) {
-    const EncodedClip encoded = encode_clip(model, clip, model.has_exemplars() || model.has_descriptor());
+    const EncodedClip encoded =
+        encode_clip(model, clip, model.has_exemplars() || model.has_descriptor(), model.has_directions());
     std::vector<float> scratch(clip_scratch_floats(model));
     std::vector<detail::Cell> cells(clip_cells(model, encoded.string.size()));
     return actionstring::classify_clip(model, encoded.string.data(),
                                        encoded.features.empty() ? nullptr : encoded.features.data(),
+                                       encoded.records.empty() ? nullptr : encoded.records.data(),
                                        encoded.string.size(), scratch.data(), cells.data());
 }
 

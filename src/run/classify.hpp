@@ -26,9 +26,23 @@ Classification classify_string(const ModelView& model, const std::vector<Charact
                                const std::vector<std::size_t>& excluded = {}, const float* exemplar_sums = nullptr,
                                const float* descriptor = nullptr);
 
-/// The runtime's descriptor_penalties() of a clip's features (feature_dim
-/// floats per character): label_count floats, all 0 without a descriptor.
-std::vector<float> clip_descriptor_penalties(const ModelView& model, const std::vector<float>& features);
+/// The clip descriptors' penalties of a clip: the runtime's
+/// descriptor_penalties() of its features (feature_dim floats per character)
+/// plus, with motion directions, direction_penalties() of its records
+/// (direction_record_floats() per character; ignored without directions):
+/// label_count floats, all 0 with neither.
+std::vector<float> clip_descriptor_penalties(const ModelView& model, const std::vector<float>& features,
+                                             const std::vector<float>& records);
+
+/// What the clip descriptors read of each character, side by side in one row
+/// so that rows can be cut, repeated and spliced with the characters (the
+/// synthetic negatives of rejection.hpp): the character's feature, then, with
+/// motion directions, its record. descriptor_row_width() floats each.
+std::size_t descriptor_row_width(const ModelView& model);
+std::vector<float> descriptor_rows(const ModelView& model, const std::vector<float>& features,
+                                   const std::vector<float>& records);
+/// clip_descriptor_penalties() of descriptor_rows().
+std::vector<float> descriptor_row_penalties(const ModelView& model, const std::vector<float>& rows);
 
 /// Per label, the sum over `features` (feature_dim floats each) of the
 /// runtime's exemplar_distances(): label_count floats, all 0 without exemplars.

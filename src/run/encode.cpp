@@ -31,7 +31,7 @@ std::vector<Character> clip_string(const ModelView& model, const Clip& clip) {
     return encode_clip(model, clip, false).string;
 }
 
-EncodedClip encode_clip(const ModelView& model, const Clip& clip, bool with_features) {
+EncodedClip encode_clip(const ModelView& model, const Clip& clip, bool with_features, bool with_records) {
     require_joint_count(model, clip.joint_count(), clip.source);
     Stateful<StringEncoder> encoder;
     const Status status = encoder.init(model, EncoderConfig{kDeviceTiming.max_gap_us, kDeviceTiming.max_backward_us});
@@ -44,15 +44,22 @@ EncodedClip encode_clip(const ModelView& model, const Clip& clip, bool with_feat
         throw std::invalid_argument(std::string("model rejected by the encoder: ") + status_name(status));
     EncodedClip out;
     const std::size_t d = model.feature_dim;
-    auto add_features = [&](const float* feature, std::uint32_t count) {
-        for (std::uint32_t i = 0; i < count && with_features; ++i) out.features.insert(out.features.end(), feature, feature + d);
+    const std::size_t D = model.pose_dim();
+    auto add_features = [&](const float* feature, const float* pose, const float* facing, std::uint32_t count) {
+        for (std::uint32_t i = 0; i < count; ++i) {
+            if (with_features) out.features.insert(out.features.end(), feature, feature + d);
+            if (with_records) {
+                out.records.insert(out.records.end(), pose, pose + D);
+                out.records.insert(out.records.end(), facing, facing + 2);
+            }
+        }
     };
     for (std::size_t f = 0; f < clip.frame_count(); ++f) {
         const EncodedFrame e = encoder->push_frame(seconds_to_us(clip.times[f]), clip.frame(f));
         out.string.insert(out.string.end(), e.from_previous, e.previous);
-        add_features(e.previous_feature, e.from_previous);
+        add_features(e.previous_feature, e.previous_pose, e.previous_facing, e.from_previous);
         out.string.insert(out.string.end(), e.from_current, e.current);
-        add_features(e.current_feature, e.from_current);
+        add_features(e.current_feature, e.current_pose, e.current_facing, e.from_current);
     }
     return out;
 }

@@ -21,10 +21,13 @@ std::vector<Character> clip_string(const ModelView& model, const Clip& clip);
 struct EncodedClip {
     std::vector<Character> string;
     std::vector<float> features;  ///< feature_dim floats per character, or empty
+    std::vector<float> records;   ///< direction_record_floats() per character (its pose and facing), or empty
 };
 
-/// clip_string() with, when `with_features`, the characters' features.
-EncodedClip encode_clip(const ModelView& model, const Clip& clip, bool with_features);
+/// clip_string() with, when `with_features`, the characters' features, and
+/// when `with_records` their poses and facings (EncodedFrame's previous_pose
+/// and previous_facing …: what the motion directions read, descriptor.hpp).
+EncodedClip encode_clip(const ModelView& model, const Clip& clip, bool with_features, bool with_records = false);
 
 /// Appends to `poses` the clip's normalised poses nearest to every tick of a
 /// clock at `rate_hz`, picked by the runtime's own sampler: model.input_dim()

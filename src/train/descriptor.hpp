@@ -1,6 +1,7 @@
-// actionstring host library — training's clip descriptor: a linear classifier
+// actionstring host library — training's clip descriptors: linear classifiers
 // over each training clip's temporal pyramid of feature means and covariances,
-// fitted by ridge regression (design.md §1.8, descriptor.hpp).
+// and over its motion directions, fitted by ridge regression (design.md §1.8,
+// descriptor.hpp).
 #pragma once
 
 #include <cstddef>
@@ -25,6 +26,19 @@ namespace host {
 /// beyond 8, a non-positive ridge, or fewer than two labelled clips.
 void set_descriptor(ModelData& m, const std::vector<std::vector<float>>& features, const std::vector<LabelId>& labels,
                     std::size_t levels, std::size_t dims, double ridge, double weight);
+
+/// Sets the model's motion directions (descriptor.hpp) from the training
+/// clips' records: `records[i]` holds clip i's (direction_record_floats()
+/// per character, from encode_clip(…, with_records)), `labels[i]` its label
+/// (clips labelled unknown_label are left out). Each clip's histograms are the
+/// runtime's clip_directions() over `levels` levels; the linear classifier is
+/// fitted as set_descriptor()'s, with penalty `ridge`. The model must already
+/// hold its pose joints and up axis. `levels` 0 or `weight` 0: none.
+/// Deterministic. Throws std::invalid_argument for levels beyond 8, a
+/// non-positive ridge, a model without pose joints, or fewer than two
+/// labelled clips.
+void set_directions(ModelData& m, const std::vector<std::vector<float>>& records, const std::vector<LabelId>& labels,
+                    std::size_t levels, double ridge, double weight);
 
 }  // namespace host
 }  // namespace actionstring

@@ -104,6 +104,13 @@ struct TrainingOptions {
     int descriptor_dims = 0;
     double descriptor_ridge = 1000.0;
     double descriptor_weight = 0.0;
+    /// The motion directions (descriptor.hpp): each pose joint's histograms
+    /// of step directions over a pyramid of `direction_levels` levels, scored
+    /// per label by ridge regression with penalty `direction_ridge`; their
+    /// penalties join the descriptor's with weight `direction_weight`. Levels 0: none.
+    int direction_levels = 0;
+    double direction_ridge = 1000.0;
+    double direction_weight = 0.0;
     int neighbours = 1;
     double window_seconds = 2.0;
     double step_seconds = 0.5;

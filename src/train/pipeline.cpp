@@ -85,6 +85,9 @@ void check_options(const TrainingOptions& o) {
     require(o.descriptor_ridge > 0 && o.descriptor_ridge <= 1e9, "the descriptor's ridge must be above 0, at most 1e9");
     require(o.descriptor_weight >= 0 && o.descriptor_weight <= 1000,
             "the descriptor weight must be between 0 and 1000");
+    require(o.direction_levels >= 0 && o.direction_levels <= 8, "the directions' levels must be between 0 and 8");
+    require(o.direction_ridge > 0 && o.direction_ridge <= 1e9, "the directions' ridge must be above 0, at most 1e9");
+    require(o.direction_weight >= 0 && o.direction_weight <= 1000, "the direction weight must be between 0 and 1000");
     require(o.max_representative_share >= 0 && o.max_representative_share < 1,
             "the representatives' share must be at least 0 and below 1");
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
@@ -505,6 +508,7 @@ void set_no_action_votes(ModelData& m, const std::vector<EncodedClip>& stretches
 void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips, const std::vector<LabelId>& labels,
                       const std::vector<std::vector<Character>>& strings,
                       const std::vector<std::vector<float>>& string_features,
+                      const std::vector<std::vector<float>>& string_records,
                       const std::vector<long>& own_representative, const std::vector<LabelledClip>* no_action,
                       const std::vector<EncodedClip>& stretches, const TrainingOptions& options, TrainingReport& r) {
     m.has_label_bounds = 0;
@@ -547,38 +551,51 @@ void set_label_bounds(ModelData& m, const std::vector<LabelledClip>& clips, cons
     // from (one subject for a clip or a stretch, two for a spliced pair), each
     // fitted once, when first asked for.
     // Everything the callbacks below refer to lives until learn_label_bounds() returns.
-    const bool described = view.has_descriptor();
+    const bool described = view.has_descriptor() || view.has_directions();
     DescriptorSamples descriptor;
     std::map<std::set<std::string>, ModelData> descriptor_folds;
     const std::set<std::string> distinct(subjects.begin(), subjects.end());
-    auto penalties_without = [&](const std::vector<float>& features, std::set<std::string> left) {
-        if (distinct.size() < 2) return clip_descriptor_penalties(view, features);  // one subject: its own
+    // The samples are descriptor_rows(): each character's feature, with motion directions then its record.
+    auto penalties_without = [&](const std::vector<float>& sample, std::set<std::string> left) {
+        if (distinct.size() < 2) return descriptor_row_penalties(view, sample);  // one subject: its own
         auto fold = descriptor_folds.find(left);
         if (fold == descriptor_folds.end()) {
-            std::vector<std::vector<float>> kept;
+            std::vector<std::vector<float>> kept, kept_records;
             std::vector<LabelId> kept_labels;
             for (std::size_t i = 0; i < clips.size(); ++i)
-                if (left.count(subjects[i]) == 0) kept.push_back(string_features[i]), kept_labels.push_back(labels[i]);
-            ModelData fitted;
+                if (left.count(subjects[i]) == 0)
+                    kept.push_back(string_features[i]), kept_records.push_back(string_records[i]),
+                        kept_labels.push_back(labels[i]);
+            ModelData fitted;  // what the descriptors read: the features, the pose joints, the up axis
             fitted.feature_dim = m.feature_dim;
             fitted.label_names = m.label_names;
-            if (kept.size() >= 2)  // else none: no opinion
-                set_descriptor(fitted, kept, kept_labels, static_cast<std::size_t>(options.descriptor_levels),
-                               static_cast<std::size_t>(options.descriptor_dims), options.descriptor_ridge,
-                               options.descriptor_weight);
+            fitted.pose_joints = m.pose_joints;
+            fitted.up_axis = m.up_axis;
+            if (kept.size() >= 2) {  // else none: no opinion
+                if (view.has_descriptor())
+                    set_descriptor(fitted, kept, kept_labels, static_cast<std::size_t>(options.descriptor_levels),
+                                   static_cast<std::size_t>(options.descriptor_dims), options.descriptor_ridge,
+                                   options.descriptor_weight);
+                if (view.has_directions())
+                    set_directions(fitted, kept_records, kept_labels,
+                                   static_cast<std::size_t>(options.direction_levels), options.direction_ridge,
+                                   options.direction_weight);
+            }
             fold = descriptor_folds.emplace(std::move(left), std::move(fitted)).first;
         }
-        return clip_descriptor_penalties(fold->second.view(), features);
+        return descriptor_row_penalties(fold->second.view(), sample);
     };
     if (described) {
-        descriptor.strings = string_features;
-        for (const EncodedClip& stretch : stretches) descriptor.no_action.push_back(stretch.features);
-        descriptor.width = m.feature_dim;
-        descriptor.of_strings = [&](const std::vector<float>& features, std::size_t first, std::size_t second) {
-            return penalties_without(features, {subjects[first], subjects[second]});
+        for (std::size_t i = 0; i < clips.size(); ++i)
+            descriptor.strings.push_back(descriptor_rows(view, string_features[i], string_records[i]));
+        for (const EncodedClip& stretch : stretches)
+            descriptor.no_action.push_back(descriptor_rows(view, stretch.features, stretch.records));
+        descriptor.width = descriptor_row_width(view);
+        descriptor.of_strings = [&](const std::vector<float>& sample, std::size_t first, std::size_t second) {
+            return penalties_without(sample, {subjects[first], subjects[second]});
         };
-        descriptor.of_stretch = [&](const std::vector<float>& features, std::size_t stretch) {
-            return penalties_without(features, {(*no_action)[stretch].subject});
+        descriptor.of_stretch = [&](const std::vector<float>& sample, std::size_t stretch) {
+            return penalties_without(sample, {(*no_action)[stretch].subject});
         };
     }
     const std::vector<float> bounds = learn_label_bounds(
@@ -662,12 +679,15 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
     m.string_period_us = static_cast<std::uint32_t>(std::lround(1e6 / options.string_rate_hz));
     const bool exemplars = options.exemplars > 0 && options.exemplar_weight > 0;
     const bool descriptor = options.descriptor_levels > 0 && options.descriptor_weight > 0;
+    const bool directions = options.direction_levels > 0 && options.direction_weight > 0;
     std::vector<std::vector<Character>> strings;
     std::vector<std::vector<float>> string_features;  // with exemplars or a descriptor: each character's feature
+    std::vector<std::vector<float>> string_records;   // with motion directions: each character's pose and facing
     for (const LabelledClip& c : clips) {
-        EncodedClip encoded = encode_clip(m.view(), c.clip, exemplars || descriptor);
+        EncodedClip encoded = encode_clip(m.view(), c.clip, exemplars || descriptor || directions, directions);
         strings.push_back(std::move(encoded.string));
         string_features.push_back(std::move(encoded.features));
+        string_records.push_back(std::move(encoded.records));
     }
     r.strings = static_cast<int>(strings.size());
     // The stretches of no action (a list of recordings), encoded once for the
@@ -677,7 +697,7 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
         for (const LabelledClip& stretch : *no_action) {
             Clip clip = stretch.clip;
             conform_to_model(m.view(), clip);
-            stretches.push_back(encode_clip(m.view(), clip, exemplars || descriptor));
+            stretches.push_back(encode_clip(m.view(), clip, exemplars || descriptor || directions, directions));
         }
     stage.finish("training strings");
 
@@ -710,12 +730,18 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
                        options.descriptor_weight);
         stage.finish("descriptor");
     }
+    if (directions) {
+        stage.start("fitting the motion directions");
+        set_directions(m, string_records, labels, static_cast<std::size_t>(options.direction_levels),
+                       options.direction_ridge, options.direction_weight);
+        stage.finish("directions");
+    }
 
     set_matching(m, options, r.representatives);
     if (options.reject) {
         stage.start("learning each label's rejection bound");
-        set_label_bounds(m, clips, labels, strings, string_features, own_representative, no_action, stretches,
-                         options, r);
+        set_label_bounds(m, clips, labels, strings, string_features, string_records, own_representative, no_action,
+                         stretches, options, r);
         stage.finish("rejection bounds");
     }
     return m;

@@ -57,9 +57,9 @@ struct ExemplarRows {
 /// without the subjects a sample was made from (as the representatives it is
 /// compared with leave them out).
 struct DescriptorSamples {
-    std::vector<std::vector<float>> strings;    ///< per training string: its features, feature_dim per character
+    std::vector<std::vector<float>> strings;    ///< per training string: its descriptor_rows(), `width` per character
     std::vector<std::vector<float>> no_action;  ///< per string of no action, likewise
-    std::size_t width = 0;                      ///< feature_dim
+    std::size_t width = 0;                      ///< descriptor_row_width()
     /// label_count penalties of `features`, made from training strings `first`
     /// and `second` (the same for one string's), fitted without their subjects.
     std::function<std::vector<float>(const std::vector<float>& features, std::size_t first, std::size_t second)>

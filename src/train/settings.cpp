@@ -179,6 +179,9 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "descriptor-dims") o.descriptor_dims = static_cast<int>(whole(0, 64));
     else if (name == "descriptor-ridge") o.descriptor_ridge = num(1e-6, 1e9);
     else if (name == "descriptor-weight") o.descriptor_weight = num(0, 1000);
+    else if (name == "direction-levels") o.direction_levels = static_cast<int>(whole(0, 8));
+    else if (name == "direction-ridge") o.direction_ridge = num(1e-6, 1e9);
+    else if (name == "direction-weight") o.direction_weight = num(0, 1000);
     else if (name == "window") o.window_seconds = num(0.01, 3600);
     else if (name == "step") o.step_seconds = num(0.01, 3600);
     else if (name == "unknown-distance") o.unknown_distance = num(0, 1e30);
@@ -253,6 +256,9 @@ const std::vector<std::string>& training_setting_names() {
                                                 "descriptor-dims",
                                                 "descriptor-ridge",
                                                 "descriptor-weight",
+                                                "direction-levels",
+                                                "direction-ridge",
+                                                "direction-weight",
                                                 "window",
                                                 "step",
                                                 "unknown-distance",
