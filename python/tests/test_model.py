@@ -96,6 +96,26 @@ def test_the_clip_descriptor(toy_clips):
     assert "\ndescriptor_levels 2\n" in rejecting._native.artifact()
 
 
+def test_the_motion_directions(toy_clips):
+    # Two levels: (1 + 2) parts of each pose joint's 3 planes × 8 sectors, per label, and a bias each.
+    directed = actionstring.train(
+        toy_clips, **dict(TOY_SETTINGS, direction_levels=2, direction_ridge=10.0, direction_weight=1.0))
+    plain = actionstring.train(toy_clips, **TOY_SETTINGS)
+    artifact = directed._native.artifact()
+    assert "\ndirection_levels 2\n" in artifact
+    pose_joints = int(artifact.split("\npose_joints ")[1].split()[0])
+    labels = len(directed.label_names)
+    assert directed.table_bytes - plain.table_bytes == (labels * 3 * pose_joints * 24 + labels) * 4
+    assert "direction-levels 2" in directed.training_report["settings"]
+    kept = sum(directed.classify(c).label == c.label for c in toy_clips)
+    assert kept >= 0.9 * len(toy_clips)
+    # The same model through a blob classifies alike.
+    again = actionstring.Model.from_blob(directed.to_blob())
+    assert [again.classify(c) for c in toy_clips] == [directed.classify(c) for c in toy_clips]
+    with pytest.raises(ValueError, match=r"direction-levels expects a whole number in \[0, 8\]"):
+        actionstring.train(toy_clips, **dict(TOY_SETTINGS, direction_levels=9, direction_weight=1.0))
+
+
 def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     """With no settings, train() tunes as `actionstring train` does: clip settings, then online ones."""
     model = actionstring.train(toy_clips)
