@@ -24,11 +24,14 @@ struct Emitted {
     Character character = 0;
     std::uint32_t count = 0;
     std::vector<float> feature;
+    std::vector<float> record;  // the pose it was projected from, then its facing turn
 };
 
 bool same(const Emitted& a, const Emitted& b) {
     return a.character == b.character && a.count == b.count && a.feature.size() == b.feature.size() &&
-           std::memcmp(a.feature.data(), b.feature.data(), a.feature.size() * sizeof(float)) == 0;
+           std::memcmp(a.feature.data(), b.feature.data(), a.feature.size() * sizeof(float)) == 0 &&
+           a.record.size() == b.record.size() &&
+           std::memcmp(a.record.data(), b.record.data(), a.record.size() * sizeof(float)) == 0;
 }
 
 // The toy's actions joined, re-timed irregularly: jitter, repeated times,
@@ -79,6 +82,11 @@ void check_deferred_equals_eager(const ModelView& view, std::uint32_t seed) {
     std::vector<Emitted> want, got;
     std::size_t restarts = 0, rejected = 0, two = 0, repeated = 0, partial = 0;
     const auto copy = [&](const float* feature) { return std::vector<float>(feature, feature + view.feature_dim); };
+    const auto record = [&](const float* pose, const float* facing) {
+        std::vector<float> r(pose, pose + view.pose_dim());
+        r.insert(r.end(), facing, facing + 2);
+        return r;
+    };
     // One step of the oldest queued character: the work left falls; a character done is taken.
     const auto step = [&](std::size_t work) {
         const std::size_t before = deferred->deferred_work_left();
@@ -91,19 +99,25 @@ void check_deferred_equals_eager(const ModelView& view, std::uint32_t seed) {
         }
         const DeferredCharacter* c = deferred->ready_character();
         REQUIRE(c != nullptr);
-        got.push_back(Emitted{c->character, c->count, copy(c->feature)});
+        got.push_back(Emitted{c->character, c->count, copy(c->feature), record(c->pose, c->facing)});
         deferred->pop_character();
     };
     for (std::size_t i = 0; i < frames.times.size(); ++i) {
         const EncodedFrame a = eager->push_frame(frames.times[i], frames.positions[i].data());
-        if (a.from_previous > 0) want.push_back(Emitted{a.previous, a.from_previous, copy(a.previous_feature)});
-        if (a.from_current > 0) want.push_back(Emitted{a.current, a.from_current, copy(a.current_feature)});
+        if (a.from_previous > 0)
+            want.push_back(Emitted{a.previous, a.from_previous, copy(a.previous_feature),
+                                   record(a.previous_pose, a.previous_facing)});
+        if (a.from_current > 0)
+            want.push_back(
+                Emitted{a.current, a.from_current, copy(a.current_feature), record(a.current_pose, a.current_facing)});
         const EncodedFrame b = deferred->accept_frame(frames.times[i], frames.positions[i].data());
         REQUIRE(b.status == a.status);
         REQUIRE(b.from_previous == a.from_previous);
         REQUIRE(b.from_current == a.from_current);
         CHECK(b.previous_feature == nullptr);
         CHECK(b.current_feature == nullptr);
+        CHECK(b.previous_pose == nullptr);
+        CHECK(b.current_facing == nullptr);
         restarts += b.status == Status::stream_restarted;
         two += b.from_previous > 0 && b.from_current > 0;
         repeated += b.from_previous > 1 || b.from_current > 1;

@@ -53,5 +53,16 @@ int main(int argc, char** argv) {
     write_file(out + "/descriptor.model", serialize_model(described.model));
     write_file(out + "/descriptor_body.txt", serialize_fields(described.model));
     if (argc == 3) write_file(std::string(argv[2]) + "/descriptor.blob", write_blob(described.model));
+    // With motion directions (two levels over the toy's pose joints), likewise.
+    ToyWorld directed = make_toy_world();
+    directed.model.direction_weight = 1.0f;
+    directed.model.direction_levels = 2;
+    const std::size_t histograms = directed.model.view().direction_size();
+    for (std::size_t k = 0; k < directed.model.label_names.size() * histograms; ++k)
+        directed.model.direction_weights.push_back(static_cast<float>(k % 5) * 0.25f - 0.5f);
+    directed.model.direction_bias.assign(directed.model.label_names.size(), -0.25f);
+    write_file(out + "/directions.model", serialize_model(directed.model));
+    write_file(out + "/directions_body.txt", serialize_fields(directed.model));
+    if (argc == 3) write_file(std::string(argv[2]) + "/directions.blob", write_blob(directed.model));
     return 0;
 }
