@@ -45,7 +45,7 @@ std::vector<float> records_of(const std::vector<std::array<float, 3>>& positions
     return out;
 }
 
-ModelData directed_model(const std::vector<LabelledClip>& train, double weight = 2.0) {
+ModelData directed_model(const std::vector<LabelledClip>& train, bool reject = false) {
     TrainingOptions options = test::toy_options();
     options.components = 0;
     options.pca_dim = 6;
@@ -53,7 +53,8 @@ ModelData directed_model(const std::vector<LabelledClip>& train, double weight =
     options.sigma = 0.5;
     options.direction_levels = 2;
     options.direction_ridge = 100.0;
-    options.direction_weight = weight;
+    options.direction_weight = 2.0;
+    options.reject = reject;
     return train_model(train, options);
 }
 
@@ -258,19 +259,10 @@ TEST_CASE("directions: trained into a model, stored, read back, in the header an
     }
     // With learned rejection the samples carry their records (spliced with their
     // characters), measured by classifiers fitted without their subjects.
-    TrainingOptions options = test::toy_options();
-    options.components = 0;
-    options.pca_dim = 6;
-    options.epsilon = 0.5;
-    options.sigma = 0.5;
-    options.direction_levels = 2;
-    options.direction_ridge = 100.0;
-    options.direction_weight = 2.0;
-    options.reject = true;
-    const ModelData rejecting = train_model(train, options);
+    const ModelData rejecting = directed_model(train, true);
     REQUIRE(rejecting.view().has_directions());
     REQUIRE(rejecting.has_label_bounds == 1);
-    CHECK(serialize_model(train_model(train, options)) == serialize_model(rejecting));
+    CHECK(serialize_model(directed_model(train, true)) == serialize_model(rejecting));
     CHECK(clip_accuracy(rejecting.view(), held_out) >= 0.8);
 }
 

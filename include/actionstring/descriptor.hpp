@@ -88,6 +88,34 @@ inline void clip_descriptor(const float* features, std::size_t n, std::size_t st
         }
 }
 
+namespace detail {
+
+/// Per label l < `labels`, bias[l] + Σ_p weights[l · P + p] · x[p], summed in p order.
+inline void linear_scores(const float* weights, const float* bias, const float* x, std::size_t P, std::size_t labels,
+                          float* scores) noexcept {
+    for (std::size_t l = 0; l < labels; ++l) {
+        const float* w = weights + l * P;
+        float sum = bias[l];
+        for (std::size_t p = 0; p < P; ++p) sum += w[p] * x[p];
+        scores[l] = sum;
+    }
+}
+
+/// Scores turned in place into what they add to each label's distance:
+/// weight · (best score − score), so ≥ 0 and 0 for the best; all 0 when any
+/// score is not finite (no opinion).
+inline void shortfall_penalties(float weight, std::size_t labels, float* scores) noexcept {
+    float best = -infinity();
+    bool finite = true;
+    for (std::size_t l = 0; l < labels; ++l) {
+        finite = finite && is_finite(scores[l]);
+        if (scores[l] > best) best = scores[l];
+    }
+    for (std::size_t l = 0; l < labels; ++l) scores[l] = finite ? weight * (best - scores[l]) : 0.0f;
+}
+
+}  // namespace detail
+
 /// Per label, the linear classifier's score of a descriptor (descriptor_size()
 /// floats): descriptor_bias[l] + Σ_p descriptor_weights[l · P + p] · descriptor[p],
 /// summed in p order. label_count floats; nothing without a descriptor.
@@ -97,13 +125,8 @@ inline void descriptor_scores(const ModelView& model, const float* descriptor, f
     if (scores == nullptr || descriptor == nullptr || model.descriptor_levels == 0 ||
         model.descriptor_weights == nullptr || model.descriptor_bias == nullptr)
         return;
-    const std::size_t P = model.descriptor_size();
-    for (std::size_t l = 0; l < model.label_count; ++l) {
-        const float* w = model.descriptor_weights + l * P;
-        float sum = model.descriptor_bias[l];
-        for (std::size_t p = 0; p < P; ++p) sum += w[p] * descriptor[p];
-        scores[l] = sum;
-    }
+    detail::linear_scores(model.descriptor_weights, model.descriptor_bias, descriptor, model.descriptor_size(),
+                          model.label_count, scores);
 }
 
 /// What the clip descriptor adds to the distance of each label's
@@ -123,13 +146,7 @@ inline void descriptor_penalties(const ModelView& model, const float* features, 
     if (!model.has_descriptor() || features == nullptr || n == 0 || scratch == nullptr) return;
     clip_descriptor(features, n, model.feature_dim, model.descriptor_dims(), model.descriptor_levels, scratch);
     descriptor_scores(model, scratch, penalties);
-    float best = -detail::infinity();
-    bool finite = true;
-    for (std::size_t l = 0; l < L; ++l) {
-        finite = finite && detail::is_finite(penalties[l]);
-        if (penalties[l] > best) best = penalties[l];
-    }
-    for (std::size_t l = 0; l < L; ++l) penalties[l] = finite ? model.descriptor_weight * (best - penalties[l]) : 0.0f;
+    detail::shortfall_penalties(model.descriptor_weight, L, penalties);
 }
 
 // ---- The clip's motion directions ------------------------------------------
@@ -233,18 +250,8 @@ inline void direction_penalties(const ModelView& model, const float* records, st
     for (std::size_t l = 0; l < L; ++l) penalties[l] = 0.0f;
     if (!model.has_directions() || records == nullptr || n == 0 || scratch == nullptr) return;
     clip_directions(records, n, model.pose_joint_count, model.up_axis, model.direction_levels, scratch);
-    const std::size_t P = model.direction_size();
-    float best = -detail::infinity();
-    bool finite = true;
-    for (std::size_t l = 0; l < L; ++l) {
-        const float* w = model.direction_weights + l * P;
-        float sum = model.direction_bias[l];
-        for (std::size_t p = 0; p < P; ++p) sum += w[p] * scratch[p];
-        penalties[l] = sum;
-        finite = finite && detail::is_finite(sum);
-        if (sum > best) best = sum;
-    }
-    for (std::size_t l = 0; l < L; ++l) penalties[l] = finite ? model.direction_weight * (best - penalties[l]) : 0.0f;
+    detail::linear_scores(model.direction_weights, model.direction_bias, scratch, model.direction_size(), L, penalties);
+    detail::shortfall_penalties(model.direction_weight, L, penalties);
 }
 
 }  // namespace actionstring
