@@ -461,6 +461,11 @@ int run_train(int argc, char** argv) {
                 "weight %g\n",
                 view.descriptor_levels, view.descriptor_dims(), view.descriptor_size(), options.descriptor_ridge,
                 static_cast<double>(view.descriptor_weight));
+        if (view.has_directions())
+            std::printf(
+                "motion directions: %u levels over %u pose joints, %zu weights per label (ridge %g), weight %g\n",
+                view.direction_levels, view.pose_joint_count, view.direction_size(), options.direction_ridge,
+                static_cast<double>(view.direction_weight));
         if (!report.label_bounds.empty()) {
             std::printf("rejection:        each label's bound, from its held-out training clips (positives) and\n"
                         "                  what lands on it but is not it (negatives; keep >= %g of positives):\n",
