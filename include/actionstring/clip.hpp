@@ -49,9 +49,10 @@ constexpr std::size_t clip_cells(const ModelView& model, std::size_t length) noe
 }
 
 /// Floats of scratch classify_clip() needs: the distance to every
-/// representative, four label-sized rows (the exemplars' sums, their
-/// penalties, the descriptor's penalties, all of them added) and the clip
-/// descriptor's scratch.
+/// representative, five label-sized rows (the exemplars' sums, their
+/// penalties, the clip summaries' penalties, all of them added, and the
+/// directions' own) and the larger of the descriptor's and the directions'
+/// scratch (clip_summary_penalties()).
 constexpr std::size_t clip_scratch_floats(const ModelView& model) noexcept {
     return model.representative_count + 5u * model.label_count +
            (model.descriptor_size() > model.direction_size() ? model.descriptor_size() : model.direction_size());
@@ -145,19 +146,12 @@ inline Classification classify_clip(const ModelView& model, const Character* str
     float* const directed = penalties + L;
     float* const descriptor_scratch = directed + L;
     representative_distances(model, string, length, cells, distances);
-    const bool with_descriptor = model.has_descriptor() && features != nullptr;
-    const bool with_directions = model.has_directions() && records != nullptr;
     const bool with_exemplars = model.has_exemplars() && features != nullptr;
-    // The clip descriptors' penalties: the descriptor's, then the directions' added.
-    for (std::size_t l = 0; l < L; ++l) described[l] = 0.0f;
-    if (with_descriptor) descriptor_penalties(model, features, length, descriptor_scratch, described);
-    if (with_directions) {
-        direction_penalties(model, records, length, descriptor_scratch, directed);
-        for (std::size_t l = 0; l < L; ++l) described[l] += directed[l];
-    }
+    const bool summarised =
+        clip_summary_penalties(model, features, records, length, descriptor_scratch, directed, described);
     if (with_exemplars) exemplar_sums(model, features, length, row, sums);
     const bool any = clip_penalties(model, string, length, with_exemplars ? sums : nullptr,
-                                    with_descriptor || with_directions ? described : nullptr, row, penalties);
+                                    summarised ? described : nullptr, row, penalties);
     return classify_distances(model, distances, any ? penalties : nullptr);
 }
 

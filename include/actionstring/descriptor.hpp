@@ -191,18 +191,24 @@ inline void clip_directions(const float* records, std::size_t n, std::size_t joi
     constexpr std::size_t planes[3][2] = {{0, 1}, {1, 2}, {0, 2}};
     const std::size_t stride = 3u * joints + 2u, part_size = joints * 3u * bins;
     const std::size_t h1 = (up_axis + 1u) % 3u, h2 = (up_axis + 2u) % 3u;
-    // Record t's joint j as it faced at record 0: the turn taken out of it
+    // Record t as it faced at record 0: the turn taken out of it
     // (normalize_pose() turned by −θ_t) put back, then record 0's taken out,
-    // one turn by θ_t − θ_0.
-    auto turned = [&](std::size_t t, std::size_t j, float* v) {
+    // one turn by θ_t − θ_0, {cos, sin}; the same for each of its joints.
+    struct Turn {
+        const float* pose;
+        float c, s;
+    };
+    auto turn_of = [&](std::size_t t) {
         const float* record = records + t * stride;
+        const float* facing = record + 3u * joints;
         const float* first = records + 3u * joints;  // record 0's facing
-        const float c = record[3u * joints] * first[0] + record[3u * joints + 1u] * first[1];
-        const float s = record[3u * joints + 1u] * first[0] - record[3u * joints] * first[1];
-        const float* p = record + 3u * j;
+        return Turn{record, facing[0] * first[0] + facing[1] * first[1], facing[1] * first[0] - facing[0] * first[1]};
+    };
+    auto turned = [&](const Turn& turn, std::size_t j, float* v) {
+        const float* p = turn.pose + 3u * j;
         v[up_axis] = p[up_axis];
-        v[h1] = c * p[h1] - s * p[h2];
-        v[h2] = s * p[h1] + c * p[h2];
+        v[h1] = turn.c * p[h1] - turn.s * p[h2];
+        v[h2] = turn.s * p[h1] + turn.c * p[h2];
     };
     for (std::size_t level = 1; level <= levels; ++level)
         for (std::size_t part = 0; part < level; ++part, out += part_size) {
@@ -210,11 +216,12 @@ inline void clip_directions(const float* records, std::size_t n, std::size_t joi
             if (n < 2 || records == nullptr || up_axis > 2) continue;
             const std::size_t begin = descriptor_part_begin(n, level, part), end = descriptor_part_end(n, level, part);
             for (std::size_t t = begin > 0 ? begin : 1u; t < end; ++t) {
+                const Turn at = turn_of(t), last = turn_of(t - 1u);
                 float* histogram = out;
                 for (std::size_t j = 0; j < joints; ++j) {
                     float now[3], before[3];
-                    turned(t, j, now);
-                    turned(t - 1u, j, before);
+                    turned(at, j, now);
+                    turned(last, j, before);
                     for (const auto& plane : planes) {
                         const float u = now[plane[0]] - before[plane[0]], v = now[plane[1]] - before[plane[1]];
                         histogram[direction_sector(u, v)] += std::sqrt(u * u + v * v);
@@ -252,6 +259,30 @@ inline void direction_penalties(const ModelView& model, const float* records, st
     clip_directions(records, n, model.pose_joint_count, model.up_axis, model.direction_levels, scratch);
     detail::linear_scores(model.direction_weights, model.direction_bias, scratch, model.direction_size(), L, penalties);
     detail::shortfall_penalties(model.direction_weight, L, penalties);
+}
+
+/// What the clip's two summaries add together to each label's distance:
+/// descriptor_penalties() of `features`, then direction_penalties() of
+/// `records` added, each only when the model has it and its input is given
+/// (what classify_clip() adds beside the votes and the exemplars). Returns
+/// whether either applied; `penalties` is all 0 when neither did.
+/// @param features  n × feature_dim floats, or null; read only during the call
+/// @param records   n × direction_record_floats() floats, or null; read only during the call
+/// @param scratch   max(descriptor_size(), direction_size()) floats (caller-owned), overwritten
+/// @param row       label_count floats of scratch (caller-owned), overwritten
+/// @param penalties receives label_count floats (caller-owned)
+inline bool clip_summary_penalties(const ModelView& model, const float* features, const float* records, std::size_t n,
+                                   float* scratch, float* row, float* penalties) noexcept {
+    if (penalties == nullptr) return false;
+    const bool described = model.has_descriptor() && features != nullptr;
+    const bool directed = model.has_directions() && records != nullptr && row != nullptr;
+    for (std::size_t l = 0; l < model.label_count; ++l) penalties[l] = 0.0f;
+    if (described) descriptor_penalties(model, features, n, scratch, penalties);
+    if (directed) {
+        direction_penalties(model, records, n, scratch, row);
+        for (std::size_t l = 0; l < model.label_count; ++l) penalties[l] += row[l];
+    }
+    return described || directed;
 }
 
 }  // namespace actionstring

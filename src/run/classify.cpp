@@ -1,6 +1,7 @@
 // Labelling whole strings with the runtime's batch distance and kNN.
 #include "run/classify.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 
@@ -30,21 +31,14 @@ Classification classify_string(const ModelView& model, const std::vector<Charact
 
 std::vector<float> clip_descriptor_penalties(const ModelView& model, const std::vector<float>& features,
                                              const std::vector<float>& records) {
-    const std::size_t L = model.label_count;
-    std::vector<float> penalties(L, 0.0f);
+    std::vector<float> penalties(model.label_count, 0.0f);
     if (model.feature_dim == 0) return penalties;
     const std::size_t n = features.size() / model.feature_dim;
-    if (model.has_descriptor()) {
-        std::vector<float> scratch(model.descriptor_size());
-        descriptor_penalties(model, features.data(), n, scratch.data(), penalties.data());
-    }
-    if (model.has_directions()) {
-        if (records.size() != n * model.direction_record_floats())
-            throw std::logic_error("clip_descriptor_penalties: the motion directions need every character's record");
-        std::vector<float> scratch(model.direction_size()), directed(L);
-        direction_penalties(model, records.data(), n, scratch.data(), directed.data());
-        for (std::size_t l = 0; l < L; ++l) penalties[l] += directed[l];
-    }
+    if (model.has_directions() && records.size() != n * model.direction_record_floats())
+        throw std::logic_error("clip_descriptor_penalties: the motion directions need every character's record");
+    std::vector<float> scratch(std::max(model.descriptor_size(), model.direction_size())), row(model.label_count);
+    clip_summary_penalties(model, features.data(), records.empty() ? nullptr : records.data(), n, scratch.data(),
+                           row.data(), penalties.data());
     return penalties;
 }
 
