@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "actionstring/clip.hpp"
@@ -71,7 +72,13 @@ Collected collect(const ModelView& model, const Clip& clip) {
 }
 
 // The stages one after another, each with its own buffers: the reference.
-Classification by_hand(const ModelView& model, const Collected& c, bool with_features) {
+// The representatives' distances, and what the clip adds to each label's (when `any`).
+struct HandScores {
+    std::vector<float> distances, penalties;
+    bool any = false;
+};
+
+HandScores scores_by_hand(const ModelView& model, const Collected& c, bool with_features) {
     const std::size_t L = model.label_count, n = c.string.size();
     std::vector<float> distances(model.representative_count, detail::infinity());
     for (std::size_t r = 0; r < model.representative_count; ++r) {
@@ -94,19 +101,27 @@ Classification by_hand(const ModelView& model, const Collected& c, bool with_fea
         for (std::size_t l = 0; l < L; ++l) penalties[l] += row[l];
         any = true;
     }
+    // The two clip summaries are summed first, then added (clip_summary_penalties(), clip_penalties()).
+    std::vector<float> summaries(L, 0.0f);
     if (with_features && model.has_descriptor()) {
-        std::vector<float> scratch(model.descriptor_size()), described(L);
-        descriptor_penalties(model, c.features.data(), n, scratch.data(), described.data());
-        for (std::size_t l = 0; l < L; ++l) penalties[l] += described[l];
+        std::vector<float> scratch(model.descriptor_size());
+        descriptor_penalties(model, c.features.data(), n, scratch.data(), summaries.data());
         any = true;
     }
     if (with_features && model.has_directions()) {
         std::vector<float> scratch(model.direction_size()), directed(L);
         direction_penalties(model, c.records.data(), n, scratch.data(), directed.data());
-        for (std::size_t l = 0; l < L; ++l) penalties[l] += directed[l];
+        for (std::size_t l = 0; l < L; ++l) summaries[l] += directed[l];
         any = true;
     }
-    return classify_distances(model, distances.data(), any ? penalties.data() : nullptr);
+    if (with_features && (model.has_descriptor() || model.has_directions()))
+        for (std::size_t l = 0; l < L; ++l) penalties[l] += summaries[l];
+    return HandScores{distances, penalties, any};
+}
+
+Classification by_hand(const ModelView& model, const Collected& c, bool with_features) {
+    const HandScores s = scores_by_hand(model, c, with_features);
+    return classify_distances(model, s.distances.data(), s.any ? s.penalties.data() : nullptr);
 }
 
 // The toy world, the described model trained on it, and `held` held-out clips per action.
@@ -177,6 +192,83 @@ TEST_CASE("clip: the runtime's whole-clip label is its stages composed, bit for 
     std::vector<detail::Cell> one_cell(1);
     CHECK(classify_clip(view, too_long.data(), nullptr, nullptr, too_long.size(), scratch.data(), one_cell.data())
               .label == unknown_label);
+}
+
+TEST_CASE("clip: each label's score is its nearest representative with its penalty, and ranks the label") {
+    const Fixture fixture(3);
+    const ModelView view = fixture.model.view();
+    REQUIRE(view.neighbours == 1);
+    const std::size_t L = view.label_count;
+    std::size_t ranked_first = 0, labelled = 0;
+    for (const LabelledClip& c : fixture.held_out) {
+        const Collected collected = collect(view, c.clip);
+        std::vector<float> scratch(clip_scratch_floats(view), 12345.0f), scores(L, -1.0f);
+        std::vector<detail::Cell> cells(clip_cells(view, collected.string.size()));
+        clip_label_distances(view, collected.string.data(), collected.features.data(), collected.records.data(),
+                             collected.string.size(), scratch.data(), cells.data(), scores.data());
+        // By hand: the minimum over each label's representatives, bit for bit.
+        const HandScores hand = scores_by_hand(view, collected, true);
+        REQUIRE(hand.any);
+        std::vector<float> expected(L, detail::infinity());
+        for (std::size_t r = 0; r < view.representative_count; ++r) {
+            const LabelId l = view.representative_labels[r];
+            expected[l] = std::min(expected[l], hand.distances[r] + hand.penalties[l]);
+        }
+        CHECK(std::memcmp(scores.data(), expected.data(), L * sizeof(float)) == 0);
+        const std::vector<float> host_scores = host::label_distances(view, c.clip);
+        REQUIRE(host_scores.size() == L);
+        CHECK(std::memcmp(scores.data(), host_scores.data(), L * sizeof(float)) == 0);
+        // With one neighbour the smallest score is the label classify_clip() reports.
+        const Classification k = host::classify_clip(view, c.clip);
+        const auto best = static_cast<LabelId>(std::min_element(scores.begin(), scores.end()) - scores.begin());
+        CHECK(best == k.nearest_label);
+        CHECK(std::memcmp(&scores[best], &k.distance, sizeof(float)) == 0);
+        ranked_first += best == k.nearest_label;
+        labelled += k.label != unknown_label;
+    }
+    CHECK(ranked_first == fixture.held_out.size());
+    CHECK(labelled > 0);
+
+    // Nothing to compare: every label +inf, and nothing read past what was given.
+    std::vector<float> scratch(clip_scratch_floats(view)), scores(L, 0.0f);
+    clip_label_distances(view, nullptr, nullptr, nullptr, 0, scratch.data(), nullptr, scores.data());
+    for (const float d : scores) CHECK(d == detail::infinity());
+    std::fill(scores.begin(), scores.end(), 0.0f);
+    clip_label_distances(view, nullptr, nullptr, nullptr, 0, nullptr, nullptr, scores.data());
+    for (const float d : scores) CHECK(d == detail::infinity());
+    clip_label_distances(view, nullptr, nullptr, nullptr, 0, scratch.data(), nullptr, nullptr);  // no output: no write
+}
+
+TEST_CASE("clip: label_distances() passes over NaN and +inf distances and adds each label's penalty") {
+    const Fixture fixture(1);
+    const ModelView view = fixture.model.view();
+    const std::size_t R = view.representative_count, L = view.label_count;
+    REQUIRE(L >= 2);
+    std::vector<float> distances(R), penalties(L), out(L);
+    for (std::size_t r = 0; r < R; ++r) distances[r] = 1.0f + static_cast<float>(r);
+    for (std::size_t l = 0; l < L; ++l) penalties[l] = 0.5f * static_cast<float>(l);
+    // Label 0's representatives: all NaN (excluded, as training's exclusions do) but its last, which is +inf.
+    std::size_t last_of_0 = R;
+    for (std::size_t r = 0; r < R; ++r)
+        if (view.representative_labels[r] == 0) {
+            distances[r] = std::numeric_limits<float>::quiet_NaN();
+            last_of_0 = r;
+        }
+    REQUIRE(last_of_0 < R);
+    distances[last_of_0] = detail::infinity();
+    label_distances(view, distances.data(), penalties.data(), out.data());
+    CHECK(out[0] == detail::infinity());
+    for (std::size_t l = 1; l < L; ++l) {
+        float nearest = detail::infinity();
+        for (std::size_t r = 0; r < R; ++r)
+            if (view.representative_labels[r] == l) nearest = std::min(nearest, distances[r]);
+        CHECK(out[l] == nearest + penalties[l]);
+    }
+    // Without penalties, the distances alone; without distances, +inf.
+    label_distances(view, distances.data(), nullptr, out.data());
+    for (std::size_t l = 1; l < L; ++l) CHECK(out[l] < detail::infinity());
+    label_distances(view, nullptr, nullptr, out.data());
+    for (const float d : out) CHECK(d == detail::infinity());
 }
 
 TEST_CASE("clip: the scratch a generated header's model needs is known at compile time") {

@@ -27,6 +27,7 @@ void note_eigen_violation() { ++g_eigen_violations; }
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -149,7 +150,7 @@ TEST_CASE("streaming thousands of frames through the annotator allocates nothing
         }
 }
 
-TEST_CASE("classifying whole clips with votes, exemplars and a clip descriptor allocates nothing") {
+TEST_CASE("classifying and scoring whole clips with votes, exemplars and a clip descriptor allocates nothing") {
     actionstring::host::ToyWorld world = actionstring::host::make_toy_world();
     const auto train = actionstring::host::toy_clips(world, 6, 100);
     actionstring::host::TrainingOptions options = test::toy_options();
@@ -191,20 +192,25 @@ TEST_CASE("classifying whole clips with votes, exemplars and a clip descriptor a
         }
         longest = std::max(longest, strings.back().size());
     }
-    std::vector<float> scratch(actionstring::clip_scratch_floats(view));
+    std::vector<float> scratch(actionstring::clip_scratch_floats(view)), scores(view.label_count);
     std::vector<actionstring::detail::Cell> cells(actionstring::clip_cells(view, longest));
 
     Eigen::internal::set_is_malloc_allowed(false);
     const Counts before = snapshot();
-    std::size_t labelled = 0;
-    for (std::size_t i = 0; i < strings.size(); ++i)
+    std::size_t labelled = 0, scored = 0;
+    for (std::size_t i = 0; i < strings.size(); ++i) {
         labelled += actionstring::classify_clip(view, strings[i].data(), features[i].data(), records[i].data(),
                                                 strings[i].size(), scratch.data(), cells.data())
                         .label != actionstring::unknown_label;
+        actionstring::clip_label_distances(view, strings[i].data(), features[i].data(), records[i].data(),
+                                           strings[i].size(), scratch.data(), cells.data(), scores.data());
+        scored += std::isfinite(*std::min_element(scores.begin(), scores.end()));
+    }
     const Counts after = snapshot();
     Eigen::internal::set_is_malloc_allowed(true);
 
     CHECK(labelled > 0);
+    CHECK(scored == strings.size());
     CHECK(after.mallocs == before.mallocs);
     CHECK(after.news == before.news);
     CHECK(after.eigen == before.eigen);

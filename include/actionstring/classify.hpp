@@ -116,4 +116,27 @@ inline Classification classify_distances(const ModelView& model, const float* di
     return result;
 }
 
+/// Each label's score as classify_distances() sees it: the distance of its
+/// nearest representative, with the label's penalty added (+inf for a label
+/// whose representatives are all NaN or +inf). For ranking the labels (top-k
+/// accuracy, ROC curves, fusion with another classifier): with one neighbour
+/// the smallest is the nearest label classify_distances() reports (ties to the
+/// first representative); with more, its vote decides. Neither the unknown
+/// distance nor the label bounds apply here.
+/// @param distances representative_count floats; read only during the call
+/// @param penalties null, or label_count floats (as classify_distances()); read only during the call
+/// @param out       receives label_count floats (caller-owned)
+inline void label_distances(const ModelView& model, const float* distances, const float* penalties,
+                            float* out) noexcept {
+    if (out == nullptr) return;
+    for (std::size_t l = 0; l < model.label_count; ++l) out[l] = detail::infinity();
+    if (distances == nullptr) return;
+    for (std::size_t r = 0; r < model.representative_count; ++r) {
+        const LabelId label = model.representative_labels[r];
+        if (label >= model.label_count) continue;
+        const float d = penalties == nullptr ? distances[r] : distances[r] + penalties[label];
+        if (d < out[label]) out[label] = d;  // false for NaN
+    }
+}
+
 }  // namespace actionstring

@@ -119,6 +119,34 @@ inline bool clip_penalties(const ModelView& model, const Character* string, std:
     return model.has_votes() || exemplars || described;
 }
 
+namespace detail {
+
+// classify_clip()'s scores: the string's distance to every representative,
+// left in scratch's first representative_count floats, and the penalties
+// clip_penalties() adds to each label's (returned; null when none applies).
+inline const float* clip_scores(const ModelView& model, const Character* string, const float* features,
+                                const float* records, std::size_t length, float* scratch,
+                                detail::Cell* cells) noexcept {
+    const std::size_t L = model.label_count;
+    float* const distances = scratch;
+    float* const sums = distances + model.representative_count;
+    float* const row = sums + L;
+    float* const described = row + L;
+    float* const penalties = described + L;
+    float* const directed = penalties + L;
+    float* const descriptor_scratch = directed + L;
+    representative_distances(model, string, length, cells, distances);
+    const bool with_exemplars = model.has_exemplars() && features != nullptr;
+    const bool summarised =
+        clip_summary_penalties(model, features, records, length, descriptor_scratch, directed, described);
+    if (with_exemplars) exemplar_sums(model, features, length, row, sums);
+    const bool any = clip_penalties(model, string, length, with_exemplars ? sums : nullptr,
+                                    summarised ? described : nullptr, row, penalties);
+    return any ? penalties : nullptr;
+}
+
+}  // namespace detail
+
 /// The label of a whole clip: its string's distance to every representative,
 /// what the votes, the exemplars and the clip descriptor add (clip_penalties()),
 /// then classify_distances()'s kNN, its unknown distance and bounds.
@@ -137,22 +165,27 @@ inline Classification classify_clip(const ModelView& model, const Character* str
                                     const float* records, std::size_t length, float* scratch,
                                     detail::Cell* cells) noexcept {
     if (scratch == nullptr) return Classification{};
-    const std::size_t L = model.label_count;
-    float* const distances = scratch;
-    float* const sums = distances + model.representative_count;
-    float* const row = sums + L;
-    float* const described = row + L;
-    float* const penalties = described + L;
-    float* const directed = penalties + L;
-    float* const descriptor_scratch = directed + L;
-    representative_distances(model, string, length, cells, distances);
-    const bool with_exemplars = model.has_exemplars() && features != nullptr;
-    const bool summarised =
-        clip_summary_penalties(model, features, records, length, descriptor_scratch, directed, described);
-    if (with_exemplars) exemplar_sums(model, features, length, row, sums);
-    const bool any = clip_penalties(model, string, length, with_exemplars ? sums : nullptr,
-                                    summarised ? described : nullptr, row, penalties);
-    return classify_distances(model, distances, any ? penalties : nullptr);
+    const float* const penalties = detail::clip_scores(model, string, features, records, length, scratch, cells);
+    return classify_distances(model, scratch, penalties);
+}
+
+/// Each label's score for a whole clip, from the same distances and penalties
+/// classify_clip() decides by (label_distances(): the nearest representative
+/// of each label, its penalty added; smaller is nearer). For ranking labels
+/// (top-k accuracy, ROC curves, fusing with another classifier); the label
+/// itself, with the unknown distance and bounds, is classify_clip()'s. The
+/// arguments are classify_clip()'s.
+/// @param out receives label_count floats (caller-owned); all +inf for an empty clip
+inline void clip_label_distances(const ModelView& model, const Character* string, const float* features,
+                                 const float* records, std::size_t length, float* scratch, detail::Cell* cells,
+                                 float* out) noexcept {
+    if (out == nullptr) return;
+    if (scratch == nullptr) {
+        for (std::size_t l = 0; l < model.label_count; ++l) out[l] = detail::infinity();
+        return;
+    }
+    const float* const penalties = detail::clip_scores(model, string, features, records, length, scratch, cells);
+    label_distances(model, scratch, penalties, out);
 }
 
 /// Records a clip from frames and labels it when asked: a gesture between two

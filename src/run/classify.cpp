@@ -104,15 +104,36 @@ std::vector<float> exemplar_sums(const ModelView& model, const std::vector<float
     return sums;
 }
 
+namespace {
+
+// A clip encoded as the model reads it, with the runtime's scratch and cells
+// for its whole-clip stages (classify_clip(), clip_label_distances()).
+struct ClipWork {
+    EncodedClip encoded;
+    std::vector<float> scratch;
+    std::vector<detail::Cell> cells;
+    ClipWork(const ModelView& model, const Clip& clip)
+        : encoded(encode_clip(model, clip, model.has_exemplars() || model.has_descriptor(), model.has_directions())),
+          scratch(clip_scratch_floats(model)),
+          cells(clip_cells(model, encoded.string.size())) {}
+    const float* features() const { return encoded.features.empty() ? nullptr : encoded.features.data(); }
+    const float* records() const { return encoded.records.empty() ? nullptr : encoded.records.data(); }
+};
+
+}  // namespace
+
 Classification classify_clip(const ModelView& model, const Clip& clip) {
-    const EncodedClip encoded =
-        encode_clip(model, clip, model.has_exemplars() || model.has_descriptor(), model.has_directions());
-    std::vector<float> scratch(clip_scratch_floats(model));
-    std::vector<detail::Cell> cells(clip_cells(model, encoded.string.size()));
-    return actionstring::classify_clip(model, encoded.string.data(),
-                                       encoded.features.empty() ? nullptr : encoded.features.data(),
-                                       encoded.records.empty() ? nullptr : encoded.records.data(),
-                                       encoded.string.size(), scratch.data(), cells.data());
+    ClipWork work(model, clip);
+    return actionstring::classify_clip(model, work.encoded.string.data(), work.features(), work.records(),
+                                       work.encoded.string.size(), work.scratch.data(), work.cells.data());
+}
+
+std::vector<float> label_distances(const ModelView& model, const Clip& clip) {
+    ClipWork work(model, clip);
+    std::vector<float> out(model.label_count);
+    clip_label_distances(model, work.encoded.string.data(), work.features(), work.records(), work.encoded.string.size(),
+                         work.scratch.data(), work.cells.data(), out.data());
+    return out;
 }
 
 ClipScore clip_score(const ModelView& model, const std::vector<LabelledClip>& clips) {

@@ -62,6 +62,11 @@ std::vector<float> sum_exemplar_rows(const std::vector<float>& rows, std::size_t
 /// clip descriptor its features too.
 Classification classify_clip(const ModelView& model, const Clip& clip);
 
+/// Each label's score for a clip, as classify_clip() sees it (the runtime's
+/// clip_label_distances(): each label's nearest representative, its penalty
+/// added; smaller is nearer, +inf where none compares): label_count floats.
+std::vector<float> label_distances(const ModelView& model, const Clip& clip);
+
 /// How a model does on labelled clips: the fraction right, and the mean
 /// signed margin, a clip's Classification::confidence when it is right and
 /// minus it when it is wrong (0 when unknown). The margin tells settings apart
