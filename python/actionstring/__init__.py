@@ -195,6 +195,16 @@ class Model:
         """Classifies one clip by its action string (the runtime's kNN over representatives)."""
         return Classification(*self._native.classify(clip))
 
+    def label_distances(self, clip: Clip) -> np.ndarray:
+        """Each label's score for a clip, in ``label_names`` order (float32): the
+        distance of its nearest representative with what the clip's votes,
+        exemplars and descriptors add to it, the numbers ``classify`` decides by
+        (smaller is nearer; inf where nothing compares). For top-k accuracy, ROC
+        curves or fusing with another classifier. With one neighbour the
+        smallest is the nearest label; the unknown distance and the learned
+        rejection bounds apply only in ``classify``."""
+        return self._native.label_distances(clip)
+
     def predict(self, clips: Iterable[Clip]) -> List[Optional[str]]:
         return [self.classify(clip).label for clip in clips]
 

@@ -87,6 +87,19 @@ class ActionStringClassifier:
             raise ValueError("this ActionStringClassifier is not fitted yet: call fit first")
         return np.array(self.model_.predict(self._clips(X)), dtype=object)
 
+    def decision_function(self, X: Sequence[Any]) -> np.ndarray:
+        """Scores of shape (clips, classes), columns in ``classes_`` order: minus
+        each label's distance (``Model.label_distances``), so larger is more
+        likely, as scikit-learn's ranking metrics (``top_k_accuracy_score``,
+        ``roc_auc_score``) expect; -inf where nothing compares."""
+        if not hasattr(self, "model_"):
+            raise ValueError("this ActionStringClassifier is not fitted yet: call fit first")
+        clips = self._clips(X)
+        scores = np.empty((len(clips), len(self.classes_)), dtype=np.float64)
+        for i, clip in enumerate(clips):
+            scores[i] = -np.asarray(self.model_.label_distances(clip), dtype=np.float64)
+        return scores
+
     def score(self, X: Sequence[Any], y: Sequence[Any]) -> float:
         """Clip accuracy: the share of clips whose predicted label is y."""
         predicted = self.predict(X)

@@ -600,6 +600,13 @@ PYBIND11_MODULE(_actionstring, m) {
              [](const ModelData& model, const py::dict& settings) {
                  return Annotator::required_bytes(model.view(), online_config(model, settings));
              })
+        .def("label_distances",
+             [](const ModelData& model, const LabelledClip& clip) {
+                 const std::vector<float> d = host::label_distances(model.view(), conformed(model, clip));
+                 py::array_t<float> out(static_cast<py::ssize_t>(d.size()));
+                 if (!d.empty()) std::memcpy(out.mutable_data(), d.data(), d.size() * sizeof(float));
+                 return out;
+             })
         .def("classify",
              [](const ModelData& model, const LabelledClip& clip) {
                  const ModelView view = model.view();

@@ -71,3 +71,38 @@ def test_scikit_learn_cross_val_score_with_group_k_fold(toy_clips):
     assert len(scores) == 3 and np.mean(scores) >= 0.9
     clone = base.clone(estimator)
     assert clone.get_params() == estimator.get_params()
+
+
+def test_decision_function_ranks_the_predicted_class_first(toy_clips):
+    X, y, groups = toy_data(toy_clips)
+    train = [i for i, g in enumerate(groups) if g not in ("toy4", "toy5")]
+    test = [i for i, g in enumerate(groups) if g in ("toy4", "toy5")]
+    estimator = actionstring.ActionStringClassifier(**TOY_SETTINGS)
+    with pytest.raises(ValueError, match="not fitted"):
+        estimator.decision_function(X)
+    estimator.fit([X[i] for i in train], [y[i] for i in train], groups=[groups[i] for i in train])
+    scores = estimator.decision_function([X[i] for i in test])
+    assert scores.shape == (len(test), len(estimator.classes_))
+    # Minus the model's label distances, columns in classes_ order; the best column is the prediction.
+    for row, i in zip(scores, test):
+        assert np.array_equal(row, -estimator.model_.label_distances(X[i]).astype(np.float64))
+    predicted = estimator.predict([X[i] for i in test])
+    assert list(estimator.classes_[scores.argmax(axis=1)]) == list(predicted)
+    # Top-1 of the scores is the accuracy score() reports; the true class is within the top 2 at least as often.
+    true = np.array([list(estimator.classes_).index(y[i]) for i in test])
+    ranks = (scores > scores[np.arange(len(test)), true][:, None]).sum(axis=1)
+    assert np.mean(ranks == 0) == pytest.approx(estimator.score([X[i] for i in test], [y[i] for i in test]))
+    assert np.mean(ranks < 2) >= np.mean(ranks == 0)
+
+
+def test_scikit_learn_top_k_accuracy_reads_the_decision_function(toy_clips):
+    metrics = pytest.importorskip("sklearn.metrics", reason="scikit-learn is not installed")
+    X, y, groups = toy_data(toy_clips)
+    train = [i for i, g in enumerate(groups) if g not in ("toy4", "toy5")]
+    test = [i for i, g in enumerate(groups) if g in ("toy4", "toy5")]
+    estimator = actionstring.ActionStringClassifier(**TOY_SETTINGS).fit([X[i] for i in train],
+                                                                       [y[i] for i in train])
+    scores = estimator.decision_function([X[i] for i in test])
+    top1 = metrics.top_k_accuracy_score([y[i] for i in test], scores, k=1, labels=estimator.classes_)
+    assert top1 == pytest.approx(estimator.score([X[i] for i in test], [y[i] for i in test]))
+    assert metrics.top_k_accuracy_score([y[i] for i in test], scores, k=2, labels=estimator.classes_) >= top1

@@ -116,6 +116,21 @@ def test_the_motion_directions(toy_clips):
         actionstring.train(toy_clips, **dict(TOY_SETTINGS, direction_levels=9, direction_weight=1.0))
 
 
+def test_label_distances_rank_what_classify_decides(toy_model, toy_clips):
+    names = toy_model.label_names
+    for clip in toy_clips[:12]:
+        distances = toy_model.label_distances(clip)
+        assert distances.dtype == np.float32 and distances.shape == (len(names),)
+        assert np.all(np.isfinite(distances)) and np.all(distances >= 0)
+        decided = toy_model.classify(clip)
+        # One neighbour: the nearest label is the smallest, at the distance classify reports.
+        assert names[int(distances.argmin())] == decided.label
+        assert float(distances.min()) == pytest.approx(decided.distance, rel=0, abs=0)
+    # A blob of the same model scores alike, bit for bit.
+    again = actionstring.Model.from_blob(toy_model.to_blob())
+    assert np.array_equal(again.label_distances(toy_clips[0]), toy_model.label_distances(toy_clips[0]))
+
+
 def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     """With no settings, train() tunes as `actionstring train` does: clip settings, then online ones."""
     model = actionstring.train(toy_clips)
