@@ -39,7 +39,9 @@ void print_eval_usage(std::FILE* out) {
                  "\n"
                  "Classifies every clip of LIST with the runtime's own code and reports clip\n"
                  "accuracy, per-class precision and recall, each subject's clip accuracy, the\n"
-                 "confusion matrix, the unknown rate and the annotator's per-frame time. With\n"
+                 "confusion matrix, the unknown rate, the model's top-1 to top-3 accuracy (the\n"
+                 "true label among the labels' best scores, before rejection; --json: top_k)\n"
+                 "and the annotator's per-frame time. With\n"
                  "--train (the model's training list) the same run adds baselines on the same\n"
                  "split: 1-NN over all training strings (no representatives), the same with\n"
                  "PCA-only characters (no GMM; paper Fig. 4), and DTW 1-NN on normalised poses.\n"
@@ -142,6 +144,11 @@ void print_streams(const host::OnlineReport& report) {
 void print_results(const host::ClipResults& r) {
     std::printf("  %-44s clip accuracy %.3f (95%% %.3f-%.3f), unknown %.3f\n", r.method.c_str(), r.clip_accuracy,
                 r.accuracy_interval.low, r.accuracy_interval.high, r.unknown_rate);
+    if (!r.top_k.empty()) {
+        std::printf("  %-44s   true label among the labels' k best scores (before rejection):", "");
+        for (std::size_t k = 0; k < r.top_k.size(); ++k) std::printf(" top-%zu %.3f", k + 1, r.top_k[k]);
+        std::printf("\n");
+    }
     if (r.paired)
         std::printf(
             "  %-44s   paired with the model: the model alone right on %zu clips, this alone on %zu; McNemar p %.3f\n",

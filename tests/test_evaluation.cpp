@@ -9,6 +9,7 @@
 #include "eval/json.hpp"
 #include "eval/online.hpp"
 #include "eval/significance.hpp"
+#include "run/classify.hpp"
 #include "run/stream_labels.hpp"
 #include "toy/toy.hpp"
 #include "toy_options.hpp"
@@ -168,6 +169,39 @@ TEST_CASE("the model and every baseline recognise held-out toy performances") {
     AnnotatorConfig spread = annotator_config(view);
     spread.spread_work = true;
     CHECK(annotator_frame_times(view, test, spread).size() == times.size());
+}
+
+TEST_CASE("top-k: the true label's rank among the labels' scores, ties against it") {
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 5, 300);
+    auto test = toy_clips(world, 3, 7100, 30.0);
+    ModelData model = train_model(train, test::toy_options());
+    const ModelView view = model.view();
+    REQUIRE(view.label_count == 4);
+    // A clip of an action the model does not know is never within the top k.
+    LabelledClip stranger = test.front();
+    stranger.label = "unseen";
+    test.push_back(stranger);
+    const ClipResults r = evaluate_model(view, test);
+    REQUIRE(r.top_k.size() == 3);
+    std::vector<std::size_t> within(3, 0);
+    for (const LabelledClip& c : test) {
+        const std::vector<float> scores = host::label_distances(view, c.clip);
+        const auto truth = static_cast<std::size_t>(label_index(r.labels, c.label));
+        if (truth >= view.label_count) continue;
+        std::size_t ahead = 0;
+        for (std::size_t l = 0; l < scores.size(); ++l) ahead += l != truth && scores[l] <= scores[truth];
+        for (std::size_t k = ahead; k < 3; ++k) ++within[k];
+    }
+    for (std::size_t k = 0; k < 3; ++k)
+        CHECK(r.top_k[k] == doctest::Approx(static_cast<double>(within[k]) / static_cast<double>(test.size())));
+    CHECK(std::is_sorted(r.top_k.begin(), r.top_k.end()));
+    CHECK(r.top_k[2] < 1.0);  // the stranger
+    // One neighbour and no rejection: top-1 is the clip accuracy.
+    REQUIRE(view.neighbours == 1);
+    CHECK(r.top_k[0] == doctest::Approx(r.clip_accuracy));
+    // The baselines carry no ranking; the JSON carries the model's.
+    CHECK(evaluate_pose_dtw(view, train, test).top_k.empty());
 }
 
 TEST_CASE("online metrics on a timeline scored by hand") {

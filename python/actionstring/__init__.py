@@ -213,7 +213,8 @@ class Model:
                  **online_settings: Any) -> Dict[str, Any]:
         """The figures ``actionstring eval --json`` reports, computed by the same code:
         clip accuracy, per-class precision and recall, per-subject accuracy
-        (``per_subject``), confusion, predictions; with
+        (``per_subject``), the model's top-1 to top-3 accuracy (``top_k``),
+        confusion, predictions; with
         ``train`` the baselines on the same split (DTW 1-NN among them); with
         ``online`` the streaming figures over the clips concatenated per subject
         (``report["online"]``: each rule's, the settled rule's frames by class in

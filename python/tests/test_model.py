@@ -291,9 +291,17 @@ def test_evaluation_equals_the_cli(hdm05, cli, hdm05_model):
     expected = json.loads((folder / "eval.json").read_text())
     model = actionstring.Model.load(folder / "cli.model")
     got = model.evaluate(actionstring.read_clip_list(hdm05 / "val.tsv"))
-    for key in ("clip_accuracy", "unknown_rate", "labels", "confusion", "per_class", "per_subject", "clips"):
+    for key in ("clip_accuracy", "unknown_rate", "labels", "confusion", "per_class", "per_subject", "clips",
+                "top_k"):
         assert got[key] == expected[key], key
     assert got["clip_accuracy"] > 0.8
+    # Top-1 to top-3 from label_distances(), a tie ranked against the true label.
+    clips = actionstring.read_clip_list(hdm05 / "val.tsv")
+    names = model.label_names
+    ahead = [int(np.sum(np.delete(d, names.index(c.label)) <= d[names.index(c.label)]))
+             for c, d in ((c, model.label_distances(c)) for c in clips)]
+    assert got["top_k"] == pytest.approx([np.mean([a < k for a in ahead]) for k in (1, 2, 3)])
+    assert got["top_k"][0] == pytest.approx(got["clip_accuracy"])
     # val.tsv is one actor's: one per-subject row, holding every clip.
     assert [(s["subject"], s["clips"], s["correct"]) for s in got["per_subject"]] == [
         ("mm", got["clips"], got["correct"])]

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <memory>
 
@@ -87,11 +88,26 @@ void compare_with_model(const ClipResults& model, ClipResults& baseline, const s
 
 ClipResults evaluate_model(const ModelView& model, const std::vector<LabelledClip>& clips) {
     ClipResults r = start_results("action strings (representatives, kNN)", model, clips);
+    const std::size_t K = std::min<std::size_t>(3, model.label_count);
+    std::vector<std::size_t> within(K, 0);
     for (const LabelledClip& c : clips) {
         const Classification k = classify_clip(model, c.clip);
         r.predictions.push_back(frame_label(k.label));
+        // The true label's rank among the labels' scores: how many other labels
+        // score as near or nearer (a tie is not won by the true label).
+        const int truth = label_index(r.labels, c.label);
+        if (truth < 0 || static_cast<std::size_t>(truth) >= model.label_count) continue;
+        const std::vector<float> scores = label_distances(model, c.clip);
+        const float own = scores[static_cast<std::size_t>(truth)];
+        if (!std::isfinite(own)) continue;
+        std::size_t rank = 0;
+        for (std::size_t l = 0; l < scores.size(); ++l)
+            rank += l != static_cast<std::size_t>(truth) && scores[l] <= own;
+        for (std::size_t j = rank; j < K; ++j) ++within[j];
     }
     summarise(r, clips);
+    for (const std::size_t n : within)
+        r.top_k.push_back(clips.empty() ? 0.0 : static_cast<double>(n) / static_cast<double>(clips.size()));
     return r;
 }
 

@@ -41,6 +41,14 @@ struct ClipResults {
     bool paired = false;
     std::size_t model_only = 0, method_only = 0;
     double mcnemar_p = 1.0;
+    /// The model's own method only (empty for the baselines): top_k[k − 1] is
+    /// the share of clips whose true label is among the k labels its
+    /// label_distances() rank first (a label tied with it ranks ahead of it;
+    /// a label the model does not know, or one nothing compares with, never), for k
+    /// = 1 … min(3, labels). A ranking before rejection: top-1 is above
+    /// clip_accuracy when the unknown distance or the bounds turn a right label
+    /// unknown, and with more than one neighbour the vote can differ from it.
+    std::vector<double> top_k;
 };
 
 /// Results of `method` ready for predictions: the model's labels, then every

@@ -11,6 +11,7 @@ void write_fields(JsonWriter& out, const ClipResults& r, const std::vector<Label
         .field("correct", r.correct)
         .field("unknown_rate", r.unknown_rate);
     out.key("clip_accuracy_ci95").array(std::vector<double>{r.accuracy_interval.low, r.accuracy_interval.high});
+    if (!r.top_k.empty()) out.key("top_k").array(r.top_k);
     if (r.paired)
         out.key("paired_with_model")
             .begin_object()
