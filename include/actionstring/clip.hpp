@@ -283,6 +283,15 @@ public:
                              scratch_, cells_);
     }
 
+    /// Each label's score for the clip so far (clip_label_distances(): smaller
+    /// is nearer; all +inf before its first character), into `out`,
+    /// label_count floats (caller-owned). Writes only the scratch and `out`.
+    void label_distances(float* out) noexcept {
+        if (model_ == nullptr || out == nullptr) return;
+        clip_label_distances(*model_, characters_, features_, model_->has_directions() ? records_ : nullptr, length_,
+                             scratch_, cells_, out);
+    }
+
     std::size_t length() const noexcept { return length_; }
     std::size_t capacity() const noexcept { return capacity_; }
     /// Whether characters were dropped since the last reset() (the clip was longer than capacity()).

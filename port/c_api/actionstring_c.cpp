@@ -519,6 +519,14 @@ actionstring_status actionstring_clip_classify(actionstring_clip* handle, int32_
     return ACTIONSTRING_OK;
 }
 
+actionstring_status actionstring_clip_label_distances(actionstring_clip* handle, float* distances, size_t count) {
+    ClipState* clip = live_clip(handle);
+    if (clip == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
+    if (distances == nullptr || count < clip->model->view.label_count) return ACTIONSTRING_INVALID_ARGUMENT;
+    clip->recorder.label_distances(distances);
+    return ACTIONSTRING_OK;
+}
+
 actionstring_status actionstring_clip_reset(actionstring_clip* handle) {
     ClipState* clip = live_clip(handle);
     if (clip == nullptr) return ACTIONSTRING_NOT_INITIALIZED;

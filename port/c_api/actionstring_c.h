@@ -289,6 +289,17 @@ ACTIONSTRING_C_API uint32_t actionstring_clip_length(const actionstring_clip* cl
 ACTIONSTRING_C_API actionstring_status actionstring_clip_classify(actionstring_clip* clip, int32_t* label,
                                                                   float* confidence);
 
+/** Each label's score for the clip recorded so far, the numbers
+ *  actionstring_clip_classify() decides by: the distance of the label's nearest
+ *  representative with what the clip's votes, exemplars and descriptors add
+ *  (smaller is nearer; +inf before the first character). For ranking labels, as a
+ *  game's "did you mean" list or a second opinion; the unknown distance and learned
+ *  rejection apply only to actionstring_clip_classify(). Writes `count` floats to
+ *  `distances`, which must be at least actionstring_model_label_count(): INVALID_ARGUMENT
+ *  (nothing written) when it is smaller or NULL; NOT_INITIALIZED for a bad handle. */
+ACTIONSTRING_C_API actionstring_status actionstring_clip_label_distances(actionstring_clip* clip, float* distances,
+                                                                         size_t count);
+
 /** Forgets the recorded clip: the next frame begins a new one. */
 ACTIONSTRING_C_API actionstring_status actionstring_clip_reset(actionstring_clip* clip);
 

@@ -420,6 +420,25 @@ static void clip_checks(const actionstring_model* model) {
     CHECK(label >= 0 || confidence == 0.0f);
     CHECK(actionstring_clip_classify(clip, NULL, NULL) == ACTIONSTRING_OK);
     CHECK(actionstring_clip_length(clip) == length); /* classifying does not end the clip */
+    {
+        /* Each label's score: the label (when not unknown) is the nearest; too little room writes nothing. */
+        float distances[64];
+        CHECK(labels > 0 && labels <= 64);
+        for (int l = 0; l < 64; ++l) distances[l] = -1.0f;
+        CHECK(actionstring_clip_label_distances(clip, distances, (size_t)labels - 1) == ACTIONSTRING_INVALID_ARGUMENT);
+        CHECK(distances[0] == -1.0f);
+        CHECK(actionstring_clip_label_distances(clip, NULL, (size_t)labels) == ACTIONSTRING_INVALID_ARGUMENT);
+        CHECK(actionstring_clip_label_distances(NULL, distances, (size_t)labels) == ACTIONSTRING_NOT_INITIALIZED);
+        CHECK(actionstring_clip_label_distances(clip, distances, (size_t)labels) == ACTIONSTRING_OK);
+        CHECK(distances[labels] == -1.0f); /* nothing past the labels */
+        int32_t nearest = 0;
+        for (int32_t l = 0; l < labels; ++l) {
+            CHECK(distances[l] >= 0.0f); /* distances and penalties: never negative, never NaN */
+            if (distances[l] < distances[nearest]) nearest = l;
+        }
+        CHECK(label < 0 || label == nearest);
+        CHECK(actionstring_clip_length(clip) == length);
+    }
     /* The same frames again after a reset: the same clip, the same label. */
     CHECK(actionstring_clip_reset(clip) == ACTIONSTRING_OK);
     CHECK(actionstring_clip_length(clip) == 0);
