@@ -116,6 +116,10 @@ void print_train_usage(std::FILE* out) {
                  "  --no-tune               with no settings given, train with the defaults instead of\n"
                  "                          choosing ε, σ, the string rate, velocity, size scaling and\n"
                  "                          PCA by leave-one-subject-out cross-validation (the default)\n"
+                 "  --tune-online           with settings given (a config of clip settings), still\n"
+                 "                          choose the online ones as self-tuning does: the segmenter's,\n"
+                 "                          the events' shortest action and the label lead, by streaming\n"
+                 "                          each held-out subject; they replace the given online settings\n"
                  "  --cv                    leave-one-subject-out cross-validation over the list's\n"
                  "                          subject column: a fold table and the mean (no model written)\n"
                  "  --sweep                 with --validate: vary one setting at a time around the\n"
@@ -328,7 +332,7 @@ int run_train(int argc, char** argv) {
     host::TrainingOptions options;
     host::ReadOptions read;
     std::string clips_path, out_path, validate_path, json_path;
-    bool sweep = false, cv = false, settings_given = false, no_tune = false;
+    bool sweep = false, cv = false, settings_given = false, no_tune = false, tune_online = false;
     ArgumentReader args("train", argc, argv);
     while (args.more()) {
         const std::string arg = args.next();
@@ -346,6 +350,7 @@ int run_train(int argc, char** argv) {
             options.mirror = true;
             settings_given = true;
         } else if (arg == "--no-tune") no_tune = true;
+        else if (arg == "--tune-online") tune_online = true;
         else if (arg == "--keep-singletons") {
             options.keep_singletons = true;
             settings_given = true;
@@ -396,6 +401,12 @@ int run_train(int argc, char** argv) {
             // Once, after both searches: what a config needs to train this model again.
             std::printf("the chosen settings, clip and online (keep them with --config):\n%s",
                         host::options_as_config(options).c_str());
+        } else if (tune_online) {
+            // The clip settings as given; the online ones chosen on them.
+            tune_online_settings(train, options, recordings.empty() ? nullptr : &recordings);
+            std::printf(
+                "the settings, the clip ones as given and the online ones chosen (keep them with --config):\n%s",
+                host::options_as_config(options).c_str());
         }
         auto stage_start = std::chrono::steady_clock::now();
         options.progress = [&](const char* stage) {

@@ -242,7 +242,7 @@ _NOT_TUNED = frozenset({"pose_joints", "max_representative_chars", "max_represen
                         "reject_keep", "latency_budget"})
 
 
-def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Optional[bool] = None,
+def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Union[bool, str, None] = None,
           **settings: Any) -> Model:
     """Trains a model on labelled clips with the C++ training pipeline.
 
@@ -258,6 +258,8 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Opt
     (each setting tried with its fold mean, the folds' mean signed margin that
     breaks ties, and whether it was kept) and the folds of the choice, and
     ``training_report["online_tuning"]`` the online search's.
+    ``tune="online"`` keeps the clip settings given (``config`` and keywords)
+    and chooses only the online ones that way (``train --tune-online``).
     ``latency_budget=S`` (seconds) makes that search keep only online settings
     whose mean detection latency on the folds is at most S, trying shorter
     settle delays too. As on the command line, the choices that are not tuned
@@ -273,9 +275,15 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Opt
             raise ValueError(f"train expects Clip objects, got {type(clip).__name__}")
         if not clip.label:
             raise ValueError(f"{clip.source}: no label")
-    if tune is None:  # constraints on self-tuning (as `actionstring train` has them) do not replace it
+    tune_online = tune == "online"
+    if tune_online:
+        tune = False
+    elif tune is None:  # constraints on self-tuning (as `actionstring train` has them) do not replace it
         tune = not (settings.keys() - _NOT_TUNED) and config is None
-    native, report = _native._train(clips, settings, bool(tune), "" if config is None else os.fspath(config))
+    elif not isinstance(tune, bool):
+        raise ValueError(f"tune expects True, False, None or 'online', got {tune!r}")
+    native, report = _native._train(clips, settings, bool(tune), "" if config is None else os.fspath(config),
+                                    tune_online)
     return Model(native, report)
 
 

@@ -262,8 +262,8 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
 
 // ---- training ------------------------------------------------------------------
 
-py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings, bool tune,
-                const std::string& config) {
+py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings, bool tune, const std::string& config,
+                bool tune_online) {
     host::TrainingOptions options = tune ? host::tuning_start() : host::TrainingOptions{};
     host::ReadOptions unused;
     if (!config.empty()) host::read_training_config(config, options, unused);
@@ -286,6 +286,10 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
             // As `actionstring train` with no settings: the clip settings, then the online ones.
             tuned = host::tune_training(clips, options);
             options = tuned.options;
+            online = host::tune_online(clips, options);
+            host::adopt_online_tuning(online, options);
+        } else if (tune_online) {
+            // As `actionstring train --tune-online`: the clip settings as given, the online ones chosen.
             online = host::tune_online(clips, options);
             host::adopt_online_tuning(online, options);
         }
@@ -640,7 +644,8 @@ PYBIND11_MODULE(_actionstring, m) {
             return out;
         });
 
-    m.def("_train", &train, py::arg("clips"), py::arg("settings"), py::arg("tune"), py::arg("config") = "");
+    m.def("_train", &train, py::arg("clips"), py::arg("settings"), py::arg("tune"), py::arg("config") = "",
+          py::arg("tune_online") = false);
     m.def("_training_setting_names", &host::training_setting_names);
 
     py::class_<StreamAnnotator>(m, "_Annotator")

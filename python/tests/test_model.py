@@ -131,6 +131,28 @@ def test_label_distances_rank_what_classify_decides(toy_model, toy_clips):
     assert np.array_equal(again.label_distances(toy_clips[0]), toy_model.label_distances(toy_clips[0]))
 
 
+def test_tune_online_keeps_the_clip_settings_and_chooses_the_online_ones(toy_clips):
+    given = dict(TOY_SETTINGS, segment_penalty=7.5, min_action=1.5)
+    model = actionstring.train(toy_clips, tune="online", **given)
+    assert "tuning" not in model.training_report  # no clip search
+    tuning = model.training_report["online_tuning"]
+    kept = [row for row in tuning["settings"] if row["kept"]]
+    assert len(kept) == 1 and all(row["segment_f1"] <= kept[0]["segment_f1"] for row in tuning["settings"])
+    # The clip settings are the given ones; the online ones given are replaced by the chosen.
+    settings = model.training_report["settings"]
+    for line in ("pca 8", "string-rate 10", "sigma 4", "components 0"):
+        assert "\n" + line + "\n" in "\n" + settings, line
+    assert model.online_settings["segment_penalty"] != 7.5
+    assert "segment-penalty %g" % model.online_settings["segment_penalty"] in kept[0]["settings"]
+    assert model.online_settings["min_action"] in [row["min_action"] for row in tuning["min_action"]]
+    # The same clip model as training without the search: the same representatives.
+    plain = actionstring.train(toy_clips, **given)
+    assert plain.representative_count == model.representative_count
+    assert [plain.classify(c) for c in toy_clips[:8]] == [model.classify(c) for c in toy_clips[:8]]
+    with pytest.raises(ValueError, match="tune expects"):
+        actionstring.train(toy_clips, tune="clips", **TOY_SETTINGS)
+
+
 def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     """With no settings, train() tunes as `actionstring train` does: clip settings, then online ones."""
     model = actionstring.train(toy_clips)
@@ -283,6 +305,20 @@ def test_python_training_equals_the_cli_bit_for_bit(hdm05, hdm05_model):
     folder, config = hdm05_model
     model = actionstring.train(actionstring.read_clip_list(hdm05 / "train.tsv"), config=config)
     assert model._native.artifact() == (folder / "cli.model").read_text()
+
+
+def test_tune_online_from_the_cli_equals_python(hdm05, cli, hdm05_model, tmp_path):
+    folder, config = hdm05_model
+    out = run_cli(cli, "train", "--clips", hdm05 / "train.tsv", "--config", config, "--tune-online", "--out",
+                  tmp_path / "online.model")
+    assert "online tuning:" in out and "<- chosen" in out
+    echoed = out.split("the online ones chosen (keep them with --config):\n")[1]
+    model = actionstring.train(actionstring.read_clip_list(hdm05 / "train.tsv"), config=config, tune="online")
+    assert model._native.artifact() == (tmp_path / "online.model").read_text()
+    assert echoed.startswith(model.training_report["settings"])
+    # The clip model is the config's own: the same representatives as training with it alone.
+    plain = actionstring.Model.load(folder / "cli.model")
+    assert plain.representative_count == model.representative_count
 
 
 def test_evaluation_equals_the_cli(hdm05, cli, hdm05_model):
