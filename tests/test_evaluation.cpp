@@ -2,12 +2,17 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 
 #include "eval/baselines.hpp"
 #include "eval/clip_eval.hpp"
 #include "eval/json.hpp"
 #include "eval/online.hpp"
+#include "eval/report.hpp"
 #include "eval/significance.hpp"
 #include "run/classify.hpp"
 #include "run/stream_labels.hpp"
@@ -202,6 +207,32 @@ TEST_CASE("top-k: the true label's rank among the labels' scores, ties against i
     CHECK(r.top_k[0] == doctest::Approx(r.clip_accuracy));
     // The baselines carry no ranking; the JSON carries the model's.
     CHECK(evaluate_pose_dtw(view, train, test).top_k.empty());
+}
+
+TEST_CASE("report.md: the clip table, the model's top-k and the confusion picture") {
+    ToyWorld world = make_toy_world();
+    const auto train = toy_clips(world, 5, 300);
+    const auto test = toy_clips(world, 2, 7200, 30.0);
+    ModelData model = train_model(train, test::toy_options());
+    const ModelView view = model.view();
+    const ClipResults mine = evaluate_model(view, test);
+    const ClipResults dtw = evaluate_pose_dtw(view, train, test);
+    const std::filesystem::path folder = std::filesystem::temp_directory_path() / "actionstring_report_test";
+    std::filesystem::remove_all(folder);
+    write_report(folder.string(), "toy", {mine, dtw}, nullptr, mine.labels);
+    std::ifstream in(folder / "report.md");
+    REQUIRE(in.good());
+    const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(md.find("| " + mine.method + " | ") != std::string::npos);
+    CHECK(md.find("| " + dtw.method + " | ") != std::string::npos);
+    std::ostringstream top;
+    top.precision(3);
+    top << std::fixed << "top-1 " << mine.top_k[0] << ", top-2 " << mine.top_k[1] << ", top-3 " << mine.top_k[2] << ".";
+    CHECK(md.find(top.str()) != std::string::npos);
+    CHECK(md.find("confusion.svg") != std::string::npos);
+    CHECK(std::filesystem::exists(folder / "confusion.svg"));
+    in.close();
+    std::filesystem::remove_all(folder);
 }
 
 TEST_CASE("online metrics on a timeline scored by hand") {

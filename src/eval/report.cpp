@@ -169,6 +169,13 @@ void write_report(const std::string& dir, const std::string& title, const std::v
         if (r.paired) md << r.model_only << " / " << r.method_only << ", p " << r.mcnemar_p;
         md << " |\n";
     }
+    if (!clip_results.empty() && !clip_results.front().top_k.empty()) {
+        // How near the model's errors are: the true label among its best-scored labels.
+        md << "\nThe model's true label among the labels' k best scores (before rejection):";
+        for (std::size_t k = 0; k < clip_results.front().top_k.size(); ++k)
+            md << (k == 0 ? " " : ", ") << "top-" << k + 1 << " " << clip_results.front().top_k[k];
+        md << ".\n";
+    }
     if (!clip_results.empty() && !clip_results.front().per_subject.empty()) {
         md << "\nClip accuracy per subject (the methods in the order above):\n\n| subject | clips |";
         for (const ClipResults& r : clip_results) md << " " << r.method << " |";
