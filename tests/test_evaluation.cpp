@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -217,7 +218,10 @@ TEST_CASE("report.md: the clip table, the model's top-k and the confusion pictur
     const ModelView view = model.view();
     const ClipResults mine = evaluate_model(view, test);
     const ClipResults dtw = evaluate_pose_dtw(view, train, test);
-    const std::filesystem::path folder = std::filesystem::temp_directory_path() / "actionstring_report_test";
+    // Its own folder: builds of the tests may run side by side.
+    const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() /
+        ("actionstring_report_test_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
     std::filesystem::remove_all(folder);
     write_report(folder.string(), "toy", {mine, dtw}, nullptr, mine.labels);
     std::ifstream in(folder / "report.md");
