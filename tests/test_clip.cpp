@@ -218,6 +218,11 @@ TEST_CASE("clip: each label's score is its nearest representative with its penal
         const std::vector<float> host_scores = host::label_distances(view, c.clip);
         REQUIRE(host_scores.size() == L);
         CHECK(std::memcmp(scores.data(), host_scores.data(), L * sizeof(float)) == 0);
+        // The host's one pass for both gives classify_clip()'s label and these scores.
+        const ScoredClip scored = score_clip(view, c.clip);
+        check_same(scored.classification, host::classify_clip(view, c.clip));
+        REQUIRE(scored.label_distances.size() == L);
+        CHECK(std::memcmp(scores.data(), scored.label_distances.data(), L * sizeof(float)) == 0);
         // With one neighbour the smallest score is the label classify_clip() reports.
         const Classification k = host::classify_clip(view, c.clip);
         const auto best = static_cast<LabelId>(std::min_element(scores.begin(), scores.end()) - scores.begin());

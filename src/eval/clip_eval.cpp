@@ -91,13 +91,13 @@ ClipResults evaluate_model(const ModelView& model, const std::vector<LabelledCli
     const std::size_t K = std::min<std::size_t>(3, model.label_count);
     std::vector<std::size_t> within(K, 0);
     for (const LabelledClip& c : clips) {
-        const Classification k = classify_clip(model, c.clip);
-        r.predictions.push_back(frame_label(k.label));
+        const ScoredClip scored = score_clip(model, c.clip);
+        r.predictions.push_back(frame_label(scored.classification.label));
         // The true label's rank among the labels' scores: how many other labels
         // score as near or nearer (a tie is not won by the true label).
         const int truth = label_index(r.labels, c.label);
         if (truth < 0 || static_cast<std::size_t>(truth) >= model.label_count) continue;
-        const std::vector<float> scores = label_distances(model, c.clip);
+        const std::vector<float>& scores = scored.label_distances;
         const float own = scores[static_cast<std::size_t>(truth)];
         if (!std::isfinite(own)) continue;
         std::size_t rank = 0;

@@ -128,12 +128,22 @@ Classification classify_clip(const ModelView& model, const Clip& clip) {
                                        work.encoded.string.size(), work.scratch.data(), work.cells.data());
 }
 
-std::vector<float> label_distances(const ModelView& model, const Clip& clip) {
+ScoredClip score_clip(const ModelView& model, const Clip& clip) {
+    // One encoding and one pass of the stages for both (classify_clip() and
+    // clip_label_distances() would each redo the string distances).
     ClipWork work(model, clip);
-    std::vector<float> out(model.label_count);
-    clip_label_distances(model, work.encoded.string.data(), work.features(), work.records(), work.encoded.string.size(),
-                         work.scratch.data(), work.cells.data(), out.data());
+    const float* const penalties =
+        detail::clip_scores(model, work.encoded.string.data(), work.features(), work.records(),
+                            work.encoded.string.size(), work.scratch.data(), work.cells.data());
+    ScoredClip out;
+    out.classification = classify_distances(model, work.scratch.data(), penalties);
+    out.label_distances.resize(model.label_count);
+    actionstring::label_distances(model, work.scratch.data(), penalties, out.label_distances.data());
     return out;
+}
+
+std::vector<float> label_distances(const ModelView& model, const Clip& clip) {
+    return score_clip(model, clip).label_distances;
 }
 
 ClipScore clip_score(const ModelView& model, const std::vector<LabelledClip>& clips) {

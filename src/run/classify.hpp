@@ -67,6 +67,15 @@ Classification classify_clip(const ModelView& model, const Clip& clip);
 /// added; smaller is nearer, +inf where none compares): label_count floats.
 std::vector<float> label_distances(const ModelView& model, const Clip& clip);
 
+/// A clip's label and every label's score together, from one encoding and
+/// one pass of the runtime's stages: classify_clip()'s Classification and
+/// label_distances()'s scores, bit for bit.
+struct ScoredClip {
+    Classification classification;
+    std::vector<float> label_distances;
+};
+ScoredClip score_clip(const ModelView& model, const Clip& clip);
+
 /// How a model does on labelled clips: the fraction right, and the mean
 /// signed margin, a clip's Classification::confidence when it is right and
 /// minus it when it is wrong (0 when unknown). The margin tells settings apart
