@@ -392,21 +392,21 @@ int run_train(int argc, char** argv) {
         const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
         if (host::has_intervals(entries)) recordings = host::read_recordings(entries, read);
         const std::vector<host::LabelledClip> no_action = host::unlabelled_stretches(recordings, 1.0);
-        if (!settings_given && !no_tune) {
+        const bool tune_clips = !settings_given && !no_tune;
+        if (tune_clips) {
             const bool reject = options.reject;
             const double reject_keep = options.reject_keep;
             options = tune(train, options).options;
             options.reject = reject, options.reject_keep = reject_keep;
+        }
+        if (tune_clips || tune_online) {
+            // The online settings on the clip ones (chosen above, or as given); then, once,
+            // what a config needs to train this model again.
             tune_online_settings(train, options, recordings.empty() ? nullptr : &recordings);
-            // Once, after both searches: what a config needs to train this model again.
-            std::printf("the chosen settings, clip and online (keep them with --config):\n%s",
+            std::printf("%s (keep them with --config):\n%s",
+                        tune_clips ? "the chosen settings, clip and online"
+                                   : "the settings, the clip ones as given and the online ones chosen",
                         host::options_as_config(options).c_str());
-        } else if (tune_online) {
-            // The clip settings as given; the online ones chosen on them.
-            tune_online_settings(train, options, recordings.empty() ? nullptr : &recordings);
-            std::printf(
-                "the settings, the clip ones as given and the online ones chosen (keep them with --config):\n%s",
-                host::options_as_config(options).c_str());
         }
         auto stage_start = std::chrono::steady_clock::now();
         options.progress = [&](const char* stage) {

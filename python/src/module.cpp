@@ -282,14 +282,13 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
     host::TuningResult tuned;
     {
         py::gil_scoped_release release;
+        // As `actionstring train` with no settings: the clip settings, then the online ones;
+        // with tune_online (`train --tune-online`) the clip settings as given.
         if (tune) {
-            // As `actionstring train` with no settings: the clip settings, then the online ones.
             tuned = host::tune_training(clips, options);
             options = tuned.options;
-            online = host::tune_online(clips, options);
-            host::adopt_online_tuning(online, options);
-        } else if (tune_online) {
-            // As `actionstring train --tune-online`: the clip settings as given, the online ones chosen.
+        }
+        if (tune || tune_online) {
             online = host::tune_online(clips, options);
             host::adopt_online_tuning(online, options);
         }
