@@ -30,7 +30,7 @@ int run_annotate(int argc, char** argv) {
                 "       actionstring annotate --model MODEL --live [--udp PORT [--idle-timeout S]] [options]\n"
                 "                             [--json | --events] [--min-action S] [--time-unit s|ms|us] [--body N]\n"
                 "                             [--columns time=COL,JOINT=X:Y:Z,...] [--length-unit U]\n"
-                "                             [--settle S] [--segment-penalty X] [--stay-penalty X]\n"
+                "                             [--settle S] [--settle-stable S] [--segment-penalty X] [--stay-penalty X]\n"
                 "                             [--skip-penalty X] [--unknown-cost X] [--segment-votes X]\n"
                 "                             [--segment-exemplars X] [--label-lead S] [--spread-work]\n"
                 "                             [--up X,Y,Z]\n\n"

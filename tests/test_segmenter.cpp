@@ -114,9 +114,14 @@ Tables random_tables(std::mt19937& rng) {
 // `margins` receives, per character, how far the best explanation's label
 // leads the best one with another label (live_margin()).
 // `features`, when given, holds each stream character's one-dimensional feature (exemplars).
+// `stable` (characters, 0: none) settles a character sooner, once every best
+// explanation since `stable` characters ago has given it one label (the
+// characters before it settled); `settled_at`, when given, receives the
+// character each one settled at.
 std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig& config, std::uint32_t settle,
                                        const std::vector<Character>& stream, std::vector<float>* margins = nullptr,
-                                       const std::vector<float>* features = nullptr) {
+                                       const std::vector<float>* features = nullptr, std::uint32_t stable = 0,
+                                       std::vector<std::size_t>* settled_at = nullptr) {
     const float inf = std::numeric_limits<float>::infinity();
     const std::size_t T = stream.size(), R = m.representative_count;
     struct End {
@@ -130,6 +135,11 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
     for (std::size_t r = 0; r < R; ++r)
         cost[r].assign(m.representative_length(r) + 1, inf), start[r].assign(m.representative_length(r) + 1, 0);
     std::vector<LabelId> settled(T, unknown_label);
+    if (settled_at != nullptr) settled_at->assign(T, T);
+    // Early settling: each character's label in the best explanation, and since when.
+    std::vector<LabelId> candidate(T, unknown_label);
+    std::vector<std::size_t> since(T, 0);
+    std::size_t next_to_settle = 0;
     auto weight = [&](Character a, Character b) { return m.character_distances[a * m.character_count + b]; };
     auto label = [&](int rep) { return rep < 0 ? unknown_label : m.representative_labels[rep]; };
     // The characters' votes: what character c costs label l's explanations.
@@ -203,7 +213,26 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
         start = next_start;
         ends[t] = {end_rep, end_start};
         end_cost[t] = best_end;
+        if (stable > 0) {
+            // The whole best explanation traced back, then the rule, oldest first.
+            int rep = best_rep;
+            std::size_t s = best_start;
+            for (std::size_t c = t + 1; c-- > next_to_settle;) {
+                while (s > c) {
+                    rep = ends[s - 1].rep;
+                    s = ends[s - 1].start;
+                }
+                if (c == t || candidate[c] != label(rep)) candidate[c] = label(rep), since[c] = t;
+            }
+            while (next_to_settle <= t && (t - next_to_settle >= settle || t - since[next_to_settle] >= stable)) {
+                settled[next_to_settle] = candidate[next_to_settle];
+                if (settled_at != nullptr) (*settled_at)[next_to_settle] = t;
+                ++next_to_settle;
+            }
+            continue;
+        }
         if (t < settle) continue;
+        if (settled_at != nullptr) (*settled_at)[t - settle] = t;
         const std::size_t target = t - settle;
         int rep = best_rep;
         std::size_t s = best_start;
@@ -260,6 +289,64 @@ TEST_CASE("settled labels equal a full-table reference of the same recurrence") 
             if (stream.size() - 1 - i < segmenter->settled_history()) CHECK(segmenter->settled_label(i) == got[i]);
         }
     }
+}
+
+TEST_CASE("early settling (settle_stable_us) equals a full-table reference of its rule") {
+    std::mt19937 rng(2026);
+    host::Stateful<ActionSegmenter> segmenter, delay_only;
+    std::size_t early = 0;  // characters settled before their delay, over all trials
+    for (int trial = 0; trial < 200; ++trial) {
+        Tables t = random_tables(rng);
+        SegmenterConfig config;
+        config.settle_delay_us = std::uniform_int_distribution<int>(0, 30)(rng) * 100000;
+        config.settle_stable_us = std::uniform_int_distribution<int>(0, 30)(rng) * 100000;
+        config.segment_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
+        config.stay_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
+        config.skip_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
+        if (trial % 3 == 0)
+            config.unknown_cost = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
+        if (trial % 2 == 0) config.vote_weight = 0.5f;
+        REQUIRE(segmenter.init(t.view, config) == Status::ok);
+        const std::uint32_t settle = segmenter->settle_chars();
+        // Rounded to characters, at least one; none when the delay comes first.
+        const std::uint32_t asked = static_cast<std::uint32_t>(config.settle_stable_us / 100000);
+        const std::uint32_t stable = config.settle_stable_us == 0 ? 0u : std::max(asked, 1u);
+        CHECK(segmenter->stable_chars() == (stable < settle ? stable : 0u));
+        SegmenterConfig alone = config;
+        alone.settle_stable_us = 0;
+        REQUIRE(delay_only.init(t.view, alone) == Status::ok);
+        // Two more rings, only when the rule can settle anything early.
+        if (segmenter->stable_chars() == 0)
+            CHECK(ActionSegmenter::required_bytes(t.view, config) == ActionSegmenter::required_bytes(t.view, alone));
+        else CHECK(ActionSegmenter::required_bytes(t.view, config) > ActionSegmenter::required_bytes(t.view, alone));
+        std::vector<Character> stream(static_cast<std::size_t>(std::uniform_int_distribution<int>(1, 150)(rng)));
+        for (auto& c : stream)
+            c = static_cast<Character>(std::uniform_int_distribution<int>(0, t.view.character_count - 1)(rng));
+        std::vector<std::size_t> at;
+        const std::vector<LabelId> expected =
+            reference_settled(t.view, config, settle, stream, nullptr, nullptr, segmenter->stable_chars(), &at);
+        std::uint64_t settled_count = 0;
+        for (std::size_t i = 0; i < stream.size(); ++i) {
+            const bool settled = segmenter->push(stream[i]);
+            delay_only->push(stream[i]);
+            // The same explanation: early settling changes what is final, never the search.
+            CHECK(segmenter->live_label() == delay_only->live_label());
+            CHECK(segmenter->live_margin() == delay_only->live_margin());
+            CHECK(settled == (segmenter->just_settled() > 0));
+            for (std::uint32_t k = 0; k < segmenter->just_settled(); ++k) {
+                const std::uint64_t c = settled_count++;
+                INFO("trial ", trial, " character ", c, " at ", i);
+                CHECK(segmenter->settled_character() - (segmenter->just_settled() - 1 - k) == c);
+                CHECK(segmenter->settled_label(c) == expected[c]);
+                CHECK(at[c] == i);       // settled on the same character as the reference
+                CHECK(i - c <= settle);  // never later than the delay
+                early += i - c < settle;
+            }
+            CHECK(settled_count == (segmenter->has_settled() ? segmenter->settled_character() + 1 : 0u));
+        }
+        for (std::size_t c = settled_count; c < stream.size(); ++c) CHECK(at[c] == stream.size());  // none left behind
+    }
+    CHECK(early > 1000);  // the rule did settle characters early
 }
 
 TEST_CASE("a character's work in slices (begin, advance) gives push()'s state bit for bit") {
@@ -479,6 +566,13 @@ TEST_CASE("segmenter refuses bad settings and storage too small for them") {
     CHECK(ActionSegmenter::required_bytes(t.view, config) == unsatisfiable_bytes);
     config.settle_delay_us = max_settle_delay_us + 1;
     CHECK(segmenter.init(t.view, config, block, sizeof block) == Status::invalid_argument);
+    config = SegmenterConfig{};
+    config.settle_stable_us = -1;
+    CHECK(segmenter.init(t.view, config, block, sizeof block) == Status::invalid_argument);
+    CHECK(ActionSegmenter::required_bytes(t.view, config) == unsatisfiable_bytes);
+    config.settle_stable_us = max_settle_delay_us + 1;
+    CHECK(segmenter.init(t.view, config, block, sizeof block) == Status::invalid_argument);
+    CHECK(ActionSegmenter::required_bytes(t.view, config) == unsatisfiable_bytes);
     ModelView no_period = t.view;
     no_period.string_period_us = 0;
     CHECK(segmenter.init(no_period, segmenter_config(no_period), block, sizeof block) == Status::invalid_model);

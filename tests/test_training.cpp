@@ -749,7 +749,8 @@ std::string older_artifact(const ModelData& model, int version) {
             (version < 7 && line.find("acceleration_weight") != std::string::npos) ||
             (version < 8 && line.find("min_action_us") != std::string::npos) ||
             (version < 9 && line.find("exemplar_dim ") == 0) || (version < 10 && line.find("descriptor") == 0) ||
-            (version < 11 && line.find("label_lead_us") == 0) || (version < 12 && line.find("direction") == 0);
+            (version < 11 && line.find("label_lead_us") == 0) || (version < 12 && line.find("direction") == 0) ||
+            (version < 13 && line.find("settle_stable_us") == 0);
         if (!added) body += line;
         at = end;
     }
@@ -761,13 +762,13 @@ std::string older_artifact(const ModelData& model, int version) {
 }  // namespace
 
 TEST_CASE(
-    "version-5 to 11 artifacts (before the exemplars, the acceleration, the shortest action, the exemplars' "
-    "dimension, the clip descriptor, the label lead, the motion directions) are read") {
+    "version-5 to 12 artifacts (before the exemplars, the acceleration, the shortest action, the exemplars' "
+    "dimension, the clip descriptor, the label lead, the motion directions, early settling) are read") {
     const ToyWorld world = make_toy_world();
     REQUIRE_FALSE(world.model.view().has_exemplars());
     REQUIRE_FALSE(world.model.view().has_acceleration());
     REQUIRE(world.model.min_action_us == 250000u);  // what a model without the field has
-    for (const int version : {5, 6, 7, 8, 9, 10, 11}) {
+    for (const int version : {5, 6, 7, 8, 9, 10, 11, 12}) {
         CAPTURE(version);
         const std::string old = older_artifact(world.model, version);
         CHECK(serialize_model(parse_model("old.model", old)) == serialize_model(world.model));
@@ -778,7 +779,8 @@ TEST_CASE(
         const char* const missing = version < 7    ? "expected 'acceleration_weight'"
                                     : version < 9  ? "expected 'exemplar_dim'"
                                     : version < 10 ? "expected 'descriptor_weight'"
-                                                   : "expected 'direction_weight'";  // before label_lead_us
+                                    : version < 12 ? "expected 'direction_weight'"  // before label_lead_us
+                                                   : "expected 'settle_stable_us'";
         CHECK_THROWS_WITH_AS(parse_model("new.model", current), doctest::Contains(missing), ReadError);
     }
     // A version-7 model's events keep the runtime's default shortest action.
@@ -790,6 +792,10 @@ TEST_CASE(
     shorter.label_lead_us = 200000;
     CHECK(parse_model("v10.model", older_artifact(shorter, 10)).label_lead_us == 0u);
     CHECK(parse_model("v11.model", older_artifact(shorter, 11)).label_lead_us == 200000u);
+    // A version-12 model settles by the delay alone.
+    shorter.settle_stable_us = 1000000;
+    CHECK(parse_model("v12.model", older_artifact(shorter, 12)).settle_stable_us == 0u);
+    CHECK(parse_model("v13.model", serialize_model(shorter)).settle_stable_us == 1000000u);
     // A version-8 model's exemplars keep every coordinate of the feature.
     TrainingOptions options = toy_pca_only_options();
     options.exemplars = 3;

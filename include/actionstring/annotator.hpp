@@ -5,7 +5,8 @@
 //  * WindowMatcher (one DP line per open window and representative) → kNN
 //    label whenever a window completes: the paper's rule, label();
 //  * ActionSegmenter (the string explained as representatives end to end) →
-//    a live label and, settle_delay later, a final label per character:
+//    a live label and, settle_delay later (or sooner, once the explanation
+//    has kept it settle_stable long), a final label per character:
 //    live_label(), settled_label(). This rule labels streams of actions far
 //    better (models/README.md has the figures).
 #pragma once
@@ -110,7 +111,8 @@ struct FrameResult {
     std::uint32_t windows_completed = 0;
     /// Characters whose label the segmenter settled during this frame (the
     /// last one is settled_character(); one per character once the stream is
-    /// settle_chars() long).
+    /// settle_chars() long, or with SegmenterConfig::settle_stable_us none on
+    /// some characters and several on others).
     std::uint32_t characters_settled = 0;
     /// When this frame restarted the stream: the ended stream's last
     /// characters, whose labels became final with the restart (those not
@@ -461,10 +463,12 @@ private:
         const std::uint64_t index = segmenter_.characters_pushed() - 1;
         live_[index % live_ring_] = segmenter_.live_label();
         if (progress != ActionSegmenter::Progress::settled) return;
-        ++result.characters_settled;
-        const std::uint64_t s = segmenter_.settled_character();
-        const LabelId label = segmenter_.settled_label();
-        settle_event(s, label, origin_us);
+        // One character, or with early settling (settle_stable_us) several in order.
+        const std::uint32_t settled = segmenter_.just_settled();
+        result.characters_settled += settled;
+        const std::uint64_t last = segmenter_.settled_character();
+        for (std::uint64_t c = last + 1u - settled; c <= last; ++c)
+            settle_event(c, segmenter_.settled_label(c), origin_us);
     }
 
     // The first character of the stream whose settled label no FrameResult

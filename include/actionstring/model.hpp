@@ -517,6 +517,7 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     }
     // Online settings.
     if (m.settle_delay_us > 600000000u) return refuse(problem, "settle_delay_us: over 10 minutes");
+    if (m.settle_stable_us > 600000000u) return refuse(problem, "settle_stable_us: over 10 minutes");
     if (!(m.segment_penalty >= 0.0f && m.segment_penalty <= max_table_value) ||
         !(m.stay_penalty >= 0.0f && m.stay_penalty <= max_table_value) ||
         !(m.skip_penalty >= 0.0f && m.skip_penalty <= max_table_value))

@@ -125,6 +125,8 @@
     TABLE(float, direction_bias, (m.direction_levels > 0 ? m.label_count : 0u), 0, 0)                     \
     /* --- online settings of the segmenter (design §1.8), chosen at training --- */                      \
     SCALAR(std::uint32_t, settle_delay_us, 2000000, 0, 600000000) /* a character's label is final then */ \
+    /* or sooner, once every best explanation has given it that label this long; 0: the delay alone */   \
+    SCALAR(std::uint32_t, settle_stable_us, 0, 0, 600000000)                                              \
     SCALAR(float, segment_penalty, 3.0f, 0, 0)             /* cost of starting another segment */         \
     SCALAR(float, stay_penalty, 0.3f, 0, 0)                /* two stream characters on one */             \
     SCALAR(float, skip_penalty, 0.3f, 0, 0)                /* skipping a representative character */      \

@@ -122,6 +122,24 @@ std::size_t clip_bytes(const ModelView& model, std::uint32_t max_characters) {
     return kClipHeaderBytes + recorder + kGuardBytes;
 }
 
+// The segmenter's settings from the C struct, and back.
+actionstring::SegmenterConfig from_settings(const actionstring_online_settings& s) {
+    actionstring::SegmenterConfig c;
+    c.settle_delay_us = s.settle_delay_us;
+    c.segment_penalty = s.segment_penalty;
+    c.stay_penalty = s.stay_penalty;
+    c.skip_penalty = s.skip_penalty;
+    c.unknown_cost = s.unknown_cost;
+    c.vote_weight = s.vote_weight;
+    c.exemplar_weight = s.exemplar_weight;
+    c.settle_stable_us = s.settle_stable_us;
+    return c;
+}
+actionstring_online_settings to_settings(const actionstring::SegmenterConfig& c) {
+    return actionstring_online_settings{c.settle_delay_us, c.segment_penalty, c.stay_penalty,    c.skip_penalty,
+                                        c.unknown_cost,    c.vote_weight,     c.exemplar_weight, c.settle_stable_us};
+}
+
 AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) {
     AnnotatorConfig config = actionstring::annotator_config(model);
     if (c == nullptr) return config;
@@ -132,13 +150,7 @@ AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) 
     config.spread_work = c->spread_work != 0;
     config.label_lead_us = c->label_lead_us;
     for (int a = 0; a < 3; ++a) config.up[a] = c->up[a];
-    config.segmenter.settle_delay_us = c->online.settle_delay_us;
-    config.segmenter.segment_penalty = c->online.segment_penalty;
-    config.segmenter.stay_penalty = c->online.stay_penalty;
-    config.segmenter.skip_penalty = c->online.skip_penalty;
-    config.segmenter.unknown_cost = c->online.unknown_cost;
-    config.segmenter.vote_weight = c->online.vote_weight;
-    config.segmenter.exemplar_weight = c->online.exemplar_weight;
+    config.segmenter = from_settings(c->online);
     return config;
 }
 
@@ -379,10 +391,8 @@ actionstring_status actionstring_reset(actionstring_state* handle) {
 
 actionstring_online_settings actionstring_model_online_settings(const actionstring_model* handle) {
     const Model* model = checked_model(handle);
-    if (model == nullptr) return actionstring_online_settings{0, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
-    const actionstring::SegmenterConfig c = actionstring::segmenter_config(model->view);
-    return actionstring_online_settings{c.settle_delay_us, c.segment_penalty, c.stay_penalty, c.skip_penalty,
-                                        c.unknown_cost, c.vote_weight, c.exemplar_weight};
+    if (model == nullptr) return actionstring_online_settings{0, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0};
+    return to_settings(actionstring::segmenter_config(model->view));
 }
 
 actionstring_status actionstring_set_online_settings(actionstring_state* handle,
@@ -391,13 +401,7 @@ actionstring_status actionstring_set_online_settings(actionstring_state* handle,
     if (state == nullptr) return ACTIONSTRING_NOT_INITIALIZED;
     if (settings == nullptr) return ACTIONSTRING_INVALID_ARGUMENT;
     AnnotatorConfig config = state->annotator.config();
-    config.segmenter.settle_delay_us = settings->settle_delay_us;
-    config.segmenter.segment_penalty = settings->segment_penalty;
-    config.segmenter.stay_penalty = settings->stay_penalty;
-    config.segmenter.skip_penalty = settings->skip_penalty;
-    config.segmenter.unknown_cost = settings->unknown_cost;
-    config.segmenter.vote_weight = settings->vote_weight;
-    config.segmenter.exemplar_weight = settings->exemplar_weight;
+    config.segmenter = from_settings(*settings);
     return reconfigure(*state, config);
 }
 

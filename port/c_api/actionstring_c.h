@@ -76,6 +76,8 @@ typedef struct actionstring_online_settings {
     float unknown_cost;      /**< cost per character of "no action"; INFINITY turns it off */
     float vote_weight;       /**< weight of the characters' label votes in the explanation; 0 = off */
     float exemplar_weight;   /**< weight of the exemplars in the explanation; 0 = off (needs exemplars in the model) */
+    int64_t settle_stable_us; /**< or final sooner, once every best explanation has given a character the same label
+                                   this long (0: the delay alone); more state (actionstring_state_size()) */
 } actionstring_online_settings;
 
 /** Everything a state is set up with. actionstring_default_config() gives the model's own. */

@@ -307,7 +307,8 @@ class Annotator:
     with ``event``, ``label``, ``start``, ``end`` in seconds and ``confidence``;
     an action shorter than ``min_action`` seconds, the model's own by default, is
     flicker and never reported). ``flush()`` ends the stream and returns the last events.
-    Online settings (``settle``, ``segment_penalty``, ``unknown_cost``, ...)
+    Online settings (``settle``, ``settle_stable``: a label also final once every
+    best explanation has given it that long, ``segment_penalty``, ``unknown_cost``, ...)
     override the model's own; ``window_rule=True`` also runs the paper's rule
     (``label``, ``confidence``). ``spread_work=True`` spreads each character's
     work (the encoder's projection, GMM and tree, and the segmenter's) over the

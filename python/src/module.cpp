@@ -254,7 +254,7 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
         } else if (!host::apply_online_setting(setting_name(key), setting_value(item.second), config))
             throw py::value_error(
                 "unknown online setting '" + key +
-                "' (settle, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, segment_exemplars, "
+                "' (settle, settle_stable, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, segment_exemplars, "
                 "window_rule, spread_work, max_gap, max_backward, min_action, label_lead, up)");
     }
     return config;
@@ -589,6 +589,7 @@ PYBIND11_MODULE(_actionstring, m) {
                                [](const ModelData& model) {
                                    py::dict d;
                                    d["settle"] = static_cast<double>(model.settle_delay_us) * 1e-6;
+                                   d["settle_stable"] = static_cast<double>(model.settle_stable_us) * 1e-6;
                                    d["segment_penalty"] = model.segment_penalty;
                                    d["stay_penalty"] = model.stay_penalty;
                                    d["skip_penalty"] = model.skip_penalty;

@@ -167,6 +167,7 @@ int field_since(std::string_view name) {
     if (name.substr(0, 9) == "direction") return 12;
     if (name.substr(0, 10) == "descriptor") return 10;
     if (name == "label_lead_us") return 11;
+    if (name == "settle_stable_us") return 13;
     return name.find("exemplar") != std::string_view::npos ? 6 : 0;
 }
 

@@ -20,14 +20,14 @@ namespace host {
 /// Version 2 added the input skeleton's joint names, 4 the label bounds, 5
 /// the interleaved GMM factors, 6 the exemplars, 7 the acceleration's weight,
 /// 8 the events' shortest action, 9 the exemplars' dimension, 10 the clip
-/// descriptor, 11 the labels' lead, 12 the clip's motion directions
-/// (versions 4 to 11 are still read: 4's
+/// descriptor, 11 the labels' lead, 12 the clip's motion directions, 13 the
+/// early settling of stable labels (versions 4 to 12 are still read: 4's
 /// factors reordered, 4 and 5 without exemplars, 4 to 6 without acceleration,
 /// 4 to 7 with the shortest action the runtime's default, 250 ms, 4 to 8 with
 /// exemplars of every feature coordinate, 4 to 9 without a clip descriptor,
-/// all but 11 with labels at their characters' ticks, a lead of 0, and all
-/// without the clip's motion directions).
-constexpr int artifact_version = 12;
+/// all but 11 with labels at their characters' ticks, a lead of 0, 4 to 11
+/// without the clip's motion directions, and all settling by the delay alone).
+constexpr int artifact_version = 13;
 
 /// 64-bit FNV-1a of the bytes.
 std::uint64_t fnv1a64(std::string_view bytes);

@@ -92,6 +92,8 @@ void check_options(const TrainingOptions& o) {
             "the representatives' share must be at least 0 and below 1");
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
             "the settle delay must be 0 to 60 s");
+    require(o.online.settle_stable_us >= 0 && o.online.settle_stable_us <= 60000000,
+            "the early settling's agreement must be 0 to 60 s");
     require(o.min_action_us >= 0 && o.min_action_us <= 60000000, "the shortest action must be 0 to 60 s");
     require(o.label_lead_us >= 0 && o.label_lead_us <= 60000000, "the label lead must be 0 to 60 s");
 }
@@ -617,6 +619,7 @@ void set_matching(ModelData& m, const TrainingOptions& options, int representati
         options.unknown_distance < 0 ? detail::infinity() : static_cast<float>(options.unknown_distance);
     const SegmenterConfig& online = options.online;
     m.settle_delay_us = static_cast<std::uint32_t>(online.settle_delay_us);
+    m.settle_stable_us = static_cast<std::uint32_t>(online.settle_stable_us);
     m.segment_penalty = online.segment_penalty;
     m.stay_penalty = online.stay_penalty;
     m.skip_penalty = online.skip_penalty;

@@ -73,6 +73,8 @@ bool apply_segmenter_setting(const std::string& name, const std::string& value, 
     const double unbounded = std::numeric_limits<double>::infinity();
     if (name == "settle")
         config.settle_delay_us = static_cast<std::int64_t>(std::llround(number(name, value, 0, 60) * 1e6));
+    else if (name == "settle-stable")
+        config.settle_stable_us = static_cast<std::int64_t>(std::llround(number(name, value, 0, 60) * 1e6));
     else if (name == "segment-penalty") config.segment_penalty = static_cast<float>(number(name, value, 0, 1e6));
     else if (name == "stay-penalty") config.stay_penalty = static_cast<float>(number(name, value, 0, 1e6));
     else if (name == "skip-penalty") config.skip_penalty = static_cast<float>(number(name, value, 0, 1e6));
@@ -264,6 +266,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "unknown-distance",
                                                 "seed",
                                                 "settle",
+                                                "settle-stable",
                                                 "segment-penalty",
                                                 "stay-penalty",
                                                 "skip-penalty",

@@ -197,10 +197,11 @@ std::string options_as_config(const TrainingOptions& o) {
         << normalization[static_cast<int>(o.normalization)] << "\nsigma " << number(o.sigma) << "\nkeep-singletons "
         << (o.keep_singletons ? "true" : "false") << "\nmirror " << (o.mirror ? "true" : "false") << "\nneighbours "
         << o.neighbours << "\nvote-weight " << number(o.vote_weight) << "\nvote-smoothing " << number(o.vote_smoothing)
-        << "\nseed " << o.seed << "\nsettle " << number(us_to_seconds(o.online.settle_delay_us)) << "\nsegment-penalty "
-        << number(o.online.segment_penalty) << "\nstay-penalty " << number(o.online.stay_penalty) << "\nskip-penalty "
-        << number(o.online.skip_penalty) << "\nunknown-cost " << number(o.online.unknown_cost) << "\nsegment-votes "
-        << number(o.online.vote_weight) << "\nmin-action " << number(us_to_seconds(o.min_action_us)) << "\nlabel-lead "
+        << "\nseed " << o.seed << "\nsettle " << number(us_to_seconds(o.online.settle_delay_us)) << "\nsettle-stable "
+        << number(us_to_seconds(o.online.settle_stable_us)) << "\nsegment-penalty " << number(o.online.segment_penalty)
+        << "\nstay-penalty " << number(o.online.stay_penalty) << "\nskip-penalty " << number(o.online.skip_penalty)
+        << "\nunknown-cost " << number(o.online.unknown_cost) << "\nsegment-votes " << number(o.online.vote_weight)
+        << "\nmin-action " << number(us_to_seconds(o.min_action_us)) << "\nlabel-lead "
         << number(us_to_seconds(o.label_lead_us)) << "\n";
     if (o.max_representative_chars > 0) out << "max-representative-chars " << o.max_representative_chars << "\n";
     if (o.max_representative_share > 0)

@@ -140,6 +140,21 @@ static void contract_checks(const actionstring_model* model) {
     CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_STORAGE_TOO_SMALL);
     CHECK(actionstring_set_online_settings(state, NULL) == ACTIONSTRING_INVALID_ARGUMENT);
     CHECK(actionstring_set_online_settings(NULL, &own) == ACTIONSTRING_NOT_INITIALIZED);
+    /* Early settling: checked as the delay is; it needs two more rings than a state sized without it. */
+    bad = own;
+    bad.settle_stable_us = -1;
+    CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
+    bad.settle_stable_us = (int64_t)3600 * 1000000;
+    CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
+    {
+        actionstring_config early = config;
+        early.online.settle_stable_us = own.settle_delay_us / 2;
+        CHECK(actionstring_state_size(model, &early) > size);
+        CHECK(actionstring_set_online_settings(state, &early.online) == ACTIONSTRING_STORAGE_TOO_SMALL);
+        early.online.settle_stable_us = own.settle_delay_us; /* settles nothing sooner: no more state */
+        CHECK(actionstring_state_size(model, &early) == size);
+        CHECK(actionstring_set_online_settings(state, &early.online) == ACTIONSTRING_OK);
+    }
     actionstring_online_settings eager = own;
     eager.settle_delay_us = 1000000;
     eager.unknown_cost = 0.5f;
