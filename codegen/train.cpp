@@ -235,7 +235,7 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
 }
 
 // With no settings given, after the clip settings: the online settings (the
-// segmenter's, then the events' shortest action) by leave-one-subject-out
+// segmenter's, early settling, the events' shortest action, the label lead) by leave-one-subject-out
 // streaming (the held-out subject's clips joined, or its whole recordings),
 // shown as tables, and set in `options`.
 void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::TrainingOptions& options,
@@ -255,6 +255,15 @@ void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::Tr
                         ? "(only settings whose latency is within the budget of %g s were chosen from)\n"
                         : "NO setting met the latency budget of %g s on the folds: the fastest was kept\n",
                     options.latency_budget_s);
+    std::printf(
+        "early settling with them (the fastest within one standard error of the best events; 0: the delay "
+        "alone):\n");
+    for (const host::SettleStableStep& step : tuned.settle_stable_steps)
+        std::printf(
+            "  settle-stable %-6g events' segment F1 %.3f (standard error %.3f)  detection latency %.2f s  "
+            "settled frames %.3f%s\n",
+            host::us_to_seconds(step.settle_stable_us), step.event_segment_f1, step.standard_error,
+            step.detection_latency_s, step.frame_accuracy, step.kept ? "  <- chosen" : "");
     std::printf("the events' shortest action with them (the shortest within one standard error of the best):\n");
     for (const host::MinActionStep& step : tuned.min_action_steps)
         std::printf("  min-action %-6g events' segment F1 %.3f (standard error %.3f)  detection latency %.2f s%s\n",

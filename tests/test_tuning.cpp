@@ -257,12 +257,18 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     REQUIRE(a.min_action_steps.size() == std::size(min_action_candidates_us));
     const MinActionStep& longest = a.min_action_steps.back();
     CHECK(longest.min_action_us == 1500000);
+    // Early settling is tried with the chosen settings and the options' shortest
+    // action: the fastest candidate's figures too.
+    REQUIRE(a.settle_stable_steps.size() == std::size(settle_stable_candidates_us));
+    const SettleStableStep& eager = a.settle_stable_steps.front();
+    CHECK(eager.settle_stable_us == 500000);
+    CHECK(a.settle_stable_steps.back().settle_stable_us == 0);  // the delay alone, last (the slowest)
     // The label lead is tried with both chosen: the longest lead's figures too.
     REQUIRE(a.label_lead_steps.size() == std::size(label_lead_candidates_us));
     const LabelLeadStep& longest_lead = a.label_lead_steps.back();
     CHECK(longest_lead.label_lead_us == 500000);
-    double f1 = 0, frames = 0, latency = 0, led_frames = 0, led_f1 = 0;
-    std::vector<double> event_f1;  // per fold
+    double f1 = 0, frames = 0, latency = 0, led_frames = 0, led_f1 = 0, eager_latency = 0, eager_frames = 0;
+    std::vector<double> event_f1, eager_f1;  // per fold
     for (const auto& held : folds) {
         REQUIRE(held.size() == 1);  // one subject per fold
         std::vector<LabelledClip> train, test;
@@ -277,7 +283,12 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
         led.segmenter = a.chosen;
         led.min_action_us = a.chosen_min_action_us;
         led.label_lead_us = longest_lead.label_lead_us;
+        actionstring::AnnotatorConfig early = actionstring::annotator_config(model.view());
+        early.segmenter = a.chosen;
+        early.segmenter.settle_stable_us = eager.settle_stable_us;
+        early.min_action_us = options.min_action_us;
         event_f1.push_back(0.0);
+        eager_f1.push_back(0.0);
         for (int order = 1; order <= online_tuning_orders; ++order) {
             const OnlineReport report = evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), config);
             f1 += report.settled.segment_f1;
@@ -289,6 +300,10 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
             const OnlineReport leading = evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), led);
             led_frames += leading.settled.frame_accuracy;
             led_f1 += leading.settled.segment_f1;
+            const OnlineReport settling = evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), early);
+            eager_f1.back() += settling.settled.event_segment_f1 / online_tuning_orders;
+            eager_latency += settling.settled.detection_latency_s;
+            eager_frames += settling.settled.frame_accuracy;
         }
     }
     const double n = static_cast<double>(folds.size()) * online_tuning_orders;
@@ -300,6 +315,23 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     CHECK(longest.event_segment_f1 == doctest::Approx(mean).epsilon(1e-12));
     CHECK(longest.standard_error == doctest::Approx(std::sqrt(squares / 2.0 / 3.0)).epsilon(1e-12));
     CHECK(longest.detection_latency_s == doctest::Approx(latency / n).epsilon(1e-12));
+    const double eager_mean = (eager_f1[0] + eager_f1[1] + eager_f1[2]) / 3.0;
+    double eager_squares = 0;
+    for (const double v : eager_f1) eager_squares += (v - eager_mean) * (v - eager_mean);
+    CHECK(eager.event_segment_f1 == doctest::Approx(eager_mean).epsilon(1e-12));
+    CHECK(eager.standard_error == doctest::Approx(std::sqrt(eager_squares / 2.0 / 3.0)).epsilon(1e-12));
+    CHECK(eager.detection_latency_s == doctest::Approx(eager_latency / n).epsilon(1e-12));
+    CHECK(eager.frame_accuracy == doctest::Approx(eager_frames / n).epsilon(1e-12));
+    // One early settling kept, by the one-standard-error rule, and it is the model's.
+    std::size_t kept_stable = 0;
+    for (std::size_t i = 0; i < a.settle_stable_steps.size(); ++i) {
+        CHECK(a.settle_stable_steps[i].event_segment_f1 == b.settle_stable_steps[i].event_segment_f1);
+        kept_stable += a.settle_stable_steps[i].kept;
+    }
+    CHECK(kept_stable == 1);
+    const std::size_t stable = one_standard_error_choice(a.settle_stable_steps);
+    CHECK(a.settle_stable_steps[stable].kept);
+    CHECK(a.chosen.settle_stable_us == a.settle_stable_steps[stable].settle_stable_us);
     CHECK(longest_lead.frame_accuracy == doctest::Approx(led_frames / n).epsilon(1e-12));
     CHECK(longest_lead.segment_f1 == doctest::Approx(led_f1 / n).epsilon(1e-12));
     // One lead kept: the best settled frames, the shorter on a tie; deterministic.
@@ -320,6 +352,7 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     CHECK(adopted.label_lead_us == a.chosen_label_lead_us);
     CHECK(adopted.min_action_us == a.chosen_min_action_us);
     CHECK(adopted.online.segment_penalty == a.chosen.segment_penalty);
+    CHECK(adopted.online.settle_stable_us == a.chosen.settle_stable_us);
     // One kept, by the one-standard-error rule, and it is the model's.
     std::size_t kept_actions = 0;
     for (std::size_t i = 0; i < a.min_action_steps.size(); ++i) {
@@ -337,6 +370,7 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     const OnlineTuningResult single = tune_online(one, options);
     CHECK(single.steps.empty());
     CHECK(single.min_action_steps.empty());
+    CHECK(single.settle_stable_steps.empty());
     CHECK(single.chosen.segment_penalty == options.online.segment_penalty);
     CHECK(single.chosen_min_action_us == 400000);
     CHECK(single.label_lead_steps.empty());
@@ -382,6 +416,8 @@ TEST_CASE("a latency budget: shorter settle delays tried, only what meets it kep
     }
     for (const MinActionStep& step : tight.min_action_steps)
         if (step.kept) CHECK(step.detection_latency_s <= options.latency_budget_s);
+    for (const SettleStableStep& step : tight.settle_stable_steps)
+        if (step.kept) CHECK(step.detection_latency_s <= options.latency_budget_s);
     // A budget nothing meets: the fastest setting and the shortest action, and it says so.
     options.latency_budget_s = 0.01;
     const OnlineTuningResult impossible = tune_online(clips, options);
@@ -389,6 +425,7 @@ TEST_CASE("a latency budget: shorter settle delays tried, only what meets it kep
     for (const OnlineTuningStep& step : impossible.steps)
         if (step.kept) CHECK(step.detection_latency_s == doctest::Approx(fastest));
     CHECK(impossible.min_action_steps.front().kept);
+    CHECK(impossible.settle_stable_steps.front().kept);  // the fastest early settling too
     CHECK(impossible.chosen_min_action_us == min_action_candidates_us[0]);
 }
 
@@ -400,7 +437,7 @@ TEST_CASE("the events' shortest action: the shortest within one standard error o
         s.standard_error = se;
         return s;
     };
-    CHECK(one_standard_error_choice({}) == 0);
+    CHECK(one_standard_error_choice(std::vector<MinActionStep>{}) == 0);
     // Best 0.72 ± 0.04: 0.70 is within, 0.61 is not; the shortest within wins.
     CHECK(one_standard_error_choice({step(250000, 0.60, 0.02), step(500000, 0.61, 0.03), step(750000, 0.70, 0.05),
                                      step(1000000, 0.72, 0.04)}) == 2);

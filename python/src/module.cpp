@@ -330,7 +330,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
     }
     if (!online.steps.empty()) {
         // The online search's table (means over the held-out subjects' streams), as `train` prints it.
-        py::list settings_tried, min_actions, leads;
+        py::list settings_tried, stables, min_actions, leads;
         for (const host::OnlineTuningStep& step : online.steps) {
             py::dict row;
             row["settings"] = step.settings;
@@ -339,6 +339,16 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
             row["detection_latency"] = step.detection_latency_s;
             row["kept"] = step.kept;
             settings_tried.append(row);
+        }
+        for (const host::SettleStableStep& step : online.settle_stable_steps) {
+            py::dict row;
+            row["settle_stable"] = static_cast<double>(step.settle_stable_us) * 1e-6;
+            row["event_segment_f1"] = step.event_segment_f1;
+            row["standard_error"] = step.standard_error;
+            row["detection_latency"] = step.detection_latency_s;
+            row["frame_accuracy"] = step.frame_accuracy;
+            row["kept"] = step.kept;
+            stables.append(row);
         }
         for (const host::MinActionStep& step : online.min_action_steps) {
             py::dict row;
@@ -359,6 +369,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
         }
         py::dict tuning;
         tuning["settings"] = settings_tried;
+        tuning["settle_stable"] = stables;
         tuning["min_action"] = min_actions;
         tuning["label_lead"] = leads;
         tuning["latency_budget_met"] = online.latency_budget_met;

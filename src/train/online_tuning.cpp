@@ -33,7 +33,10 @@ struct Fold {
 
 }  // namespace
 
-std::size_t one_standard_error_choice(const std::vector<MinActionStep>& steps) {
+namespace {
+
+template <class Step>
+std::size_t first_within_one_standard_error(const std::vector<Step>& steps) {
     if (steps.empty()) return 0;
     std::size_t best = 0;
     for (std::size_t i = 1; i < steps.size(); ++i)
@@ -42,6 +45,31 @@ std::size_t one_standard_error_choice(const std::vector<MinActionStep>& steps) {
     for (std::size_t i = 0; i < best; ++i)
         if (steps[i].event_segment_f1 >= bar) return i;
     return best;
+}
+
+// The rule among the steps within a latency budget (all without one); none
+// within: the first (the fastest). Marks the chosen step kept and returns it;
+// `met` becomes false when nothing was within the budget.
+template <class Step, class Within>
+std::size_t choose_within_budget(std::vector<Step>& steps, const Within& within, bool& met) {
+    std::vector<Step> allowed;
+    std::vector<std::size_t> index;
+    for (std::size_t i = 0; i < steps.size(); ++i)
+        if (within(steps[i].detection_latency_s)) allowed.push_back(steps[i]), index.push_back(i);
+    std::size_t kept = 0;
+    if (!allowed.empty()) kept = index[first_within_one_standard_error(allowed)];
+    else met = false;
+    steps[kept].kept = true;
+    return kept;
+}
+
+}  // namespace
+
+std::size_t one_standard_error_choice(const std::vector<SettleStableStep>& steps) {
+    return first_within_one_standard_error(steps);
+}
+std::size_t one_standard_error_choice(const std::vector<MinActionStep>& steps) {
+    return first_within_one_standard_error(steps);
 }
 
 OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const TrainingOptions& options,
@@ -169,43 +197,53 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
         if (progress) progress(step);
     result.steps = std::move(steps);
 
-    // The events' shortest action, with the settings chosen: the settled
-    // labels do not depend on it, only which of their runs are reported.
-    for (const std::int64_t min_action_us : min_action_candidates_us) {
-        MinActionStep step;
-        step.min_action_us = min_action_us;
+    // The events of every fold's streams under `segmenter` and a shortest
+    // action: their segment F1 (mean and its standard error over the folds),
+    // detection latency and settled frames.
+    auto events_on_folds = [&](const SegmenterConfig& segmenter, std::int64_t min_action_us, EventsScore& score) {
         std::vector<double> per_fold;
         for (const Fold& fold : trained) {
             AnnotatorConfig config = annotator_config(fold.model.view());
-            config.segmenter = result.chosen;
+            config.segmenter = segmenter;
             config.min_action_us = min_action_us;
             double f1 = 0;
             for (int order = 1; order <= orders; ++order) {
                 const OnlineReport report = stream(fold, config, order);
                 f1 += report.settled.event_segment_f1 / orders;
-                step.detection_latency_s += report.settled.detection_latency_s * share;
+                score.detection_latency_s += report.settled.detection_latency_s * share;
+                score.frame_accuracy += report.settled.frame_accuracy * share;
             }
             per_fold.push_back(f1);
         }
         const double n = static_cast<double>(per_fold.size());
-        for (const double f1 : per_fold) step.event_segment_f1 += f1 / n;
+        for (const double f1 : per_fold) score.event_segment_f1 += f1 / n;
         double squares = 0;
-        for (const double f1 : per_fold) squares += (f1 - step.event_segment_f1) * (f1 - step.event_segment_f1);
-        step.standard_error = per_fold.size() > 1 ? std::sqrt(squares / (n - 1.0) / n) : 0.0;
+        for (const double f1 : per_fold) squares += (f1 - score.event_segment_f1) * (f1 - score.event_segment_f1);
+        score.standard_error = per_fold.size() > 1 ? std::sqrt(squares / (n - 1.0) / n) : 0.0;
+    };
+
+    // Early settling, with the settings chosen and the options' shortest
+    // action: it changes what is settled, and when, not the explanation.
+    for (const std::int64_t stable_us : settle_stable_candidates_us) {
+        SettleStableStep step;
+        step.settle_stable_us = stable_us;
+        SegmenterConfig segmenter = result.chosen;
+        segmenter.settle_stable_us = stable_us;
+        events_on_folds(segmenter, options.min_action_us, step);
+        result.settle_stable_steps.push_back(step);
+    }
+    const std::size_t stable = choose_within_budget(result.settle_stable_steps, within, result.latency_budget_met);
+    result.chosen.settle_stable_us = result.settle_stable_steps[stable].settle_stable_us;
+
+    // The events' shortest action, with the settings chosen: the settled
+    // labels do not depend on it, only which of their runs are reported.
+    for (const std::int64_t min_action_us : min_action_candidates_us) {
+        MinActionStep step;
+        step.min_action_us = min_action_us;
+        events_on_folds(result.chosen, min_action_us, step);
         result.min_action_steps.push_back(step);
     }
-    // The rule among the shortest actions within the budget; none within: the shortest.
-    std::vector<MinActionStep> allowed;
-    for (const MinActionStep& step : result.min_action_steps)
-        if (within(step.detection_latency_s)) allowed.push_back(step);
-    std::size_t kept = 0;
-    if (!allowed.empty()) {
-        const std::int64_t chosen = allowed[one_standard_error_choice(allowed)].min_action_us;
-        while (result.min_action_steps[kept].min_action_us != chosen) ++kept;
-    } else {
-        result.latency_budget_met = false;
-    }
-    result.min_action_steps[kept].kept = true;
+    const std::size_t kept = choose_within_budget(result.min_action_steps, within, result.latency_budget_met);
     result.chosen_min_action_us = result.min_action_steps[kept].min_action_us;
 
     // The label lead, with both: it moves where each settled label lies in
