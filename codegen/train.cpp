@@ -264,7 +264,7 @@ void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::Tr
             "settled frames %.3f%s\n",
             host::us_to_seconds(step.settle_stable_us), step.event_segment_f1, step.standard_error,
             step.detection_latency_s, step.frame_accuracy, step.kept ? "  <- chosen" : "");
-    std::printf("the events' shortest action with them (the shortest within one standard error of the best):\n");
+    std::printf("the events' shortest action with them (the fastest within one standard error of the best):\n");
     for (const host::MinActionStep& step : tuned.min_action_steps)
         std::printf("  min-action %-6g events' segment F1 %.3f (standard error %.3f)  detection latency %.2f s%s\n",
                     host::us_to_seconds(step.min_action_us), step.event_segment_f1, step.standard_error,

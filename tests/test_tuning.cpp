@@ -429,7 +429,7 @@ TEST_CASE("a latency budget: shorter settle delays tried, only what meets it kep
     CHECK(impossible.chosen_min_action_us == min_action_candidates_us[0]);
 }
 
-TEST_CASE("the events' shortest action: the shortest within one standard error of the best") {
+TEST_CASE("the one-standard-error rule: the fastest on the folds within one standard error of the best") {
     auto step = [](std::int64_t us, double f1, double se) {
         MinActionStep s;
         s.min_action_us = us;
@@ -448,6 +448,14 @@ TEST_CASE("the events' shortest action: the shortest within one standard error o
     // The best first: kept. With no spread (one fold), only the best's equals.
     CHECK(one_standard_error_choice({step(250000, 0.90, 0.0), step(500000, 0.80, 0.0)}) == 0);
     CHECK(one_standard_error_choice({step(250000, 0.70, 0.0), step(500000, 0.80, 0.0), step(750000, 0.80, 0.0)}) == 1);
+    // The fastest on the folds among those within: a later candidate that reported sooner.
+    std::vector<MinActionStep> timed{step(250000, 0.78, 0.02), step(500000, 0.80, 0.02), step(750000, 0.79, 0.02),
+                                     step(1000000, 0.70, 0.02)};
+    const double latencies[] = {2.3, 2.5, 2.2, 1.0};
+    for (std::size_t i = 0; i < timed.size(); ++i) timed[i].detection_latency_s = latencies[i];
+    CHECK(one_standard_error_choice(timed) == 2);  // 1.0 s is faster but not within
+    timed[2].detection_latency_s = 2.3;
+    CHECK(one_standard_error_choice(timed) == 0);  // a tie in latency: the earlier
 }
 
 TEST_CASE("counts and indices refuse a fraction rather than truncate it") {

@@ -182,8 +182,8 @@ class Model:
     @property
     def online_settings(self) -> Dict[str, float]:
         """The online settings the model carries: the segmenter's, the events'
-        shortest action and the label lead (``settle``, ``min_action`` and
-        ``label_lead`` in seconds)."""
+        shortest action and the label lead (``settle``, ``settle_stable``,
+        ``min_action`` and ``label_lead`` in seconds)."""
         return dict(self._native.online_settings)
 
     def state_bytes(self, **online: Any) -> int:
@@ -252,8 +252,9 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Uni
     reads it (``models/*.config``), applied first. With neither given and
     ``tune`` left None, training tunes itself as ``actionstring train`` does: the
     clip settings that matter most by leave-one-subject-out cross-validation over
-    the clips' subjects, then the online ones (the segmenter's and the events'
-    shortest action) by streaming each held-out subject's clips joined. The
+    the clips' subjects, then the online ones (the segmenter's, early settling,
+    the events' shortest action and the label lead) by streaming each held-out
+    subject's clips joined. The
     model's ``training_report["tuning"]`` then holds the clip search's table
     (each setting tried with its fold mean, the folds' mean signed margin that
     breaks ties, and whether it was kept) and the folds of the choice, and

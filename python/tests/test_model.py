@@ -161,6 +161,18 @@ def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     assert len(kept) == 1
     assert all(row["segment_f1"] <= kept[0]["segment_f1"] for row in tuning["settings"])
     assert "segment-penalty %g" % model.online_settings["segment_penalty"] in kept[0]["settings"]
+    # Early settling: the fastest within one standard error of the best events, stored in the model.
+    stable = [row for row in tuning["settle_stable"] if row["kept"]]
+    assert [row["settle_stable"] for row in tuning["settle_stable"]] == [0.5, 0.75, 1.0, 1.25, 1.5, 0]
+    assert len(stable) == 1
+    # The fastest on the folds of those within one standard error of the best.
+    best = max(tuning["settle_stable"], key=lambda row: row["event_segment_f1"])
+    within = [row for row in tuning["settle_stable"]
+              if row["event_segment_f1"] >= best["event_segment_f1"] - best["standard_error"]]
+    assert stable[0] in within
+    assert stable[0]["detection_latency"] == min(row["detection_latency"] for row in within)
+    assert model.online_settings["settle_stable"] == pytest.approx(stable[0]["settle_stable"])
+    assert "settle-stable %g" % stable[0]["settle_stable"] in model.training_report["settings"]
     shortest = [row for row in tuning["min_action"] if row["kept"]]
     assert [row["min_action"] for row in tuning["min_action"]] == [0.25, 0.5, 0.75, 1.0, 1.5]
     assert len(shortest) == 1

@@ -132,6 +132,40 @@ def test_the_label_lead_moves_label_times_only(toy_clips):
         actionstring.Annotator(led, label_lead=-0.1)
 
 
+def test_early_settling_settles_sooner_and_in_order(toy_clips):
+    """settle_stable is trained into the model and overridable: every character still
+    settles once and in order, none later than the delay, some sooner; the live labels
+    are the delay's own."""
+    assert actionstring.train(toy_clips, **TOY_SETTINGS).online_settings["settle_stable"] == 0
+    early = actionstring.train(toy_clips, **TOY_SETTINGS, settle=2, settle_stable=0.5)
+    assert early.online_settings["settle_stable"] == pytest.approx(0.5)
+    stream = [c for c in toy_clips[:6]]
+
+    def run(annotator):
+        settled, live, waited = [], [], []
+        offset = 0.0
+        for clip in stream:
+            for time_s, frame in zip(clip.times, clip.positions):
+                result = annotator.push_frame(offset + time_s, frame)
+                live.append(result["live_label"])
+                for character, label_time, label in result["settled"]:
+                    settled.append((character, label))
+                    waited.append(offset + time_s - label_time)
+            offset += clip.times[-1] + 0.05
+        return settled, live, waited
+
+    eager, eager_live, eager_waited = run(actionstring.Annotator(early))
+    patient, patient_live, patient_waited = run(actionstring.Annotator(early, settle_stable=0))
+    assert [c for c, _ in eager] == list(range(len(eager)))  # once each, in order
+    assert len(eager) >= len(patient) > 20
+    assert eager_live == patient_live  # the explanation is the same
+    assert max(eager_waited) <= 2.0 + 0.11  # never later than the delay (and a string period)
+    assert sum(eager_waited) / len(eager_waited) < sum(patient_waited) / len(patient_waited) - 0.5
+    assert actionstring.Annotator(early).state_bytes > actionstring.Annotator(early, settle_stable=0).state_bytes
+    with pytest.raises(ValueError, match="option --settle-stable expects"):
+        actionstring.Annotator(early, settle_stable=-1)
+
+
 def test_a_tilted_sensor_with_its_up_direction_gives_the_upright_labels(toy_model, toy_clips):
     """up=(x, y, z) turns every frame so the sensor's up lies along the model's axis:
     a stream seen by a sensor turned 0.5 rad about a horizontal axis gets the upright stream's labels and

@@ -41,10 +41,17 @@ std::size_t first_within_one_standard_error(const std::vector<Step>& steps) {
     std::size_t best = 0;
     for (std::size_t i = 1; i < steps.size(); ++i)
         if (steps[i].event_segment_f1 > steps[best].event_segment_f1) best = i;
+    // Of those the folds cannot tell from the best, the fastest on them (the
+    // candidates' order is a guess at it: a longer setting may report sooner).
     const double bar = steps[best].event_segment_f1 - steps[best].standard_error;
-    for (std::size_t i = 0; i < best; ++i)
-        if (steps[i].event_segment_f1 >= bar) return i;
-    return best;
+    std::size_t chosen = best;
+    for (std::size_t i = 0; i < steps.size(); ++i)
+        if (steps[i].event_segment_f1 >= bar && steps[i].detection_latency_s < steps[chosen].detection_latency_s)
+            chosen = i;
+    for (std::size_t i = 0; i < chosen; ++i)  // ties: the earlier
+        if (steps[i].event_segment_f1 >= bar && steps[i].detection_latency_s == steps[chosen].detection_latency_s)
+            return i;
+    return chosen;
 }
 
 // The rule among the steps within a latency budget (all without one); none
