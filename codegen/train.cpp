@@ -256,19 +256,18 @@ void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::Tr
                         : "NO setting met the latency budget of %g s on the folds: the fastest was kept\n",
                     options.latency_budget_s);
     std::printf(
-        "early settling with them (the fastest within one standard error of the best events; 0: the delay "
-        "alone):\n");
+        "early settling with them (0: the delay alone), then the events' shortest action: the fastest\n"
+        "whose events' segment F1 is short of the best by at most a standard error, fold by fold:\n");
     for (const host::SettleStableStep& step : tuned.settle_stable_steps)
         std::printf(
-            "  settle-stable %-6g events' segment F1 %.3f (standard error %.3f)  detection latency %.2f s  "
+            "  settle-stable %-6g events' segment F1 %.3f (%+.3f ± %.3f)  detection latency %.2f s  "
             "settled frames %.3f%s\n",
-            host::us_to_seconds(step.settle_stable_us), step.event_segment_f1, step.standard_error,
+            host::us_to_seconds(step.settle_stable_us), step.event_segment_f1, step.difference, step.difference_error,
             step.detection_latency_s, step.frame_accuracy, step.kept ? "  <- chosen" : "");
-    std::printf("the events' shortest action with them (the fastest within one standard error of the best):\n");
     for (const host::MinActionStep& step : tuned.min_action_steps)
-        std::printf("  min-action %-6g events' segment F1 %.3f (standard error %.3f)  detection latency %.2f s%s\n",
-                    host::us_to_seconds(step.min_action_us), step.event_segment_f1, step.standard_error,
-                    step.detection_latency_s, step.kept ? "  <- chosen" : "");
+        std::printf("  min-action %-6g events' segment F1 %.3f (%+.3f ± %.3f)  detection latency %.2f s%s\n",
+                    host::us_to_seconds(step.min_action_us), step.event_segment_f1, step.difference,
+                    step.difference_error, step.detection_latency_s, step.kept ? "  <- chosen" : "");
     std::printf("the label lead with both (the best settled frames):\n");
     for (const host::LabelLeadStep& step : tuned.label_lead_steps)
         std::printf("  label-lead %-6g settled frames %.3f  segment F1 %.3f%s\n",

@@ -430,32 +430,37 @@ TEST_CASE("a latency budget: shorter settle delays tried, only what meets it kep
 }
 
 TEST_CASE("the one-standard-error rule: the fastest on the folds within one standard error of the best") {
-    auto step = [](std::int64_t us, double f1, double se) {
+    // A step by its per-fold F1 (three folds) and its mean latency.
+    auto step = [](std::int64_t us, std::vector<double> folds, double latency = 0.0) {
         MinActionStep s;
         s.min_action_us = us;
-        s.event_segment_f1 = f1;
-        s.standard_error = se;
+        s.fold_event_segment_f1 = folds;
+        s.event_segment_f1 = (folds[0] + folds[1] + folds[2]) / 3.0;
+        s.detection_latency_s = latency;
         return s;
     };
     CHECK(one_standard_error_choice(std::vector<MinActionStep>{}) == 0);
-    // Best 0.72 ± 0.04: 0.70 is within, 0.61 is not; the shortest within wins.
-    CHECK(one_standard_error_choice({step(250000, 0.60, 0.02), step(500000, 0.61, 0.03), step(750000, 0.70, 0.05),
-                                     step(1000000, 0.72, 0.04)}) == 2);
-    // A gain the folds cannot tell from noise does not buy latency.
-    CHECK(one_standard_error_choice({step(250000, 0.80, 0.01), step(500000, 0.83, 0.05)}) == 0);
-    // A clear gain does.
-    CHECK(one_standard_error_choice({step(250000, 0.60, 0.01), step(500000, 0.83, 0.01)}) == 1);
-    // The best first: kept. With no spread (one fold), only the best's equals.
-    CHECK(one_standard_error_choice({step(250000, 0.90, 0.0), step(500000, 0.80, 0.0)}) == 0);
-    CHECK(one_standard_error_choice({step(250000, 0.70, 0.0), step(500000, 0.80, 0.0), step(750000, 0.80, 0.0)}) == 1);
+    // Differences from the best (0.8, 0.6, 0.7): 0.25 s falls short by 0.1 on every fold (no spread: not
+    // within); 0.5 s by 0.03, -0.01 and 0.01, 0.01 on average with a standard error of 0.012: within, and the
+    // shortest within wins.
+    const std::vector<MinActionStep> steps{step(250000, {0.7, 0.5, 0.6}), step(500000, {0.77, 0.61, 0.69}),
+                                           step(750000, {0.8, 0.6, 0.7})};
+    CHECK(one_standard_error_choice(steps) == 1);
+    // The same differences at other levels per fold: paired, the levels do not matter. Unpaired, the best
+    // mean's standard error (0.17 over these folds) would have let 0.25 s within.
+    const std::vector<MinActionStep> levelled{step(250000, {0.9, 0.3, 0.6}), step(500000, {0.97, 0.41, 0.69}),
+                                              step(750000, {1.0, 0.4, 0.7})};
+    CHECK(one_standard_error_choice(levelled) == 1);
+    // A clear gain buys latency; with no gain, the shortest.
+    CHECK(one_standard_error_choice({step(250000, {0.6, 0.6, 0.6}), step(500000, {0.8, 0.8, 0.81})}) == 1);
+    CHECK(one_standard_error_choice({step(250000, {0.8, 0.8, 0.8}), step(500000, {0.8, 0.8, 0.8})}) == 0);
+    CHECK(one_standard_error_choice({step(250000, {0.9, 0.8, 0.7}), step(500000, {0.8, 0.7, 0.6})}) == 0);
     // The fastest on the folds among those within: a later candidate that reported sooner.
-    std::vector<MinActionStep> timed{step(250000, 0.78, 0.02), step(500000, 0.80, 0.02), step(750000, 0.79, 0.02),
-                                     step(1000000, 0.70, 0.02)};
-    const double latencies[] = {2.3, 2.5, 2.2, 1.0};
-    for (std::size_t i = 0; i < timed.size(); ++i) timed[i].detection_latency_s = latencies[i];
-    CHECK(one_standard_error_choice(timed) == 2);  // 1.0 s is faster but not within
-    timed[2].detection_latency_s = 2.3;
-    CHECK(one_standard_error_choice(timed) == 0);  // a tie in latency: the earlier
+    std::vector<MinActionStep> timed{step(250000, {0.78, 0.77, 0.79}, 2.3), step(500000, {0.8, 0.79, 0.81}, 2.5),
+                                     step(750000, {0.79, 0.8, 0.8}, 2.2), step(1000000, {0.7, 0.7, 0.7}, 1.0)};
+    CHECK(one_standard_error_choice(timed) == 2);  // 1.0 s is faster but not within; 0.25 s is not within
+    timed[2].detection_latency_s = 2.5;
+    CHECK(one_standard_error_choice(timed) == 1);  // a tie in latency: the earlier
 }
 
 TEST_CASE("counts and indices refuse a fraction rather than truncate it") {

@@ -345,6 +345,8 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
             row["settle_stable"] = static_cast<double>(step.settle_stable_us) * 1e-6;
             row["event_segment_f1"] = step.event_segment_f1;
             row["standard_error"] = step.standard_error;
+            row["difference"] = step.difference;              // from the best, fold by fold
+            row["difference_error"] = step.difference_error;  // its standard error
             row["detection_latency"] = step.detection_latency_s;
             row["frame_accuracy"] = step.frame_accuracy;
             row["kept"] = step.kept;
@@ -355,6 +357,8 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
             row["min_action"] = static_cast<double>(step.min_action_us) * 1e-6;
             row["event_segment_f1"] = step.event_segment_f1;
             row["standard_error"] = step.standard_error;
+            row["difference"] = step.difference;              // from the best, fold by fold
+            row["difference_error"] = step.difference_error;  // its standard error
             row["detection_latency"] = step.detection_latency_s;
             row["kept"] = step.kept;
             min_actions.append(row);

@@ -35,22 +35,39 @@ struct Fold {
 
 namespace {
 
+// The mean and the standard error over the folds of the per-fold differences
+// a − b (0 and 0 with fewer than two folds or different fold counts).
+std::pair<double, double> paired_difference(const EventsScore& a, const EventsScore& b) {
+    const std::vector<double>& x = a.fold_event_segment_f1;
+    const std::vector<double>& y = b.fold_event_segment_f1;
+    if (x.size() != y.size() || x.empty()) return {a.event_segment_f1 - b.event_segment_f1, 0.0};
+    const double n = static_cast<double>(x.size());
+    double mean = 0;
+    for (std::size_t f = 0; f < x.size(); ++f) mean += (x[f] - y[f]) / n;
+    double squares = 0;
+    for (std::size_t f = 0; f < x.size(); ++f) squares += (x[f] - y[f] - mean) * (x[f] - y[f] - mean);
+    return {mean, x.size() > 1 ? std::sqrt(squares / (n - 1.0) / n) : 0.0};
+}
+
+// The rule among the steps `allowed` marks (one_standard_error_choice()): the
+// best mean, then, of those whose difference from it is within one standard
+// error, the fastest on the folds (ties: the earlier). Each step's difference
+// from the best is written to it. Returns steps.size() when none is allowed.
 template <class Step>
-std::size_t first_within_one_standard_error(const std::vector<Step>& steps) {
-    if (steps.empty()) return 0;
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < steps.size(); ++i)
-        if (steps[i].event_segment_f1 > steps[best].event_segment_f1) best = i;
-    // Of those the folds cannot tell from the best, the fastest on them (the
-    // candidates' order is a guess at it: a longer setting may report sooner).
-    const double bar = steps[best].event_segment_f1 - steps[best].standard_error;
-    std::size_t chosen = best;
+std::size_t one_standard_error_rule(std::vector<Step>& steps, const std::vector<bool>& allowed) {
+    std::size_t best = steps.size();
     for (std::size_t i = 0; i < steps.size(); ++i)
-        if (steps[i].event_segment_f1 >= bar && steps[i].detection_latency_s < steps[chosen].detection_latency_s)
-            chosen = i;
-    for (std::size_t i = 0; i < chosen; ++i)  // ties: the earlier
-        if (steps[i].event_segment_f1 >= bar && steps[i].detection_latency_s == steps[chosen].detection_latency_s)
-            return i;
+        if (allowed[i] && (best == steps.size() || steps[i].event_segment_f1 > steps[best].event_segment_f1)) best = i;
+    if (best == steps.size()) return best;
+    std::size_t chosen = best;
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+        const std::pair<double, double> d = paired_difference(steps[i], steps[best]);
+        steps[i].difference = d.first;
+        steps[i].difference_error = d.second;
+        const bool within = allowed[i] && d.first >= -d.second;
+        const double latency = steps[i].detection_latency_s, fastest = steps[chosen].detection_latency_s;
+        if (within && (latency < fastest || (latency == fastest && i < chosen))) chosen = i;
+    }
     return chosen;
 }
 
@@ -59,25 +76,24 @@ std::size_t first_within_one_standard_error(const std::vector<Step>& steps) {
 // `met` becomes false when nothing was within the budget.
 template <class Step, class Within>
 std::size_t choose_within_budget(std::vector<Step>& steps, const Within& within, bool& met) {
-    std::vector<Step> allowed;
-    std::vector<std::size_t> index;
-    for (std::size_t i = 0; i < steps.size(); ++i)
-        if (within(steps[i].detection_latency_s)) allowed.push_back(steps[i]), index.push_back(i);
-    std::size_t kept = 0;
-    if (!allowed.empty()) kept = index[first_within_one_standard_error(allowed)];
-    else met = false;
+    std::vector<bool> allowed;
+    for (const Step& step : steps) allowed.push_back(within(step.detection_latency_s));
+    std::size_t kept = one_standard_error_rule(steps, allowed);
+    if (kept == steps.size()) kept = 0, met = false;
     steps[kept].kept = true;
     return kept;
 }
 
+template <class Step>
+std::size_t choice_of(std::vector<Step> steps) {
+    if (steps.empty()) return 0;
+    return one_standard_error_rule(steps, std::vector<bool>(steps.size(), true));
+}
+
 }  // namespace
 
-std::size_t one_standard_error_choice(const std::vector<SettleStableStep>& steps) {
-    return first_within_one_standard_error(steps);
-}
-std::size_t one_standard_error_choice(const std::vector<MinActionStep>& steps) {
-    return first_within_one_standard_error(steps);
-}
+std::size_t one_standard_error_choice(const std::vector<SettleStableStep>& steps) { return choice_of(steps); }
+std::size_t one_standard_error_choice(const std::vector<MinActionStep>& steps) { return choice_of(steps); }
 
 OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const TrainingOptions& options,
                                const std::vector<LabelledRecording>* recordings,
@@ -205,8 +221,8 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     result.steps = std::move(steps);
 
     // The events of every fold's streams under `segmenter` and a shortest
-    // action: their segment F1 (mean and its standard error over the folds),
-    // detection latency and settled frames.
+    // action: their segment F1 (per fold, and its mean and standard error over
+    // the folds), detection latency and settled frames.
     auto events_on_folds = [&](const SegmenterConfig& segmenter, std::int64_t min_action_us, EventsScore& score) {
         std::vector<double> per_fold;
         for (const Fold& fold : trained) {
@@ -227,6 +243,7 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
         double squares = 0;
         for (const double f1 : per_fold) squares += (f1 - score.event_segment_f1) * (f1 - score.event_segment_f1);
         score.standard_error = per_fold.size() > 1 ? std::sqrt(squares / (n - 1.0) / n) : 0.0;
+        score.fold_event_segment_f1 = per_fold;
     };
 
     // Early settling, with the settings chosen and the options' shortest
