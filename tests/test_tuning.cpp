@@ -377,17 +377,30 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     CHECK(single.chosen_label_lead_us == 70000);
 }
 
-TEST_CASE("a latency budget: shorter settle delays tried, only what meets it kept, the fastest when nothing does") {
+TEST_CASE(
+    "a latency budget: shorter settle delays and early settling tried, only what meets it kept, the fastest when "
+    "nothing does") {
     ToyWorld world = make_toy_world();
     const std::vector<LabelledClip> clips = noisy_clips(world, 3);
     TrainingOptions options = tuning_start();
     options.pca_dim = 6;
     const OnlineTuningResult free = tune_online(clips, options);
-    // A budget every setting meets: three settle delays, the same choice of those at 2 s.
+    // A budget every setting meets: three settle delays and early settling at 2 s, the same choice of
+    // those at 2 s.
     options.latency_budget_s = 60;
     const OnlineTuningResult loose = tune_online(clips, options);
-    REQUIRE(loose.steps.size() == 3 * free.steps.size());  // settle 2, 1.5 and 1 s
+    REQUIRE(loose.steps.size() == 4 * free.steps.size());  // settle 2, 1.5 and 1 s, and 2 s with 1 s early
     CHECK(loose.latency_budget_met);
+    for (std::size_t i = 0; i < loose.steps.size(); ++i) {
+        const actionstring::SegmenterConfig& c = loose.steps[i].config;
+        const std::size_t block = i / free.steps.size();
+        CHECK(c.settle_delay_us == (block == 0 || block == 3 ? 2000000 : block == 1 ? 1500000 : 1000000));
+        CHECK(c.settle_stable_us == (block == 3 ? budget_stable_us : 0));
+    }
+    // Early settling's candidates stop below the chosen delay (the delay alone last).
+    for (const SettleStableStep& step : loose.settle_stable_steps)
+        CHECK((step.settle_stable_us == 0 || step.settle_stable_us < loose.chosen.settle_delay_us));
+    CHECK(loose.settle_stable_steps.back().settle_stable_us == 0);
     for (std::size_t i = 0; i < free.steps.size(); ++i) {
         CHECK(loose.steps[i].segment_f1 == free.steps[i].segment_f1);
         CHECK(loose.steps[i].detection_latency_s == free.steps[i].detection_latency_s);

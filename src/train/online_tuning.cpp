@@ -120,13 +120,19 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     const std::vector<float> exemplar_weights =
         !exemplars ? std::vector<float>{0.0f}
                    : (recordings != nullptr ? std::vector<float>{0.0f, 0.1f, 0.2f} : std::vector<float>{0.0f, 0.1f});
-    // A latency budget also tries shorter settle delays: an event waits for
-    // its characters to settle, so the delay is most of its latency.
+    // A latency budget also tries shorter settle delays and early settling
+    // within the options' delay (1 s; the step after the grid tries others):
+    // an event waits for its characters to settle, so settling is most of its
+    // latency. Each entry: the delay, early settling.
     const double budget = options.latency_budget_s;
-    std::vector<std::int64_t> settles{options.online.settle_delay_us};
-    if (budget > 0)
+    const std::int64_t delay = options.online.settle_delay_us;
+    std::vector<std::pair<std::int64_t, std::int64_t>> settles{{delay, options.online.settle_stable_us}};
+    if (budget > 0) {
         for (const std::int64_t shorter : {1500000, 1000000})
-            if (shorter < options.online.settle_delay_us) settles.push_back(shorter);
+            if (shorter < delay) settles.emplace_back(shorter, 0);
+        if (budget_stable_us < delay && options.online.settle_stable_us != budget_stable_us)
+            settles.emplace_back(delay, budget_stable_us);
+    }
     // The explanation's time warping: the options' stay and skip penalties,
     // then both at 0.1, where MSR Action3D's online folds peaked (settled
     // frames 0.708 → 0.720, segment F1 0.555 → 0.614 from 0.3 each;
@@ -135,7 +141,7 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     std::vector<std::pair<float, float>> warps{{options.online.stay_penalty, options.online.skip_penalty}};
     if (options.online.stay_penalty != online_tuning_warp || options.online.skip_penalty != online_tuning_warp)
         warps.emplace_back(online_tuning_warp, online_tuning_warp);
-    for (const std::int64_t settle : settles)
+    for (const std::pair<std::int64_t, std::int64_t>& settle : settles)
         for (const std::pair<float, float>& warp : warps)
             for (const float unknown : unknowns)
                 for (const float votes : {0.0f, 0.1f, 0.25f})
@@ -143,7 +149,8 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
                         for (const float exemplar : exemplar_weights) {
                             OnlineTuningStep step;
                             step.config = options.online;
-                            step.config.settle_delay_us = settle;
+                            step.config.settle_delay_us = settle.first;
+                            step.config.settle_stable_us = settle.second;
                             step.config.stay_penalty = warp.first;
                             step.config.skip_penalty = warp.second;
                             step.config.vote_weight = votes;
@@ -157,7 +164,11 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
                             if (warps.size() > 1)
                                 step.settings += ", stay-penalty " + number(static_cast<double>(warp.first)) +
                                                  ", skip-penalty " + number(static_cast<double>(warp.second));
-                            if (settles.size() > 1) step.settings += ", settle " + number(us_to_seconds(settle));
+                            if (settles.size() > 1) {
+                                step.settings += ", settle " + number(us_to_seconds(settle.first));
+                                if (settle.second > 0)
+                                    step.settings += ", settle-stable " + number(us_to_seconds(settle.second));
+                            }
                             steps.push_back(step);
                         }
 
@@ -247,8 +258,10 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     };
 
     // Early settling, with the settings chosen and the options' shortest
-    // action: it changes what is settled, and when, not the explanation.
+    // action: it changes what is settled, and when, not the explanation. A
+    // candidate no shorter than the chosen delay would be the delay alone.
     for (const std::int64_t stable_us : settle_stable_candidates_us) {
+        if (stable_us != 0 && stable_us >= result.chosen.settle_delay_us) continue;
         SettleStableStep step;
         step.settle_stable_us = stable_us;
         SegmenterConfig segmenter = result.chosen;

@@ -86,6 +86,9 @@ struct OnlineTuningResult {
 /// 0.01 and the settled runs' segment F1 0.947 → 0.938 and 0.615 → 0.673;
 /// models/README.md, "Early settling".
 constexpr std::int64_t settle_stable_candidates_us[] = {500000, 750000, 1000000, 1250000, 1500000, 0};
+/// The early settling a latency budget's grid tries beside shorter delays
+/// (with the options' delay), before the step above refines it.
+constexpr std::int64_t budget_stable_us = 1000000;
 
 /// The events' shortest actions tried, shortest first. A longer one filters
 /// more flicker but reports every action that much later.
@@ -145,8 +148,10 @@ constexpr int online_tuning_orders = 3;
 /// label_lead_candidates_us, and keeps the best mean settled frame accuracy
 /// (ties: the shorter lead). Deterministic.
 /// With options.latency_budget_s, the grid also tries settle delays of 1 and
-/// 1.5 s beside options.online's, and every choice considers only what meets
-/// the budget on the folds (the fastest when nothing does).
+/// 1.5 s beside options.online's, and that delay with budget_stable_us of
+/// early settling, and every choice considers only what meets the budget on
+/// the folds (the fastest when nothing does). Early settling's candidates no
+/// shorter than the chosen delay are not tried.
 /// Needs two subjects or more (otherwise returns options.online,
 /// options.min_action_us and options.label_lead_us, no steps).
 OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const TrainingOptions& options,
