@@ -445,27 +445,35 @@ private:
     }
 
     // Traces the best explanation back over the unsettled characters (newest
-    // first, one segment end per segment) and notes, for each, the label it
-    // gives and since when (pushed_ then) it has given that label.
+    // first, a segment at a time) and notes, for each, the label it gives and
+    // since when (pushed_ then) it has given that label. A few instructions a
+    // character: one compare, and a store only where the label changed.
     void track_agreement() noexcept {
         const std::uint32_t newest = static_cast<std::uint32_t>(pushed_ - 1);
         const std::uint32_t now = static_cast<std::uint32_t>(pushed_);
+        const std::uint32_t mask = static_cast<std::uint32_t>(ring_size_ - 1u);
+        const std::uint32_t unsettled = static_cast<std::uint32_t>(pushed_ - settled_count_);  // at most the ring
         std::uint16_t rep = best_.rep;
         std::uint32_t start = best_.start;
-        const std::uint64_t unsettled = pushed_ - settled_count_;
-        std::size_t steps = 0;  // segments walked back: each moves at least one character
-        for (std::uint32_t age = 0; age < unsettled; ++age) {
-            while (newest - start < age && steps++ <= ring_size_) {
-                const SegmentEnd& end = ends_[slot(start - 1u)];  // the segment before
-                rep = end.rep;
-                start = end.start;
-            }
-            const std::size_t s = slot(newest - age);
+        // The newest character's slot held an older one: it starts afresh.
+        candidates_[newest & mask] = label_of(rep);
+        agreed_since_[newest & mask] = now;
+        std::uint32_t age = 1;  // the next character to note, by its age (0: the newest)
+        // Each segment holds at least one character, so the ring bounds the walk.
+        for (std::size_t segments = 0; age < unsettled && segments <= ring_size_; ++segments) {
+            const std::uint32_t start_age = newest - start;  // the segment's oldest character
+            const std::uint32_t stop = start_age < unsettled - 1u ? start_age + 1u : unsettled;
             const LabelId label = label_of(rep);
-            if (age == 0 || candidates_[s] != label) {
-                candidates_[s] = label;
-                agreed_since_[s] = now;
+            for (; age < stop; ++age) {
+                const std::uint32_t s = (newest - age) & mask;
+                if (candidates_[s] != label) {
+                    candidates_[s] = label;
+                    agreed_since_[s] = now;
+                }
             }
+            const SegmentEnd& before = ends_[slot(start - 1u)];  // the segment before
+            rep = before.rep;
+            start = before.start;
         }
     }
 
