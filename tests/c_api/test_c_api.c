@@ -147,13 +147,26 @@ static void contract_checks(const actionstring_model* model) {
     bad.settle_stable_us = (int64_t)3600 * 1000000;
     CHECK(actionstring_set_online_settings(state, &bad) == ACTIONSTRING_INVALID_ARGUMENT);
     {
-        actionstring_config early = config;
+        actionstring_config alone = config, early = config;
+        alone.online.settle_stable_us = 0;
         early.online.settle_stable_us = own.settle_delay_us / 2;
-        CHECK(actionstring_state_size(model, &early) > size);
-        CHECK(actionstring_set_online_settings(state, &early.online) == ACTIONSTRING_STORAGE_TOO_SMALL);
+        const size_t alone_size = actionstring_state_size(model, &alone);
+        CHECK(actionstring_state_size(model, &early) > alone_size);
         early.online.settle_stable_us = own.settle_delay_us; /* settles nothing sooner: no more state */
-        CHECK(actionstring_state_size(model, &early) == size);
-        CHECK(actionstring_set_online_settings(state, &early.online) == ACTIONSTRING_OK);
+        CHECK(actionstring_state_size(model, &early) == alone_size);
+        /* A state sized for the delay alone refuses early settling and keeps its settings. */
+        early.online.settle_stable_us = own.settle_delay_us / 2;
+        actionstring_state* small = NULL;
+        CHECK(actionstring_init(model, &alone, state_memory, alone_size, &small) == ACTIONSTRING_OK && small != NULL);
+        CHECK(actionstring_set_online_settings(small, &early.online) == ACTIONSTRING_STORAGE_TOO_SMALL);
+        CHECK(actionstring_set_online_settings(small, &alone.online) == ACTIONSTRING_OK);
+        CHECK(actionstring_init(model, &config, state_memory, size, &state) == ACTIONSTRING_OK && state != NULL);
+        /* A state sized for a model's own early settling takes any other early settling. */
+        if (own.settle_stable_us > 0 && own.settle_stable_us < own.settle_delay_us) {
+            CHECK(actionstring_state_size(model, &early) == size);
+            CHECK(actionstring_set_online_settings(state, &early.online) == ACTIONSTRING_OK);
+            CHECK(actionstring_set_online_settings(state, &own) == ACTIONSTRING_OK);
+        }
     }
     actionstring_online_settings eager = own;
     eager.settle_delay_us = 1000000;
