@@ -45,8 +45,9 @@ struct ActionEvent {
 class ActionEventTracker {
 public:
     /// Events one frame can hold. A frame settles one character at a 120 Hz
-    /// stream and a 12 Hz string; only a burst of flicker inside one frame's
-    /// characters could exceed it, and then the oldest are dropped (counted).
+    /// stream and a 12 Hz string, or with early settling a run of them; only a
+    /// burst of flicker inside one frame's characters could exceed it (each
+    /// event needs min_chars of them), and then the oldest are dropped (counted).
     static constexpr std::size_t max_events = 16;
 
     /// Starts a stream; `min_chars` (≥ 1) is the shortest run reported.
@@ -65,11 +66,10 @@ public:
     /// label time, and the next character's).
     void settle(std::uint64_t character, LabelId label, bool live_agreed, std::int64_t time_us,
                 std::int64_t until_us) noexcept {
-        const Run one{true, label, character, character, time_us, until_us, live_agreed ? 1u : 0u, false};
         if (!run_.reported) {
             // A candidate: the same label extends it, another replaces it.
             if (run_.active && label == run_.label) extend(run_, character, until_us, live_agreed);
-            else run_ = one;
+            else begin_run(run_, character, label, live_agreed, time_us, until_us);
             report_if_long(run_);
             return;
         }
@@ -84,7 +84,7 @@ public:
             return;
         }
         if (pending_.active && label == pending_.label) extend(pending_, character, until_us, live_agreed);
-        else pending_ = one;
+        else begin_run(pending_, character, label, live_agreed, time_us, until_us);
         if (length(pending_) < min_chars_) return;
         // The interruption lasted: the action ended before it, and it is the new candidate.
         push(ActionEvent::Kind::ended, run_);
@@ -119,6 +119,12 @@ private:
     };
 
     static std::uint64_t length(const Run& run) noexcept { return run.last - run.first + 1; }
+    // A run of one character (built in place: a character that extends a run,
+    // the common case, pays nothing for it).
+    static void begin_run(Run& run, std::uint64_t character, LabelId label, bool live_agreed, std::int64_t time_us,
+                          std::int64_t until_us) noexcept {
+        run = Run{true, label, character, character, time_us, until_us, live_agreed ? 1u : 0u, false};
+    }
     static void extend(Run& run, std::uint64_t character, std::int64_t until_us, bool live_agreed) noexcept {
         run.last = character;
         run.end_us = until_us;
