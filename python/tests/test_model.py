@@ -204,10 +204,12 @@ def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     # Given settings, nothing is tuned.
     assert "online_tuning" not in actionstring.train(toy_clips, **TOY_SETTINGS).training_report
     assert "tuning" not in actionstring.train(toy_clips, **TOY_SETTINGS).training_report
-    # A latency budget constrains self-tuning (it still runs) and tries shorter settle delays.
+    # A latency budget constrains self-tuning (it still runs) and tries shorter settle delays
+    # (1.5 and 1 s) and the delay with early settling.
     budgeted = actionstring.train(toy_clips, latency_budget=60).training_report["online_tuning"]
     assert budgeted["latency_budget_met"]
-    assert len(budgeted["settings"]) == 3 * len(tuning["settings"])
+    assert len(budgeted["settings"]) == 4 * len(tuning["settings"])
+    assert sum("settle-stable 1" in row["settings"] for row in budgeted["settings"]) == len(tuning["settings"])
     assert all(row["detection_latency"] > 0 for row in budgeted["settings"])
 
 
