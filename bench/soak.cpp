@@ -96,10 +96,13 @@ SoakResult soak(const host::ConcatenatedStream& stream, double hours, bool wrap3
         hour.accepted += accepted;
         hour.rejected += !accepted;
         hour.restarts += r.status == actionstring::Status::stream_restarted;
-        if (r.characters_settled > 0 && annotator->settled_label() != last_settled) {
-            last_settled = annotator->settled_label();
-            ++hour.settled_changes;
-        }
+        // Every character the frame settled (several with early settling), in order.
+        const std::uint64_t last = annotator->settled_character();
+        for (std::uint64_t c = last + 1 - r.characters_settled; r.characters_settled > 0 && c <= last; ++c)
+            if (annotator->settled_label(c) != last_settled) {
+                last_settled = annotator->settled_label(c);
+                ++hour.settled_changes;
+            }
         if (f % frames_per_hour == frames_per_hour - 1 || f + 1 == total_frames) {
             hour.frame_ns.resize(samples[hour_index]);
             std::sort(hour.frame_ns.begin(), hour.frame_ns.end());

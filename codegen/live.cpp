@@ -199,8 +199,11 @@ int run_live(const host::ModelData& model, const AnnotatorConfig& config, const 
         ++frames;
         if (r.status != Status::ok && r.status != Status::stream_restarted) ++rejected;
         bool wrote = show_flushed();  // a restart: the ended stream's last labels first
-        if (r.characters_settled > 0)
-            wrote = show(annotator->settled_label(), annotator->label_time_us(annotator->settled_character())) || wrote;
+        // Each character the frame settled, in order: with early settling a frame may
+        // settle a run of them, whose first label change must not be lost.
+        const std::uint64_t last = annotator->settled_character();
+        for (std::uint64_t c = last + 1 - r.characters_settled; r.characters_settled > 0 && c <= last; ++c)
+            wrote = show(annotator->settled_label(c), annotator->label_time_us(c)) || wrote;
         print_events();
         if (wrote || r.events > 0) std::fflush(stdout);
     }

@@ -76,3 +76,19 @@ for x in (x for x in live_lines if "settled" in x):
     covering = [s for s in spans if s["start"] <= x["time"] + 1e-6]  # times print rounded to 0.1 ms
     assert covering and covering[-1]["label"] == x["settled"], f"live said {x}, the file's timeline {spans}"
 print(f"file and pipe: the same {len(file_events)} events and settled labels")
+
+# With early settling a frame may settle a run of characters at once: the live run still
+# prints every change of the settled label, where the file's timeline has it.
+with tempfile.TemporaryDirectory() as tmp:
+    recording = pathlib.Path(tmp) / "recording.csv"
+    recording.write_text(clean)
+    options = ["--model", model, "--settle", "2", "--settle-stable", "0.5"]
+    spans = json.loads(subprocess.run([cli, "annotate", *options, str(recording), "--json"], capture_output=True,
+                                      text=True, timeout=60, check=True).stdout)["segments"]
+    piped = subprocess.run([cli, "annotate", *options, "--live"], input=clean, capture_output=True, text=True,
+                           timeout=60, check=True).stdout
+changes = [json.loads(line) for line in piped.splitlines() if "settled" in line]
+runs = [s for i, s in enumerate(spans) if i == 0 or s["label"] != spans[i - 1]["label"]]
+assert [x["settled"] for x in changes] == [s["label"] for s in runs], f"live {changes}, the file's {runs}"
+assert all(abs(x["time"] - s["start"]) <= 1e-3 for x, s in zip(changes, runs)), f"live {changes}, file {runs}"
+print(f"early settling: the same {len(changes)} settled label changes live and from the file")
