@@ -245,6 +245,19 @@ std::vector<LabelId> reference_settled(const ModelView& m, const SegmenterConfig
     return settled;
 }
 
+// Random online settings of the trial (exact quarters, as W holds): the settle
+// delay 0 to 3 s, the penalties, and on some trials "no action" and the votes.
+SegmenterConfig random_config(std::mt19937& rng, int trial) {
+    SegmenterConfig config;
+    config.settle_delay_us = std::uniform_int_distribution<int>(0, 30)(rng) * 100000;
+    config.segment_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
+    config.stay_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
+    config.skip_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
+    if (trial % 3 == 0) config.unknown_cost = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
+    if (trial % 2 == 0) config.vote_weight = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
+    return config;
+}
+
 }  // namespace
 
 TEST_CASE("settled labels equal a full-table reference of the same recurrence") {
@@ -252,14 +265,7 @@ TEST_CASE("settled labels equal a full-table reference of the same recurrence") 
     host::Stateful<ActionSegmenter> segmenter;
     for (int trial = 0; trial < 200; ++trial) {
         Tables t = random_tables(rng);
-        SegmenterConfig config;
-        config.settle_delay_us = std::uniform_int_distribution<int>(0, 30)(rng) * 100000;
-        config.segment_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
-        config.stay_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
-        config.skip_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
-        if (trial % 3 == 0)
-            config.unknown_cost = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
-        if (trial % 2 == 0) config.vote_weight = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
+        SegmenterConfig config = random_config(rng, trial);
         if (trial % 4 < 2)
             config.exemplar_weight = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
         REQUIRE(segmenter.init(t.view, config) == Status::ok);
@@ -297,15 +303,8 @@ TEST_CASE("early settling (settle_stable_us) equals a full-table reference of it
     std::size_t early = 0;  // characters settled before their delay, over all trials
     for (int trial = 0; trial < 200; ++trial) {
         Tables t = random_tables(rng);
-        SegmenterConfig config;
-        config.settle_delay_us = std::uniform_int_distribution<int>(0, 30)(rng) * 100000;
+        SegmenterConfig config = random_config(rng, trial);
         config.settle_stable_us = std::uniform_int_distribution<int>(0, 30)(rng) * 100000;
-        config.segment_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
-        config.stay_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
-        config.skip_penalty = static_cast<float>(std::uniform_int_distribution<int>(0, 4)(rng)) * 0.25f;
-        if (trial % 3 == 0)
-            config.unknown_cost = static_cast<float>(std::uniform_int_distribution<int>(0, 8)(rng)) * 0.25f;
-        if (trial % 2 == 0) config.vote_weight = 0.5f;
         REQUIRE(segmenter.init(t.view, config) == Status::ok);
         const std::uint32_t settle = segmenter->settle_chars();
         // Rounded to characters, at least one; none when the delay comes first.

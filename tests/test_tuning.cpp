@@ -309,17 +309,18 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     const double n = static_cast<double>(folds.size()) * online_tuning_orders;
     CHECK(a.steps[0].segment_f1 == doctest::Approx(f1 / n).epsilon(1e-12));
     CHECK(a.steps[0].frame_accuracy == doctest::Approx(frames / n).epsilon(1e-12));
-    const double mean = (event_f1[0] + event_f1[1] + event_f1[2]) / 3.0;
-    double squares = 0;
-    for (const double v : event_f1) squares += (v - mean) * (v - mean);
-    CHECK(longest.event_segment_f1 == doctest::Approx(mean).epsilon(1e-12));
-    CHECK(longest.standard_error == doctest::Approx(std::sqrt(squares / 2.0 / 3.0)).epsilon(1e-12));
+    // The mean over the three folds and its standard error.
+    auto check_folds = [](const EventsScore& score, const std::vector<double>& per_fold) {
+        const double mean = (per_fold[0] + per_fold[1] + per_fold[2]) / 3.0;
+        double squares = 0;
+        for (const double v : per_fold) squares += (v - mean) * (v - mean);
+        CHECK(score.event_segment_f1 == doctest::Approx(mean).epsilon(1e-12));
+        CHECK(score.standard_error == doctest::Approx(std::sqrt(squares / 2.0 / 3.0)).epsilon(1e-12));
+        CHECK(score.fold_event_segment_f1.size() == per_fold.size());
+    };
+    check_folds(longest, event_f1);
     CHECK(longest.detection_latency_s == doctest::Approx(latency / n).epsilon(1e-12));
-    const double eager_mean = (eager_f1[0] + eager_f1[1] + eager_f1[2]) / 3.0;
-    double eager_squares = 0;
-    for (const double v : eager_f1) eager_squares += (v - eager_mean) * (v - eager_mean);
-    CHECK(eager.event_segment_f1 == doctest::Approx(eager_mean).epsilon(1e-12));
-    CHECK(eager.standard_error == doctest::Approx(std::sqrt(eager_squares / 2.0 / 3.0)).epsilon(1e-12));
+    check_folds(eager, eager_f1);
     CHECK(eager.detection_latency_s == doctest::Approx(eager_latency / n).epsilon(1e-12));
     CHECK(eager.frame_accuracy == doctest::Approx(eager_frames / n).epsilon(1e-12));
     // One early settling kept, by the one-standard-error rule, and it is the model's.

@@ -340,9 +340,10 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
             row["kept"] = step.kept;
             settings_tried.append(row);
         }
-        for (const host::SettleStableStep& step : online.settle_stable_steps) {
+        // A row of a choice by the events (early settling, the shortest action).
+        auto events_row = [](const char* name, std::int64_t value_us, const host::EventsScore& step) {
             py::dict row;
-            row["settle_stable"] = static_cast<double>(step.settle_stable_us) * 1e-6;
+            row[name] = static_cast<double>(value_us) * 1e-6;
             row["event_segment_f1"] = step.event_segment_f1;
             row["standard_error"] = step.standard_error;
             row["difference"] = step.difference;              // from the best, fold by fold
@@ -350,19 +351,12 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
             row["detection_latency"] = step.detection_latency_s;
             row["frame_accuracy"] = step.frame_accuracy;
             row["kept"] = step.kept;
-            stables.append(row);
-        }
-        for (const host::MinActionStep& step : online.min_action_steps) {
-            py::dict row;
-            row["min_action"] = static_cast<double>(step.min_action_us) * 1e-6;
-            row["event_segment_f1"] = step.event_segment_f1;
-            row["standard_error"] = step.standard_error;
-            row["difference"] = step.difference;              // from the best, fold by fold
-            row["difference_error"] = step.difference_error;  // its standard error
-            row["detection_latency"] = step.detection_latency_s;
-            row["kept"] = step.kept;
-            min_actions.append(row);
-        }
+            return row;
+        };
+        for (const host::SettleStableStep& step : online.settle_stable_steps)
+            stables.append(events_row("settle_stable", step.settle_stable_us, step));
+        for (const host::MinActionStep& step : online.min_action_steps)
+            min_actions.append(events_row("min_action", step.min_action_us, step));
         for (const host::LabelLeadStep& step : online.label_lead_steps) {
             py::dict row;
             row["label_lead"] = static_cast<double>(step.label_lead_us) * 1e-6;
