@@ -99,6 +99,9 @@ void print_online(const char* rule, const host::OnlineResults& r) {
         "%.1f/min\n",
         r.frame_f1, r.segment_f1, r.segment_f1_interval.low, r.segment_f1_interval.high, r.segment_precision,
         r.segment_recall, r.mean_delay_s, r.missed_segments, r.flicker_per_min);
+    if (r.final_after_p95_s > 0)
+        std::printf("  %-28s labels final a median %.2f s after their frame (95th percentile %.2f s)\n", "",
+                    r.final_after_median_s, r.final_after_p95_s);
     if (r.has_events)
         std::printf(
             "  %-28s %zu actions reported, %zu matched (event F1 %.3f; as segments, IoU >= 0.5: %zu, F1 %.3f,\n"

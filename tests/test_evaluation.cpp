@@ -350,6 +350,20 @@ TEST_CASE("online evaluation streams concatenated toy clips deterministically") 
     CHECK(a.settled.frame_accuracy > a.window.frame_accuracy);
     CHECK(a.settled.frame_accuracy > 0.8);
     CHECK(a.settled.mean_delay_s >= 1.9);  // never before the settle delay
+    // Each frame's label is final the settle delay after it (to within a frame and a string
+    // period); the other rules' labels come with their frames.
+    CHECK(a.settled.final_after_median_s >= 1.9);
+    CHECK(a.settled.final_after_median_s <= a.settled.final_after_p95_s);
+    CHECK(a.settled.final_after_p95_s <= 2.2);
+    CHECK(a.live.final_after_median_s == 0.0);
+    // With early settling most labels are final sooner, none later; the same explanation.
+    AnnotatorConfig early = annotator_config(view);
+    early.segmenter.settle_stable_us = 500000;
+    const OnlineReport e = evaluate_online(view, test, 3, early);
+    CHECK(e.settled.final_after_median_s < a.settled.final_after_median_s - 0.5);
+    CHECK(e.settled.final_after_p95_s <= 2.2);
+    CHECK(e.live.frame_accuracy == a.live.frame_accuracy);
+    CHECK(e.settled.detection_latency_s < a.settled.detection_latency_s);  // the events come sooner
     CHECK(a.live.frame_accuracy > 0.3);
     CHECK(a.settled.segment_f1 >= 0.0);
     CHECK(a.settled.segment_f1 <= 1.0);

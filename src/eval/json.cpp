@@ -60,6 +60,8 @@ void write_json(JsonWriter& out, const OnlineResults& r, const std::vector<std::
         .field("segment_precision", r.segment_precision)
         .field("segment_recall", r.segment_recall)
         .field("mean_delay_s", r.mean_delay_s)
+        .field("final_after_median_s", r.final_after_median_s)
+        .field("final_after_p95_s", r.final_after_p95_s)
         .field("missed_segments", r.missed_segments)
         .field("flicker_per_min", r.flicker_per_min)
         .field("label_changes_per_min", r.label_changes_per_min)

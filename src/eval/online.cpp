@@ -175,6 +175,18 @@ OnlineResults score_timeline(const std::vector<int>& truth, const std::vector<in
                        ? 2 * r.segment_precision * r.segment_recall / (r.segment_precision + r.segment_recall)
                        : 0.0;
     r.mean_delay_s = found > 0 ? delay_sum / found : 0.0;
+    if (emitted != nullptr && !times.empty()) {
+        std::vector<double> after(times.size());
+        for (std::size_t i = 0; i < times.size(); ++i) after[i] = std::max(0.0, (*emitted)[i] - times[i]);
+        std::sort(after.begin(), after.end());
+        // Nearest rank: the smallest value at least the share of the frames lies at or below.
+        const auto rank = [&after](double share) {
+            const std::size_t k = static_cast<std::size_t>(std::ceil(share * static_cast<double>(after.size())));
+            return after[k == 0 ? 0 : k - 1];
+        };
+        r.final_after_median_s = rank(0.5);
+        r.final_after_p95_s = rank(0.95);
+    }
     r.unknown_everywhere_accuracy = static_cast<double>(no_action) / static_cast<double>(r.frames);
     // Frame F1 per action class present in the truth, then their mean.
     std::map<int, std::array<std::size_t, 3>> counts;  // label → true positives, false positives, false negatives

@@ -28,6 +28,11 @@ struct OnlineResults {
     double no_action_accuracy = 0;     ///< Share of "no action" frames labelled unknown.
     double segment_precision = 0, segment_recall = 0, segment_f1 = 0;  ///< Temporal IoU ≥ 0.5, one-to-one.
     double mean_delay_s = 0;  ///< From a true segment's start to its first correct label (found segments).
+    /// How long after its frame each frame's label became final (the settled
+    /// rule's: at most the settle delay, less with early settling), the median
+    /// and the 95th percentile over the frames; 0 for rules whose labels come
+    /// with their frame.
+    double final_after_median_s = 0, final_after_p95_s = 0;
     int missed_segments = 0;  ///< True segments never labelled correctly.
     double label_changes_per_min = 0, true_changes_per_min = 0;
     double flicker_per_min = 0;  ///< Label changes per minute beyond the true ones (≥ 0).
