@@ -236,6 +236,18 @@ TEST_CASE("report.md: the clip table, the model's top-k and the confusion pictur
     CHECK(md.find("confusion.svg") != std::string::npos);
     CHECK(std::filesystem::exists(folder / "confusion.svg"));
     in.close();
+    // With the online streams: their table and when the settled labels became final.
+    const OnlineReport online = evaluate_online(view, test, 1);
+    write_report(folder.string(), "toy", {mine, dtw}, &online, mine.labels);
+    std::ifstream again(folder / "report.md");
+    const std::string with_online((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
+    CHECK(with_online.find("| segmenter, settled labels | ") != std::string::npos);
+    std::ostringstream final_after;
+    final_after.precision(3);
+    final_after << std::fixed << "became final a median " << online.settled.final_after_median_s
+                << " s after their frames (95th percentile " << online.settled.final_after_p95_s << " s)";
+    CHECK(with_online.find(final_after.str()) != std::string::npos);
+    again.close();
     std::filesystem::remove_all(folder);
 }
 
@@ -254,6 +266,12 @@ TEST_CASE("online metrics on a timeline scored by hand") {
     CHECK(r.true_changes_per_min == doctest::Approx(60.0 / 7));
     CHECK(r.label_changes_per_min == doctest::Approx(120.0 / 7));
     CHECK(r.flicker_per_min == doctest::Approx(60.0 / 7));
+    CHECK(r.final_after_median_s == 0.0);  // no final times given: labels with their frames
+    // With the time each frame's label became final: 2, 2, 2, 2, 1, 1, 1 and 3 s after it; by nearest rank.
+    const std::vector<double> final_at{2, 3, 4, 5, 5, 6, 7, 10};
+    const OnlineResults timed = score_timeline(truth, predicted, times, {0, 8}, &final_at);
+    CHECK(timed.final_after_median_s == doctest::Approx(2.0));  // sorted 1 1 1 2 2 2 2 3: the 4th
+    CHECK(timed.final_after_p95_s == doctest::Approx(3.0));     // the 8th
     // Two streams: the boundary between them is not a label change, and a never-found segment is missed.
     const OnlineResults split = score_timeline({0, 0, 1, 1}, {0, 0, 0, 0}, {0, 1, 0, 1}, {0, 2, 4});
     CHECK(split.true_changes_per_min == 0.0);

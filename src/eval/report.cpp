@@ -217,6 +217,9 @@ void write_report(const std::string& dir, const std::string& title, const std::v
                << rule.second->segment_f1_interval.low << "–" << rule.second->segment_f1_interval.high << ") | "
                << rule.second->mean_delay_s << " | " << rule.second->missed_segments << " | "
                << rule.second->flicker_per_min << " |\n";
+        md << "\nThe settled labels became final a median " << settled.final_after_median_s
+           << " s after their frames (95th percentile " << settled.final_after_p95_s
+           << " s): at most the settle delay, sooner where the model settles early.\n";
         if (settled.has_events)
             md << "\nAction events (each action once when it starts and once when it ends): " << settled.events
                << " reported, " << settled.matched_events << " matched to a true action (event F1 " << settled.event_f1
