@@ -209,10 +209,17 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
         fixed.options = start;
         return fixed;
     }
-    std::fprintf(stderr,
-                 "train: no settings given: choosing them by leave-one-subject-out cross-validation over "
-                 "%zu subjects (--no-tune to skip)\n",
-                 subjects.size());
+    // Beyond tuning_max_folds subjects the folds hold several each (subject_folds()).
+    if (subjects.size() <= host::tuning_max_folds)
+        std::fprintf(stderr,
+                     "train: no settings given: choosing them by leave-one-subject-out cross-validation over "
+                     "%zu subjects (--no-tune to skip)\n",
+                     subjects.size());
+    else
+        std::fprintf(stderr,
+                     "train: no settings given: choosing them by cross-validation over %zu subjects in %zu folds "
+                     "(--no-tune to skip)\n",
+                     subjects.size(), host::tuning_max_folds);
     // Self-tuning normalises size only through the skeleton's tree; say so when there is none.
     const host::Clip& first = clips.front().clip;
     if (first.parents.size() != first.joint_count())
