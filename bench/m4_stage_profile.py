@@ -16,7 +16,9 @@ the replayed stream (the firmware prints both counts at its end).
 The trace of the CTest stream is about 1 GB and takes a minute to write. The
 "per character" is a stage's whole cost divided by the characters: the cost of
 one character for the stages that run per character (GMM, segmenter), while
-the per-frame stages (normalisation) are read per frame. The figures include
+the per-frame stages (normalisation) are read per frame. The firmware replays
+the stream twice (as a device runs it, then with the work spread over the
+frames, `spread:` in its output), and both passes are averaged. The figures include
 everything a stage's functions do, and what the
 compiler inlined into them (the annotator inlines the tree descent into the
 encoder's character step, for instance); the harness (reading the stream,
@@ -80,6 +82,11 @@ def main():
     if not end:
         sys.exit(f"{sys.argv[2]}: no 'end: frames N ... characters N' line (did the firmware finish?)")
     frames, characters = int(end.group(1)), int(end.group(2))
+    # The firmware replays the stream once as a device runs it and, when it
+    # prints a "spread:" line, once more with the work spread over frames: the
+    # trace holds every pass, so the counts are per pass of each.
+    passes = 1 + len(re.findall(r"^spread: ", output, re.M))
+    frames, characters = frames * passes, characters * passes
 
     by_stage = collections.Counter()
     by_symbol = collections.Counter()
@@ -89,7 +96,8 @@ def main():
         by_stage[stage_of(block_symbol.get(address, "?"))] += instructions
     total = sum(by_stage.values())
     runtime = total - by_stage["harness (stream, printing, calibration)"] - by_stage["model validation (once, at init)"]
-    print(f"{frames} frames, {characters} characters; {total} instructions traced, {runtime} in the runtime's per-frame work\n")
+    print(f"{frames} frames, {characters} characters ({passes} passes of the stream); {total} instructions traced, "
+          f"{runtime} in the runtime's per-frame work\n")
     print("| stage | instructions | per frame | per character |")
     print("|---|---:|---:|---:|")
     for stage, instructions in by_stage.most_common():
