@@ -20,16 +20,18 @@ from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _actionstring as _native
-from ._actionstring import Clip, ReadError
+from ._actionstring import Clip, ReadError, Recording
 
 __all__ = [
     "Clip",
     "ReadError",
+    "Recording",
     "Model",
     "Annotator",
     "Classification",
     "read_clip",
     "read_clip_list",
+    "read_recordings",
     "train",
     "training_settings",
     "ActionStringClassifier",
@@ -79,6 +81,33 @@ def read_clip_list(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_
     file's sensor up direction; ``up`` here is the one for lines without it. ``parents``
     is every file's tree by joint name, as ``read_clip`` takes it."""
     return _native._read_clip_list(os.fspath(path), rate, scale, up_axis, roles, up, parents)
+
+
+def read_recordings(path: PathLike, *, rate: float = 0.0, scale: float = 0.0, up_axis: int = -1,
+                    roles: Optional[Sequence[str]] = None, up: Optional[Sequence[float]] = None,
+                    parents: Optional[Sequence[Optional[str]]] = None) -> List[Recording]:
+    """Reads a list of labelled intervals of continuous recordings (TSV with path,
+    label, subject, start and end columns, seconds; UTKinect's layout) as the
+    recordings themselves: each file once, whole, with its intervals (``intervals``:
+    (label, start, end)); every frame outside them is no action. ``read_clip_list``
+    on the same list gives the intervals as clips. Give both to ``train``
+    (``train(clips, recordings=...)``) and the model learns "no action" from the
+    stretches between the intervals and chooses its online settings on the
+    recordings streamed whole, as ``actionstring train`` does with such a list;
+    ``Model.evaluate(clips, recordings=..., online=True)`` streams them whole as
+    ``actionstring eval --online`` does. Reading settings as ``read_clip_list``'s.
+    Raises ValueError for a list without intervals, ReadError for a file that
+    cannot be read. A ``Recording(clip, intervals, subject=None)`` is built from a
+    Clip of a whole stream and its (label, start, end) intervals."""
+    return _native._read_recordings(os.fspath(path), rate, scale, up_axis, roles, up, parents)
+
+
+def _recordings(recordings: Optional[Sequence[Recording]]) -> List[Recording]:
+    out = list(recordings or [])
+    for recording in out:
+        if not isinstance(recording, Recording):
+            raise ValueError(f"recordings expects Recording objects, got {type(recording).__name__}")
+    return out
 
 
 def training_settings() -> List[str]:
@@ -210,7 +239,7 @@ class Model:
 
     def evaluate(self, clips: Sequence[Clip], *, train: Optional[Sequence[Clip]] = None, online: bool = False,
                  seed: int = 1, name: str = "<python>", perturb: str = "",
-                 **online_settings: Any) -> Dict[str, Any]:
+                 recordings: Optional[Sequence[Recording]] = None, **online_settings: Any) -> Dict[str, Any]:
         """The figures ``actionstring eval --json`` reports, computed by the same code:
         clip accuracy, per-class precision and recall, per-subject accuracy
         (``per_subject``), the model's top-1 to top-3 accuracy (``top_k``),
@@ -221,9 +250,16 @@ class Model:
         ``settled["per_class_frames"]`` and ``settled["frame_confusion"]``, and each
         subject's stream alone in ``per_stream``).
         ``perturb`` changes the evaluated clips (never ``train``) as ``eval --perturb``
-        does, e.g. ``"scale=0.7,noise=0.01"``; a bad spec raises ValueError."""
+        does, e.g. ``"scale=0.7,noise=0.01"``; a bad spec raises ValueError.
+        ``recordings`` (``read_recordings()``; with ``online`` only) are streamed whole
+        instead of the clips joined, as ``eval --online`` streams a list of intervals:
+        the frames outside every interval are scored as no action, beside "unknown
+        everywhere"; ``clips`` are then the intervals, for the clip figures."""
+        whole = _recordings(recordings)
+        if whole and not online:
+            raise ValueError("recordings are streamed whole: give online=True")
         text = self._native._evaluate_json(list(clips), list(train or []), online, seed, online_settings, name,
-                                           perturb)
+                                           perturb, whole)
         return json.loads(text)
 
     def annotate(self, clip: Clip, **online_settings: Any) -> List[Dict[str, Any]]:
@@ -243,7 +279,7 @@ _NOT_TUNED = frozenset({"pose_joints", "max_representative_chars", "max_represen
 
 
 def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Union[bool, str, None] = None,
-          **settings: Any) -> Model:
+          recordings: Optional[Sequence[Recording]] = None, **settings: Any) -> Model:
     """Trains a model on labelled clips with the C++ training pipeline.
 
     Settings are those of ``actionstring train`` with underscores for dashes
@@ -267,6 +303,12 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Uni
     settings (``pose_joints``, the cost bounds ``max_representative_chars`` and
     ``max_representative_share``, ``reject`` and ``reject_keep``, the latency
     budget) leave self-tuning on: the folds train with them.
+    ``recordings`` (``read_recordings()`` of the list ``clips`` were read from) are
+    the continuous recordings the clips are intervals of: as ``actionstring train``
+    on such a list, their stretches outside every interval (1 s or longer) teach the
+    model "no action" (its votes and, with exemplars, its centres), and the online
+    search streams each held-out subject's recordings whole instead of its clips
+    joined; ``training_report["no_action_stretches"]`` counts the stretches.
     """
     clips = list(clips)
     if not clips:
@@ -284,7 +326,7 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Uni
     elif not isinstance(tune, bool):
         raise ValueError(f"tune expects True, False, None or 'online', got {tune!r}")
     native, report = _native._train(clips, settings, bool(tune), "" if config is None else os.fspath(config),
-                                    tune_online)
+                                    tune_online, _recordings(recordings))
     return Model(native, report)
 
 

@@ -18,6 +18,7 @@
 #include "eval/evaluation.hpp"
 #include "io/clip_list.hpp"
 #include "io/formats.hpp"
+#include "io/recordings.hpp"
 #include "io/sdk_skeletons.hpp"
 #include "io/text.hpp"
 #include "model/artifact.hpp"
@@ -260,10 +261,33 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
     return config;
 }
 
+// A recording built from a clip of a whole stream and its labelled intervals:
+// each (label, start, end) in seconds on the clip's time axis, start < end.
+host::LabelledRecording recording_from_clip(const LabelledClip& clip, const py::sequence& intervals,
+                                            const py::object& subject) {
+    host::LabelledRecording recording;
+    recording.subject = subject.is_none() ? clip.subject : subject.cast<std::string>();
+    recording.clip = clip.clip;
+    for (const py::handle item : intervals) {
+        const auto interval = item.cast<py::sequence>();
+        if (interval.size() != 3) throw py::value_error("an interval is (label, start, end)");
+        host::LabelledRecording::Interval in;
+        in.label = interval[0].cast<std::string>();
+        in.start_s = interval[1].cast<double>();
+        in.end_s = interval[2].cast<double>();
+        if (in.label.empty()) throw py::value_error("an interval needs a label");
+        if (!std::isfinite(in.start_s) || !std::isfinite(in.end_s) || !(in.start_s < in.end_s))
+            throw py::value_error("interval '" + in.label + "': start must be finite and before end");
+        recording.intervals.push_back(in);
+    }
+    if (recording.intervals.empty()) throw py::value_error("a recording needs at least one labelled interval");
+    return recording;
+}
+
 // ---- training ------------------------------------------------------------------
 
 py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings, bool tune, const std::string& config,
-                bool tune_online) {
+                bool tune_online, const std::vector<host::LabelledRecording>& recordings) {
     host::TrainingOptions options = tune ? host::tuning_start() : host::TrainingOptions{};
     host::ReadOptions unused;
     if (!config.empty()) host::read_training_config(config, options, unused);
@@ -288,12 +312,15 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
             tuned = host::tune_training(clips, options);
             options = tuned.options;
         }
+        // As `actionstring train` on a list of intervals: the recordings' stretches outside every
+        // interval teach "no action", and the online search streams the recordings whole.
+        const std::vector<LabelledClip> no_action = host::unlabelled_stretches(recordings, 1.0);
         if (tune || tune_online) {
-            online = host::tune_online(clips, options);
+            online = host::tune_online(clips, options, recordings.empty() ? nullptr : &recordings);
             host::adopt_online_tuning(online, options);
         }
         host::TrainingReport training;
-        model = std::make_shared<ModelData>(host::train_model(clips, options, &training));
+        model = std::make_shared<ModelData>(host::train_model(clips, options, &training, &no_action));
         py::gil_scoped_acquire acquire;
         report["representatives"] = training.representatives;
         report["representative_chars"] = training.representative_chars;
@@ -301,6 +328,7 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
         report["characters"] = training.characters;
         report["frames_used"] = training.frames_used;
         report["frames_rejected"] = training.frames_rejected;
+        report["no_action_stretches"] = training.no_action_stretches;
     }
     report["settings"] = host::options_as_config(options);
     if (!tuned.steps.empty()) {
@@ -563,6 +591,46 @@ PYBIND11_MODULE(_actionstring, m) {
         py::arg("path"), py::arg("rate") = 0.0, py::arg("scale") = 0.0, py::arg("up_axis") = -1,
         py::arg("roles") = py::none(), py::arg("up") = py::none(), py::arg("parents") = py::none());
 
+    py::class_<host::LabelledRecording>(
+        m, "Recording", "A continuous recording with its labelled intervals; every frame outside them is no action.")
+        .def(py::init(&recording_from_clip), py::arg("clip"), py::arg("intervals"), py::arg("subject") = py::none())
+        .def_property_readonly(
+            "clip",
+            [](const host::LabelledRecording& r) {
+                return LabelledClip{r.clip, "", r.subject};
+            },
+            "The whole recording as a Clip (no label; a copy)")
+        .def_property_readonly(
+            "intervals",
+            [](const host::LabelledRecording& r) {
+                py::list out;
+                for (const auto& interval : r.intervals)
+                    out.append(py::make_tuple(interval.label, interval.start_s, interval.end_s));
+                return out;
+            },
+            "(label, start, end) per labelled interval, seconds on the recording's time axis")
+        .def_readonly("subject", &host::LabelledRecording::subject)
+        .def_property_readonly("source", [](const host::LabelledRecording& r) { return r.clip.source; })
+        .def_property_readonly("frame_count", [](const host::LabelledRecording& r) { return r.clip.frame_count(); })
+        .def_property_readonly("duration", [](const host::LabelledRecording& r) { return r.clip.duration(); })
+        .def("__repr__", [](const host::LabelledRecording& r) {
+            return "<Recording " + r.clip.source + ": " + std::to_string(r.clip.frame_count()) + " frames, " +
+                   std::to_string(r.intervals.size()) + " intervals, subject '" + r.subject + "'>";
+        });
+    m.def(
+        "_read_recordings",
+        [](const std::string& path, double rate, double scale, int up_axis, const py::object& roles,
+           const py::object& up, const py::object& parents) {
+            const std::vector<host::ClipListEntry> entries = host::read_clip_list(path);
+            if (!host::has_intervals(entries))
+                throw py::value_error(path +
+                                      ": the list gives no intervals ('start' and 'end' columns): it names clips, not "
+                                      "continuous recordings (read it with read_clip_list)");
+            return host::read_recordings(entries, read_options(rate, scale, up_axis, roles, "", -1, "", up, parents));
+        },
+        py::arg("path"), py::arg("rate") = 0.0, py::arg("scale") = 0.0, py::arg("up_axis") = -1,
+        py::arg("roles") = py::none(), py::arg("up") = py::none(), py::arg("parents") = py::none());
+
     py::class_<ModelData, ModelPtr>(m, "_Model")
         .def_static(
             "load",
@@ -628,14 +696,17 @@ PYBIND11_MODULE(_actionstring, m) {
              })
         .def("_evaluate_json",
              [](const ModelData& model, std::vector<LabelledClip> clips, std::vector<LabelledClip> train, bool online,
-                std::uint32_t seed, const py::dict& settings, const std::string& name, const std::string& perturb) {
+                std::uint32_t seed, const py::dict& settings, const std::string& name, const std::string& perturb,
+                std::vector<host::LabelledRecording> recordings) {
                  const ModelView view = model.view();
                  const AnnotatorConfig config = online_config(model, settings);
                  const host::Perturbation perturbation =
                      perturb.empty() ? host::Perturbation{} : host::parse_perturbation(perturb);
+                 const bool whole = !recordings.empty();
                  py::gil_scoped_release release;
-                 const host::Evaluation e =
-                     host::evaluate(view, std::move(clips), std::move(train), {}, online, seed, config, perturbation);
+                 host::Evaluation e = host::evaluate(view, std::move(clips), std::move(train), std::move(recordings),
+                                                     online, seed, config, perturbation);
+                 e.recordings = whole;  // as `eval` on a list of intervals
                  return host::evaluation_json(e, name, seed, config);
              })
         .def("annotate", [](const ModelData& model, const LabelledClip& clip, const py::dict& settings) {
@@ -654,7 +725,7 @@ PYBIND11_MODULE(_actionstring, m) {
         });
 
     m.def("_train", &train, py::arg("clips"), py::arg("settings"), py::arg("tune"), py::arg("config") = "",
-          py::arg("tune_online") = false);
+          py::arg("tune_online") = false, py::arg("recordings") = std::vector<host::LabelledRecording>{});
     m.def("_training_setting_names", &host::training_setting_names);
 
     py::class_<StreamAnnotator>(m, "_Annotator")
