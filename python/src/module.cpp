@@ -272,9 +272,13 @@ host::LabelledRecording recording_from_clip(const LabelledClip& clip, const py::
         const auto interval = item.cast<py::sequence>();
         if (interval.size() != 3) throw py::value_error("an interval is (label, start, end)");
         host::LabelledRecording::Interval in;
-        in.label = interval[0].cast<std::string>();
-        in.start_s = interval[1].cast<double>();
-        in.end_s = interval[2].cast<double>();
+        try {
+            in.label = interval[0].cast<std::string>();
+            in.start_s = interval[1].cast<double>();
+            in.end_s = interval[2].cast<double>();
+        } catch (const py::cast_error&) {
+            throw py::value_error("an interval is (label, start, end): a string and two numbers of seconds");
+        }
         if (in.label.empty()) throw py::value_error("an interval needs a label");
         if (!std::isfinite(in.start_s) || !std::isfinite(in.end_s) || !(in.start_s < in.end_s))
             throw py::value_error("interval '" + in.label + "': start must be finite and before end");

@@ -99,6 +99,8 @@ def test_bad_recordings_are_refused(toy_set, toy_clips, tmp_path):
         actionstring.Recording(whole, [("", 0.0, 1.0)])
     with pytest.raises(ValueError, match=r"\(label, start, end\)"):
         actionstring.Recording(whole, [("spread", 0.0)])
+    with pytest.raises(ValueError, match="two numbers of seconds"):
+        actionstring.Recording(whole, [("spread", "soon", 1.0)])
     with pytest.raises(ValueError, match="at least one labelled interval"):
         actionstring.Recording(whole, [])
     with pytest.raises(ValueError, match="Recording objects"):
