@@ -137,13 +137,29 @@ void print_streams(const host::OnlineReport& report) {
     const bool no_action = report.settled.no_action_frames > 0;
     std::printf("\nsettled labels per stream (%s):\n  %-32s %7s %9s", report.recordings ? "recordings" : "subjects",
                 "stream", "frames", "accuracy");
-    if (no_action) std::printf(" %9s %9s", "in action", "no action");
+    if (no_action) std::printf(" %9s %9s %9s", "in action", "no action", "unknown*");
     std::printf(" %8s %10s %8s\n", "frame F1", "segment F1", "event F1");
+    // A stream where saying unknown everywhere would do better is named: the pooled
+    // figure can be above the trivial baseline while a recording is below it.
+    std::string below;
+    std::size_t below_count = 0;
     for (std::size_t s = 0; s < report.per_stream.size() && s < report.streams.size(); ++s) {
         const host::OnlineResults& r = report.per_stream[s];
         std::printf("  %-32s %7zu %9.3f", report.streams[s].name.c_str(), r.frames, r.frame_accuracy);
-        if (no_action) std::printf(" %9.3f %9.3f", r.action_frame_accuracy, r.no_action_accuracy);
+        if (no_action) std::printf(" %9.3f %9.3f %9.3f", r.action_frame_accuracy, r.no_action_accuracy,
+                                   r.unknown_everywhere_accuracy);
         std::printf(" %8.3f %10.3f %8.3f\n", r.frame_f1, r.segment_f1, r.event_f1);
+        if (no_action && r.frame_accuracy < r.unknown_everywhere_accuracy) {
+            below += (below_count++ ? ", " : "") + report.streams[s].name;
+        }
+    }
+    if (no_action) {
+        std::printf("  * unknown everywhere on that stream alone (its share of no-action frames)\n");
+        if (below_count > 0)
+            std::printf("  below unknown everywhere: %zu of %zu streams (%s)\n", below_count, report.per_stream.size(),
+                        below.c_str());
+        else
+            std::printf("  every stream above unknown everywhere\n");
     }
 }
 

@@ -467,6 +467,31 @@ TEST_CASE("continuous recordings: frames outside every interval are no action, a
     const double share = static_cast<double>(omitted_frames) / static_cast<double>(frames.size());
     CHECK(report.settled.frame_accuracy == doctest::Approx(report.settled.action_frame_accuracy * (1 - share) +
                                                            report.settled.no_action_accuracy * share));
+
+    // Each recording alone carries its own "unknown everywhere": the share of its no-action
+    // frames. A second recording with every action labelled has none, so saying unknown
+    // everywhere scores 0 there, while the pooled share lies between the two.
+    LabelledRecording labelled = recording;
+    labelled.clip.source = "labelled.txt";
+    labelled.intervals.clear();
+    begin = 0;
+    for (std::size_t f = 1; f <= frames.size(); ++f) {
+        if (f < frames.size() && frames[f].action == frames[begin].action) continue;
+        labelled.intervals.push_back({world.model.label_names[static_cast<std::size_t>(frames[begin].action)],
+                                      labelled.clip.times[begin], labelled.clip.times[f - 1]});
+        begin = f;
+    }
+    const OnlineReport both = evaluate_recordings(view, {recording, labelled});
+    REQUIRE(both.per_stream.size() == 2);
+    CHECK(both.per_stream[0].unknown_everywhere_accuracy == doctest::Approx(share));
+    CHECK(both.per_stream[1].no_action_frames == 0);
+    CHECK(both.per_stream[1].unknown_everywhere_accuracy == 0.0);
+    CHECK(both.settled.unknown_everywhere_accuracy == doctest::Approx(share / 2));
+    JsonWriter stream_json;
+    write_stream_json(stream_json, both.streams[0].name, both.per_stream[0]);
+    CAPTURE(stream_json.str());
+    CHECK(stream_json.str().find("\"unknown_everywhere_accuracy\": ") != std::string::npos);
+
     // Entries of a list: grouped by file, and a whole clip cannot be a recording.
     ClipListEntry whole;
     whole.path = "a.txt";

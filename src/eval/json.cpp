@@ -144,6 +144,7 @@ void write_stream_json(JsonWriter& out, const std::string& name, const OnlineRes
         .field("no_action_frames", r.no_action_frames)
         .field("action_frame_accuracy", r.action_frame_accuracy)
         .field("no_action_accuracy", r.no_action_accuracy)
+        .field("unknown_everywhere_accuracy", r.unknown_everywhere_accuracy)
         .field("frame_f1", r.frame_f1)
         .field("segment_f1", r.segment_f1)
         .field("event_f1", r.event_f1)

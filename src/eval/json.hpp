@@ -31,7 +31,8 @@ void write_json(JsonWriter& out, const ClipResults& results, const std::vector<L
 void write_json(JsonWriter& out, const OnlineResults& results, const std::vector<std::string>* labels = nullptr);
 
 /// One stream's settled labels scored alone (OnlineReport::per_stream) as a
-/// JSON object: its name, frames and the frame, segment and event figures.
+/// JSON object: its name, frames, "unknown everywhere" on that stream and the
+/// frame, segment and event figures.
 void write_stream_json(JsonWriter& out, const std::string& name, const OnlineResults& results);
 
 }  // namespace host

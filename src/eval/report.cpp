@@ -244,13 +244,14 @@ void write_report(const std::string& dir, const std::string& title, const std::v
         }
         // Each stream alone: which subjects or recordings the pooled figures come from.
         md << "\nSettled labels per " << (online->recordings ? "recording" : "subject (its clips joined)")
-           << ":\n\n| stream | frames | frame accuracy | in action | no action | frame F1 | segment F1 | event F1 "
-              "|\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+           << ":\n\n| stream | frames | frame accuracy | in action | no action | unknown everywhere | frame F1 | "
+              "segment F1 | event F1 |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
         for (std::size_t s = 0; s < online->per_stream.size() && s < online->streams.size(); ++s) {
             const OnlineResults& r = online->per_stream[s];
             md << "| " << online->streams[s].name << " | " << r.frames << " | " << r.frame_accuracy << " | "
                << r.action_frame_accuracy << " | ";
-            if (r.no_action_frames > 0) md << r.no_action_accuracy;
+            if (r.no_action_frames > 0) md << r.no_action_accuracy << " | " << r.unknown_everywhere_accuracy;
+            else md << " | ";
             md << " | " << r.frame_f1 << " | " << r.segment_f1 << " | " << r.event_f1 << " |\n";
         }
         md << "\n";
