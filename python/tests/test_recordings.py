@@ -85,6 +85,13 @@ def test_evaluating_recordings_streams_them_whole_with_their_no_action(toy_set):
     settled = report["online"]["settled"]
     assert settled["no_action_frames"] > 0
     assert 0.0 < settled["unknown_everywhere_accuracy"] < 1.0
+    # Each recording alone: its own share of no-action frames, pooling to the whole's.
+    streams = report["online"]["per_stream"]
+    assert len(streams) == len(recordings)
+    for stream in streams:
+        assert stream["unknown_everywhere_accuracy"] == pytest.approx(stream["no_action_frames"] / stream["frames"])
+    assert sum(s["unknown_everywhere_accuracy"] * s["frames"] for s in streams) == pytest.approx(
+        settled["unknown_everywhere_accuracy"] * settled["frames"])
     joined = model.evaluate(clips, online=True)["online"]
     assert joined["streams"] == "concatenated clips"
     assert joined["settled"]["no_action_frames"] == 0
