@@ -286,3 +286,111 @@ TEST_CASE("the encoder's string and features equal the eagerly sampled features'
         CHECK(compared > 100);
     }
 }
+
+TEST_CASE("a jump: a pose faster than the bound, judged over the stream's typical interval") {
+    const float still[3] = {0.0f, 0.0f, 0.0f};
+    JumpCheck check;
+    check.configure(20.0f);
+    // 10 m/s over 10 ms moved; 30 m/s jumped. One instant judges nothing.
+    const float walked[3] = {0.1f, 0.0f, 0.0f}, jumped[3] = {0.0f, -0.3f, 0.0f};
+    CHECK_FALSE(check.jumped(10000, walked, still, 3));
+    CHECK(check.jumped(10000, jumped, still, 3));
+    CHECK_FALSE(check.jumped(0, jumped, still, 3));
+    // A jittery clock: once the typical interval is 10 ms, a frame 1 ms after the
+    // last one that moved 5 cm (5 m/s over the typical interval) did not jump,
+    // though 5 cm in 1 ms would be 50 m/s.
+    for (int f = 0; f < 20; ++f) CHECK_FALSE(check.jumped(10000, still, still, 3));
+    const float near[3] = {0.0f, 0.0f, 0.05f};
+    CHECK_FALSE(check.jumped(1000, near, still, 3));
+    // A longer interval (a dropped frame) allows more: 0.3 m over 20 ms is 15 m/s.
+    CHECK_FALSE(check.jumped(20000, jumped, still, 3));
+    // Another stream: its interval is learnt again, from its first step.
+    check.reset();
+    CHECK(check.jumped(1000, near, still, 3));
+    // 0 never jumps.
+    check.configure(0.0f);
+    const float far[3] = {100.0f, 100.0f, 100.0f};
+    CHECK_FALSE(check.jumped(1000, far, still, 3));
+}
+
+TEST_CASE("the encoder starts the motion again at a jump, as a stream starting there would") {
+    host::ToyWorld world = host::make_toy_world();
+    const host::ModelData model = host::train_model(host::toy_clips(world, 2, 6), toy_motion_options());
+    const ModelView view = model.view();
+    REQUIRE(view.has_velocity());
+    // A stream of one toy performance, then the same again with every joint
+    // but the root moved 30 units up (the tracker jumped; the pose it reports
+    // moves as before), a frame per string period, so every frame gives a
+    // character, on the same frames as when the second part streams alone.
+    const host::LabelledClip performance = host::toy_clips(world, 1, 3).front();
+    const host::Clip& clip = performance.clip;
+    const std::size_t J = clip.joint_count(), F = clip.frame_count();
+    REQUIRE(clip.roles.root >= 0);
+    const auto root = static_cast<std::size_t>(clip.roles.root), up = static_cast<std::size_t>(clip.up_axis);
+    std::vector<float> frames(clip.positions);
+    for (std::size_t f = 0; f < F; ++f) {
+        const float* p = clip.frame(f);
+        for (std::size_t j = 0; j < J; ++j)
+            for (std::size_t k = 0; k < 3; ++k) frames.push_back(p[3 * j + k] + (j != root && k == up ? 30.0f : 0.0f));
+    }
+    const std::int64_t step = view.string_period_us;
+    // The bound between the fastest the normalised pose moves within either
+    // part and how fast it moves at the jump (the toy's units are its own).
+    std::vector<float> pose(view.input_dim()), before(view.input_dim()), skeleton(3 * J);
+    float within = 0.0f, jump = 0.0f;
+    for (std::size_t f = 0; f < 2 * F; ++f) {
+        REQUIRE(normalize_pose(view, &frames[f * 3 * J], pose.data(), skeleton.data()) == Status::ok);
+        float moved = 0.0f;
+        for (std::size_t i = 0; f > 0 && i < view.pose_dim(); ++i)
+            moved = std::max(moved, std::fabs(pose[i] - before[i]));
+        float& fastest = f == F ? jump : within;
+        fastest = std::max(fastest, moved / (static_cast<float>(step) * 1e-6f));
+        before = pose;
+    }
+    REQUIRE(jump > 2.0f * within);
+    const float bound = std::sqrt(jump * within);
+    auto encode = [&](float max_speed, std::size_t first) {
+        host::Stateful<StringEncoder> encoder;
+        EncoderConfig config;
+        config.max_joint_speed = max_speed;
+        REQUIRE(encoder.init(view, config) == Status::ok);
+        std::vector<std::vector<float>> velocities;
+        std::vector<std::size_t> restarts;
+        for (std::size_t f = first; f < 2 * F; ++f) {
+            const EncodedFrame e = encoder->push_frame(static_cast<std::int64_t>(f) * step, &frames[f * 3 * J]);
+            REQUIRE(e.accepted());
+            if (e.motion_restarted) restarts.push_back(f);
+            velocities.emplace_back();
+            if (e.from_current > 0)
+                velocities.back().assign(e.current_pose + view.pose_dim(), e.current_pose + view.input_dim());
+        }
+        return std::make_pair(velocities, restarts);
+    };
+    const auto [joined, restarts] = encode(bound, 0);
+    const auto [alone, alone_restarts] = encode(bound, F);
+    const auto [across_jump, never] = encode(0.0f, 0);
+    // The bound restarts the motion at the moved pose's first frame, and nowhere else.
+    REQUIRE(restarts == std::vector<std::size_t>{F});
+    CHECK(alone_restarts.empty());
+    CHECK(never.empty());
+    // From there on the joined stream's velocities are the moved pose's
+    // alone, bit for bit; without the bound they difference across the jump.
+    std::size_t compared = 0, differ = 0;
+    for (std::size_t f = F; f < 2 * F; ++f) {
+        const std::vector<float>& v = joined[f];
+        REQUIRE(v.empty() == alone[f - F].empty());
+        if (v.empty()) continue;
+        CHECK(std::memcmp(v.data(), alone[f - F].data(), v.size() * sizeof(float)) == 0);
+        differ += across_jump[f] != v;
+        ++compared;
+    }
+    CHECK(compared >= F - 1);
+    CHECK(differ > 0);
+    // A negative or NaN bound is refused.
+    host::Stateful<StringEncoder> refused;
+    EncoderConfig negative;
+    negative.max_joint_speed = -1.0f;
+    CHECK(refused.init(view, negative) == Status::invalid_argument);
+    negative.max_joint_speed = std::nanf("");
+    CHECK(refused.init(view, negative) == Status::invalid_argument);
+}

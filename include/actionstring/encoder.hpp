@@ -50,6 +50,9 @@ struct EncodedFrame {
     const float* current_pose = nullptr;
     const float* previous_facing = nullptr;
     const float* current_facing = nullptr;
+    /// The frame's pose jumped (EncoderConfig::max_joint_speed): its motion,
+    /// and the motion of the frames after it, start again from it.
+    bool motion_restarted = false;
 
     std::uint32_t count() const noexcept { return from_previous + from_current; }
     bool accepted() const noexcept { return status == Status::ok || status == Status::stream_restarted; }
@@ -83,6 +86,16 @@ struct EncoderConfig {
     /// normal, gravity from an IMU): every frame is turned to put it along
     /// the axis (up_rotation()). All zero: the positions' up is the model's.
     float up[3] = {0.0f, 0.0f, 0.0f};
+    /// A pose that moved faster than this since the previous frame (any
+    /// coordinate of the normalised pose, in metres per second) jumped: the
+    /// tracker lost and found the body, swapped two people, or clips were
+    /// joined. The motion then starts again from that frame, as at a
+    /// stream's start, instead of differencing across the jump (motion.hpp,
+    /// JumpCheck, which says how the speed is judged). 0 (the default here,
+    /// for a clip taken as recorded, as training takes its clips): never. A
+    /// stream's annotator sets default_max_joint_speed (AnnotatorConfig).
+    /// Only for models with motion. Negative or NaN: init() refuses it.
+    float max_joint_speed = 0.0f;
 };
 
 /// Frame-to-character encoder; needs only the feature tables of the model.
@@ -99,7 +112,8 @@ public:
     /// @return ok, invalid_model (tables, or precision factors that could
     ///         overflow float), storage_too_small, or invalid_argument
     ///         (times StringSampler::settings_ok() refuses for the model's
-    ///         period, or an up direction up_rotation() refuses)
+    ///         period, an up direction up_rotation() refuses, or a negative
+    ///         or NaN max_joint_speed)
     Status init(const ModelView& model, const EncoderConfig& config, void* storage, std::size_t bytes) noexcept {
         model_ = nullptr;
         const Status status = validate_feature_tables(model);
@@ -114,6 +128,8 @@ public:
         if (model.has_gmm() && !gmm_is_overflow_safe(model, max_pose_coordinate)) return Status::invalid_model;
         if (!StringSampler::settings_ok(model.string_period_us, config.max_gap_us, config.max_backward_us))
             return Status::invalid_argument;
+        if (!(config.max_joint_speed >= 0.0f)) return Status::invalid_argument;
+        jump_.configure(config.max_joint_speed);
         const Plan p = plan(model, config.deferred);
         if (!detail::storage_fits(storage, bytes, p.bytes)) return Status::storage_too_small;
         detail::clear_storage(storage, p.bytes);
@@ -148,6 +164,7 @@ public:
     void reset() noexcept {
         sampler_.reset();
         motion_.reset();
+        jump_.reset();
         has_previous_ = false;
         last_ = 0;
         most_probable_ = 0;
@@ -212,6 +229,12 @@ public:
             times_[current] = time_us;
             if (plan.from_previous > 0 && !ready_[previous_])
                 motion_.motion(*model_, times_[previous_], poses_[previous_]);
+            // A restart's gap is no frame interval: the check and its typical interval skip it.
+            if (plan.status != Status::stream_restarted && has_previous_ &&
+                jump_.jumped(time_us - times_[previous_], poses_[current], poses_[previous_], model_->pose_dim())) {
+                motion_.reset();
+                out.motion_restarted = true;
+            }
             if (plan.from_current > 0) motion_.motion(*model_, time_us, poses_[current]);
             motion_.keep(*model_, time_us, poses_[current]);
         }
@@ -480,6 +503,7 @@ private:
     Character characters_[2] = {};
     bool ready_[2] = {};          // the slot's character (and its motion, if any) is computed
     std::int64_t times_[2] = {};  // the slot's frame time (for its motion)
+    JumpCheck jump_;              // EncoderConfig::max_joint_speed
     std::size_t previous_ = 0;
     bool has_previous_ = false;
     Character last_ = 0;

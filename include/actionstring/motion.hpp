@@ -33,6 +33,54 @@ namespace actionstring {
 /// span is always within reach.
 constexpr std::size_t motion_ring_poses = 6;
 
+/// The joint speed (metres per second, relative to the hips) beyond which a
+/// stream's pose is taken to have jumped rather than moved (AnnotatorConfig::
+/// max_joint_speed). A person's fastest joint moves at up to about 9 m/s
+/// from frame to frame (HDM05's 99.9th percentile; MSR Action3D's, tracking
+/// noise included, about 15 m/s); joining HDM05's clips moves it faster than
+/// 20 m/s in half of the joinings, and a tracker that loses and finds the
+/// body does too. Chosen on the training subjects' online folds of every
+/// config in models/ (models/README.md, "Jumps in a stream"): 10 to 30 m/s
+/// tie, and the largest restarts least.
+constexpr float default_max_joint_speed = 30.0f;
+
+/// Whether a stream's pose jumped from one frame to the next: some
+/// coordinate of the normalised pose moved faster than the bound. Across a
+/// jump a difference is no motion, so the encoder then starts the motion
+/// again (MotionRing::reset()), as at a stream's start, and as each training
+/// clip started. The speed is judged over the longer of the frame's
+/// interval and the stream's typical one (a running mean of its intervals),
+/// so a frame that a jittery clock brought close to the last one does not
+/// look fast.
+class JumpCheck {
+public:
+    /// The bound in metres per second (0: no pose ever jumps); forgets the
+    /// stream's interval.
+    void configure(float max_speed) noexcept {
+        max_speed_ = max_speed;
+        reset();
+    }
+    /// Forgets the stream's typical interval (another stream, another clock).
+    void reset() noexcept { interval_s_ = 0.0f; }
+
+    /// Whether `pose` (D floats, `step_us` after `previous`) jumped from
+    /// `previous`. Steps of 0 (one instant) judge nothing; every later step
+    /// counts toward the typical interval.
+    bool jumped(std::int64_t step_us, const float* pose, const float* previous, std::size_t D) noexcept {
+        if (step_us <= 0 || max_speed_ <= 0.0f) return false;
+        const float step_s = static_cast<float>(step_us) * 1.0e-6f;
+        interval_s_ = interval_s_ == 0.0f ? step_s : interval_s_ + (step_s - interval_s_) * 0.125f;
+        const float bound = max_speed_ * (step_s > interval_s_ ? step_s : interval_s_);
+        for (std::size_t i = 0; i < D; ++i)
+            if (!(std::fabs(pose[i] - previous[i]) <= bound)) return true;
+        return false;
+    }
+
+private:
+    float max_speed_ = 0.0f;
+    float interval_s_ = 0.0f;  // the typical interval, 0 until a step is seen
+};
+
 /// Recent poses of one stream, for its motion. Works in caller-owned
 /// storage (storage.hpp) of required_bytes(model) bytes: none for a model
 /// without motion.

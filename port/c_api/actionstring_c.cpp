@@ -150,6 +150,7 @@ AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) 
     config.spread_work = c->spread_work != 0;
     config.label_lead_us = c->label_lead_us;
     for (int a = 0; a < 3; ++a) config.up[a] = c->up[a];
+    config.max_joint_speed = c->max_joint_speed;
     config.segmenter = from_settings(c->online);
     return config;
 }
@@ -168,7 +169,8 @@ bool config_ok(const ModelView& model, const AnnotatorConfig& config) {
                                                     config.max_backward_us) &&
            Annotator::required_bytes(model, config) != actionstring::unsatisfiable_bytes && config.min_action_us >= 0 &&
            config.min_action_us <= actionstring::max_settle_delay_us && config.label_lead_us >= 0 &&
-           config.label_lead_us <= actionstring::max_settle_delay_us && up_ok(model, config.up);
+           config.label_lead_us <= actionstring::max_settle_delay_us && up_ok(model, config.up) &&
+           config.max_joint_speed >= 0.0f;
 }
 
 void set_model(actionstring_model* handle, const ModelView& view, const char* checksum) {
@@ -271,6 +273,7 @@ actionstring_status actionstring_default_config(const actionstring_model* handle
     config->spread_work = c.spread_work ? 1 : 0;
     config->label_lead_us = c.label_lead_us;
     for (int a = 0; a < 3; ++a) config->up[a] = c.up[a];
+    config->max_joint_speed = c.max_joint_speed;
     return ACTIONSTRING_OK;
 }
 
