@@ -33,7 +33,7 @@ int run_annotate(int argc, char** argv) {
                 "                             [--settle S] [--settle-stable S] [--segment-penalty X] [--stay-penalty X]\n"
                 "                             [--skip-penalty X] [--unknown-cost X] [--segment-votes X]\n"
                 "                             [--segment-exemplars X] [--label-lead S] [--spread-work]\n"
-                "                             [--up X,Y,Z] [--max-joint-speed V]\n\n"
+                "                             [--up X,Y,Z] [--max-pose-speed V]\n\n"
                 "Streams FILE frame by frame through the annotator, as a device would, and prints\n"
                 "the timeline of settled labels: start and end time in seconds, label (or\n"
                 "'unknown') and the confidence, the share of the span's frames whose live label\n"
@@ -56,7 +56,7 @@ int run_annotate(int argc, char** argv) {
                 "known and differs from the model's up axis (a Kinect's floor plane normal, an\n"
                 "IMU's gravity): every frame is turned to put it along the axis, so a sensor\n"
                 "mounted higher or lower than the training one gives the poses it gave.\n"
-                "The segmenter options and --max-joint-speed are those of 'actionstring eval'.\n");
+                "The segmenter options and --max-pose-speed are those of 'actionstring eval'.\n");
             return 0;
         }
         if (arg == "--model") model_path = args.value(arg);

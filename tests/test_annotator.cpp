@@ -664,20 +664,20 @@ TEST_CASE("a restart and flush() give the ended stream's tail its labels: flushe
     CHECK(unknown_after <= 2);  // and the end of the stream is flushed too
 }
 
-TEST_CASE("a stream's jump bound: 30 m/s unless set, 0 turns it off, a negative or NaN one refused") {
+TEST_CASE("a stream's jump bound: 8 m/s unless set, 0 turns it off, a negative or NaN one refused") {
     host::ToyWorld world = host::make_toy_world();
     const ModelView view = world.model.view();
-    CHECK(AnnotatorConfig{}.max_joint_speed == default_max_joint_speed);
-    CHECK(annotator_config(view).max_joint_speed == default_max_joint_speed);
-    CHECK(default_max_joint_speed == 30.0f);
+    CHECK(AnnotatorConfig{}.max_pose_speed == default_max_pose_speed);
+    CHECK(annotator_config(view).max_pose_speed == default_max_pose_speed);
+    CHECK(default_max_pose_speed == 8.0f);
     // The encoder takes a clip as recorded unless told otherwise.
-    CHECK(EncoderConfig{}.max_joint_speed == 0.0f);
+    CHECK(EncoderConfig{}.max_pose_speed == 0.0f);
     host::Stateful<Annotator> annotator;
     AnnotatorConfig config = annotator_config(view);
-    config.max_joint_speed = 0.0f;
+    config.max_pose_speed = 0.0f;
     CHECK(annotator.init(view, config) == Status::ok);
     for (const float bad : {-1.0f, std::nanf("")}) {
-        config.max_joint_speed = bad;
+        config.max_pose_speed = bad;
         CHECK(annotator.init(view, config) == Status::invalid_argument);
     }
 }

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -287,30 +288,36 @@ TEST_CASE("the encoder's string and features equal the eagerly sampled features'
     }
 }
 
-TEST_CASE("a jump: a pose faster than the bound, judged over the stream's typical interval") {
+TEST_CASE("a jump: faster than the bound, and well beyond the stream's typical change") {
+    // Poses of three coordinates whose mean change from `still` is c metres.
     const float still[3] = {0.0f, 0.0f, 0.0f};
+    auto moved = [](float c) { return std::array<float, 3>{3.0f * c, 0.0f, 0.0f}; };
     JumpCheck check;
-    check.configure(20.0f);
-    // 10 m/s over 10 ms moved; 30 m/s jumped. One instant judges nothing.
-    const float walked[3] = {0.1f, 0.0f, 0.0f}, jumped[3] = {0.0f, -0.3f, 0.0f};
-    CHECK_FALSE(check.jumped(10000, walked, still, 3));
-    CHECK(check.jumped(10000, jumped, still, 3));
-    CHECK_FALSE(check.jumped(0, jumped, still, 3));
-    // A jittery clock: once the typical interval is 10 ms, a frame 1 ms after the
-    // last one that moved 5 cm (5 m/s over the typical interval) did not jump,
-    // though 5 cm in 1 ms would be 50 m/s.
-    for (int f = 0; f < 20; ++f) CHECK_FALSE(check.jumped(10000, still, still, 3));
-    const float near[3] = {0.0f, 0.0f, 0.05f};
-    CHECK_FALSE(check.jumped(1000, near, still, 3));
-    // A longer interval (a dropped frame) allows more: 0.3 m over 20 ms is 15 m/s.
-    CHECK_FALSE(check.jumped(20000, jumped, still, 3));
-    // Another stream: its interval is learnt again, from its first step.
+    check.configure(5.0f);
+    // The first step judged sets the typical change and never jumps, however large.
+    CHECK_FALSE(check.jumped(10000, moved(0.01f).data(), still, 3));
+    for (int f = 0; f < 40; ++f) CHECK_FALSE(check.jumped(10000, moved(0.01f).data(), still, 3));  // 1 m/s
+    // 10 m/s, ten times the typical change: a jump. It does not move the typical
+    // change, so a 2 m/s step after it is none.
+    CHECK(check.jumped(10000, moved(0.1f).data(), still, 3));
+    CHECK_FALSE(check.jumped(10000, moved(0.02f).data(), still, 3));
+    // One instant judges nothing.
+    CHECK_FALSE(check.jumped(0, moved(1.0f).data(), still, 3));
+    // A jittery clock: 2 cm 1 ms after the last frame is 2 m/s over the typical
+    // 10 ms interval, though it would be 20 m/s over 1 ms.
+    CHECK_FALSE(check.jumped(1000, moved(0.02f).data(), still, 3));
+    // A dropped frame: 12 cm over 30 ms is 4 m/s.
+    CHECK_FALSE(check.jumped(30000, moved(0.12f).data(), still, 3));
+    // A noisy sensor: every frame changes by 6 cm in 10 ms (6 m/s, over the bound),
+    // so none of them is a jump; 30 cm, five times as much, is.
     check.reset();
-    CHECK(check.jumped(1000, near, still, 3));
+    for (int f = 0; f < 40; ++f) CHECK_FALSE(check.jumped(10000, moved(0.06f).data(), still, 3));
+    CHECK_FALSE(check.jumped(10000, moved(0.15f).data(), still, 3));  // 2.5 times: not yet
+    CHECK(check.jumped(10000, moved(0.3f).data(), still, 3));
     // 0 never jumps.
     check.configure(0.0f);
-    const float far[3] = {100.0f, 100.0f, 100.0f};
-    CHECK_FALSE(check.jumped(1000, far, still, 3));
+    CHECK_FALSE(check.jumped(10000, moved(0.01f).data(), still, 3));
+    CHECK_FALSE(check.jumped(10000, moved(100.0f).data(), still, 3));
 }
 
 TEST_CASE("the encoder starts the motion again at a jump, as a stream starting there would") {
@@ -334,15 +341,16 @@ TEST_CASE("the encoder starts the motion again at a jump, as a stream starting t
             for (std::size_t k = 0; k < 3; ++k) frames.push_back(p[3 * j + k] + (j != root && k == up ? 30.0f : 0.0f));
     }
     const std::int64_t step = view.string_period_us;
-    // The bound between the fastest the normalised pose moves within either
-    // part and how fast it moves at the jump (the toy's units are its own).
+    // The bound between the fastest the normalised pose moves within either part
+    // and how fast it moves at the jump, each the mean over its coordinates (the
+    // toy's units are its own).
     std::vector<float> pose(view.input_dim()), before(view.input_dim()), skeleton(3 * J);
     float within = 0.0f, jump = 0.0f;
     for (std::size_t f = 0; f < 2 * F; ++f) {
         REQUIRE(normalize_pose(view, &frames[f * 3 * J], pose.data(), skeleton.data()) == Status::ok);
         float moved = 0.0f;
-        for (std::size_t i = 0; f > 0 && i < view.pose_dim(); ++i)
-            moved = std::max(moved, std::fabs(pose[i] - before[i]));
+        for (std::size_t i = 0; f > 0 && i < view.pose_dim(); ++i) moved += std::fabs(pose[i] - before[i]);
+        moved /= static_cast<float>(view.pose_dim());
         float& fastest = f == F ? jump : within;
         fastest = std::max(fastest, moved / (static_cast<float>(step) * 1e-6f));
         before = pose;
@@ -352,7 +360,7 @@ TEST_CASE("the encoder starts the motion again at a jump, as a stream starting t
     auto encode = [&](float max_speed, std::size_t first) {
         host::Stateful<StringEncoder> encoder;
         EncoderConfig config;
-        config.max_joint_speed = max_speed;
+        config.max_pose_speed = max_speed;
         REQUIRE(encoder.init(view, config) == Status::ok);
         std::vector<std::vector<float>> velocities;
         std::vector<std::size_t> restarts;
@@ -389,8 +397,8 @@ TEST_CASE("the encoder starts the motion again at a jump, as a stream starting t
     // A negative or NaN bound is refused.
     host::Stateful<StringEncoder> refused;
     EncoderConfig negative;
-    negative.max_joint_speed = -1.0f;
+    negative.max_pose_speed = -1.0f;
     CHECK(refused.init(view, negative) == Status::invalid_argument);
-    negative.max_joint_speed = std::nanf("");
+    negative.max_pose_speed = std::nanf("");
     CHECK(refused.init(view, negative) == Status::invalid_argument);
 }

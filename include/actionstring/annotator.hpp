@@ -47,13 +47,14 @@ struct AnnotatorConfig {
     /// up_rotation()). All zero: the positions' up is the model's. Not finite
     /// or shorter than 1e-6: init() refuses it.
     float up[3] = {0.0f, 0.0f, 0.0f};
-    /// A pose that moved faster than this (metres per second) since the
-    /// previous frame jumped, and its motion starts again from it
-    /// (EncoderConfig::max_joint_speed, which says why; 0: never). A
+    /// A pose that moved faster than this since the previous frame (the mean
+    /// over its coordinates, metres per second), and by much more than the
+    /// stream's frames typically move, jumped, and its motion starts again
+    /// from it (EncoderConfig::max_pose_speed, which says why; 0: never). A
     /// stream is where joined clips and a tracker that loses the body make
     /// jumps; a clip is taken as recorded (the encoder's default, 0).
     /// Negative or NaN: init() refuses it.
-    float max_joint_speed = default_max_joint_speed;
+    float max_pose_speed = default_max_pose_speed;
     /// Whether to run the paper's sliding-window rule beside the segmenter
     /// (label(), last_window()). Off, its state (the largest part) is not
     /// paid for and label() stays unknown; the settled label is the better
@@ -544,7 +545,7 @@ private:
                              config.max_backward_us,
                              config.spread_work,
                              {config.up[0], config.up[1], config.up[2]},
-                             config.max_joint_speed};
+                             config.max_pose_speed};
     }
 
     // One block: the encoder's, the window matcher's (with the window rule)

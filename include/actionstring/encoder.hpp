@@ -50,7 +50,7 @@ struct EncodedFrame {
     const float* current_pose = nullptr;
     const float* previous_facing = nullptr;
     const float* current_facing = nullptr;
-    /// The frame's pose jumped (EncoderConfig::max_joint_speed): its motion,
+    /// The frame's pose jumped (EncoderConfig::max_pose_speed): its motion,
     /// and the motion of the frames after it, start again from it.
     bool motion_restarted = false;
 
@@ -86,16 +86,17 @@ struct EncoderConfig {
     /// normal, gravity from an IMU): every frame is turned to put it along
     /// the axis (up_rotation()). All zero: the positions' up is the model's.
     float up[3] = {0.0f, 0.0f, 0.0f};
-    /// A pose that moved faster than this since the previous frame (any
-    /// coordinate of the normalised pose, in metres per second) jumped: the
+    /// A pose that moved faster than this since the previous frame (the
+    /// mean over the normalised pose's coordinates, in metres per second),
+    /// and by much more than the stream's frames typically move, jumped: the
     /// tracker lost and found the body, swapped two people, or clips were
     /// joined. The motion then starts again from that frame, as at a
     /// stream's start, instead of differencing across the jump (motion.hpp,
-    /// JumpCheck, which says how the speed is judged). 0 (the default here,
-    /// for a clip taken as recorded, as training takes its clips): never. A
-    /// stream's annotator sets default_max_joint_speed (AnnotatorConfig).
+    /// JumpCheck, which says how it is judged). 0 (the default here, for a
+    /// clip taken as recorded, as training takes its clips): never. A
+    /// stream's annotator sets default_max_pose_speed (AnnotatorConfig).
     /// Only for models with motion. Negative or NaN: init() refuses it.
-    float max_joint_speed = 0.0f;
+    float max_pose_speed = 0.0f;
 };
 
 /// Frame-to-character encoder; needs only the feature tables of the model.
@@ -113,7 +114,7 @@ public:
     ///         overflow float), storage_too_small, or invalid_argument
     ///         (times StringSampler::settings_ok() refuses for the model's
     ///         period, an up direction up_rotation() refuses, or a negative
-    ///         or NaN max_joint_speed)
+    ///         or NaN max_pose_speed)
     Status init(const ModelView& model, const EncoderConfig& config, void* storage, std::size_t bytes) noexcept {
         model_ = nullptr;
         const Status status = validate_feature_tables(model);
@@ -128,8 +129,8 @@ public:
         if (model.has_gmm() && !gmm_is_overflow_safe(model, max_pose_coordinate)) return Status::invalid_model;
         if (!StringSampler::settings_ok(model.string_period_us, config.max_gap_us, config.max_backward_us))
             return Status::invalid_argument;
-        if (!(config.max_joint_speed >= 0.0f)) return Status::invalid_argument;
-        jump_.configure(config.max_joint_speed);
+        if (!(config.max_pose_speed >= 0.0f)) return Status::invalid_argument;
+        jump_.configure(config.max_pose_speed);
         const Plan p = plan(model, config.deferred);
         if (!detail::storage_fits(storage, bytes, p.bytes)) return Status::storage_too_small;
         detail::clear_storage(storage, p.bytes);
@@ -503,7 +504,7 @@ private:
     Character characters_[2] = {};
     bool ready_[2] = {};          // the slot's character (and its motion, if any) is computed
     std::int64_t times_[2] = {};  // the slot's frame time (for its motion)
-    JumpCheck jump_;              // EncoderConfig::max_joint_speed
+    JumpCheck jump_;              // EncoderConfig::max_pose_speed
     std::size_t previous_ = 0;
     bool has_previous_ = false;
     Character last_ = 0;

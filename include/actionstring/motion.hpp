@@ -33,52 +33,76 @@ namespace actionstring {
 /// span is always within reach.
 constexpr std::size_t motion_ring_poses = 6;
 
-/// The joint speed (metres per second, relative to the hips) beyond which a
-/// stream's pose is taken to have jumped rather than moved (AnnotatorConfig::
-/// max_joint_speed). A person's fastest joint moves at up to about 9 m/s
-/// from frame to frame (HDM05's 99.9th percentile; MSR Action3D's, tracking
-/// noise included, about 15 m/s); joining HDM05's clips moves it faster than
-/// 20 m/s in half of the joinings, and a tracker that loses and finds the
-/// body does too. Chosen on the training subjects' online folds of every
-/// config in models/ (models/README.md, "Jumps in a stream"): 10 to 30 m/s
-/// tie, and the largest restarts least.
-constexpr float default_max_joint_speed = 30.0f;
+/// The pose speed (metres per second: the mean over the normalised pose's
+/// coordinates of how fast each moved since the previous frame) beyond which
+/// a stream's pose is taken to have jumped rather than moved
+/// (AnnotatorConfig::max_pose_speed). Within HDM05's clips the mean speed
+/// stays under 1.2 m/s (99.9th percentile, frame to frame, at most 3.3);
+/// joining one actor's clips moves it faster than 5 m/s in half of the
+/// joinings, and a tracker that loses and finds the body does too. Chosen on
+/// the training subjects' online folds of every config in models/
+/// (models/README.md, "Jumps in a stream"): 3 to 8 m/s tie, and the largest
+/// restarts least.
+constexpr float default_max_pose_speed = 8.0f;
 
-/// Whether a stream's pose jumped from one frame to the next: some
-/// coordinate of the normalised pose moved faster than the bound. Across a
-/// jump a difference is no motion, so the encoder then starts the motion
-/// again (MotionRing::reset()), as at a stream's start, and as each training
-/// clip started. The speed is judged over the longer of the frame's
-/// interval and the stream's typical one (a running mean of its intervals),
-/// so a frame that a jittery clock brought close to the last one does not
-/// look fast.
+/// How many times the stream's typical frame-to-frame change a jump must be
+/// as well: a noisy sensor at a high frame rate changes every frame fast, by
+/// about the same amount each frame (3 cm of noise at 120 Hz: about 4 m/s),
+/// and none of those frames is a jump. Twice lets noise through on the
+/// training subjects' folds; three times does not.
+constexpr float jump_over_typical = 3.0f;
+
+/// Whether a stream's pose jumped from one frame to the next: the pose moved
+/// faster than the bound (the mean over its coordinates of each one's change,
+/// per second), and by more than jump_over_typical times the stream's typical
+/// change per frame. Across a jump a difference is no motion, so the encoder
+/// then starts the motion again (MotionRing::reset()), as at a stream's start,
+/// and as each training clip started. The speed is judged over the longer of
+/// the frame's interval and the stream's typical one (a running mean of its
+/// intervals), so a frame that a jittery clock brought close to the last one
+/// does not look fast. The mean over the coordinates, unlike the largest,
+/// averages a noisy sensor's errors out and costs no branch per coordinate.
 class JumpCheck {
 public:
-    /// The bound in metres per second (0: no pose ever jumps); forgets the
-    /// stream's interval.
+    /// The bound in metres per second (0: no pose ever jumps); forgets the stream.
     void configure(float max_speed) noexcept {
         max_speed_ = max_speed;
         reset();
     }
-    /// Forgets the stream's typical interval (another stream, another clock).
-    void reset() noexcept { interval_s_ = 0.0f; }
+    /// Forgets the stream's typical interval and change (another stream, another clock).
+    void reset() noexcept {
+        interval_s_ = 0.0f;
+        typical_ = 0.0f;
+        seen_ = false;
+    }
 
     /// Whether `pose` (D floats, `step_us` after `previous`) jumped from
-    /// `previous`. Steps of 0 (one instant) judge nothing; every later step
-    /// counts toward the typical interval.
+    /// `previous`. Steps of 0 (one instant) judge nothing; the first step
+    /// judged sets the typical change and is never a jump.
     bool jumped(std::int64_t step_us, const float* pose, const float* previous, std::size_t D) noexcept {
-        if (step_us <= 0 || max_speed_ <= 0.0f) return false;
+        if (step_us <= 0 || max_speed_ <= 0.0f || D == 0) return false;
         const float step_s = static_cast<float>(step_us) * 1.0e-6f;
         interval_s_ = interval_s_ == 0.0f ? step_s : interval_s_ + (step_s - interval_s_) * 0.125f;
+        float change = 0.0f;
+        for (std::size_t i = 0; i < D; ++i) change += std::fabs(pose[i] - previous[i]);
+        change /= static_cast<float>(D);
+        if (!seen_) {
+            seen_ = true;
+            typical_ = change;
+            return false;
+        }
         const float bound = max_speed_ * (step_s > interval_s_ ? step_s : interval_s_);
-        for (std::size_t i = 0; i < D; ++i)
-            if (!(std::fabs(pose[i] - previous[i]) <= bound)) return true;
-        return false;
+        const bool jump = change > bound && change > jump_over_typical * typical_;
+        // The typical change follows the stream slowly (a jump does not move it).
+        if (!jump) typical_ += (change - typical_) * 0.03125f;
+        return jump;
     }
 
 private:
     float max_speed_ = 0.0f;
     float interval_s_ = 0.0f;  // the typical interval, 0 until a step is seen
+    float typical_ = 0.0f;     // the typical change per frame (mean over the coordinates)
+    bool seen_ = false;        // a step was judged: typical_ is set
 };
 
 /// Recent poses of one stream, for its motion. Works in caller-owned

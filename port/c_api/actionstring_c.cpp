@@ -150,7 +150,7 @@ AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) 
     config.spread_work = c->spread_work != 0;
     config.label_lead_us = c->label_lead_us;
     for (int a = 0; a < 3; ++a) config.up[a] = c->up[a];
-    config.max_joint_speed = c->max_joint_speed;
+    config.max_pose_speed = c->max_pose_speed;
     config.segmenter = from_settings(c->online);
     return config;
 }
@@ -170,7 +170,7 @@ bool config_ok(const ModelView& model, const AnnotatorConfig& config) {
            Annotator::required_bytes(model, config) != actionstring::unsatisfiable_bytes && config.min_action_us >= 0 &&
            config.min_action_us <= actionstring::max_settle_delay_us && config.label_lead_us >= 0 &&
            config.label_lead_us <= actionstring::max_settle_delay_us && up_ok(model, config.up) &&
-           config.max_joint_speed >= 0.0f;
+           config.max_pose_speed >= 0.0f;
 }
 
 void set_model(actionstring_model* handle, const ModelView& view, const char* checksum) {
@@ -273,7 +273,7 @@ actionstring_status actionstring_default_config(const actionstring_model* handle
     config->spread_work = c.spread_work ? 1 : 0;
     config->label_lead_us = c.label_lead_us;
     for (int a = 0; a < 3; ++a) config->up[a] = c.up[a];
-    config->max_joint_speed = c.max_joint_speed;
+    config->max_pose_speed = c.max_pose_speed;
     return ACTIONSTRING_OK;
 }
 

@@ -99,10 +99,11 @@ typedef struct actionstring_config {
                                   it along the model's up axis, so a sensor mounted higher or lower gives the poses
                                   the training one gave; all zero (default): no turn. Not finite or shorter than
                                   1e-6: INVALID_ARGUMENT */
-    float max_joint_speed;   /**< a pose that moved faster than this since the previous frame (metres per second,
-                                  any coordinate of the normalised pose) jumped: the tracker lost and found the
-                                  body, or clips were joined, and the motion starts again from it (default 30;
-                                  0: never). Negative or NaN: INVALID_ARGUMENT */
+    float max_pose_speed;    /**< a pose that moved faster than this since the previous frame (metres per second,
+                                  the mean over the normalised pose's coordinates), and by three times what the
+                                  stream's frames typically move, jumped: the tracker lost and found the body, or
+                                  clips were joined, and the motion starts again from it (default 8; 0: never).
+                                  Negative or NaN: INVALID_ARGUMENT */
 } actionstring_config;
 
 /** What one actionstring_push_frame() did. */

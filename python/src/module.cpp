@@ -256,7 +256,7 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
             throw py::value_error(
                 "unknown online setting '" + key +
                 "' (settle, settle_stable, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, segment_exemplars, "
-                "window_rule, spread_work, max_gap, max_backward, max_joint_speed, min_action, label_lead, up)");
+                "window_rule, spread_work, max_gap, max_backward, max_pose_speed, min_action, label_lead, up)");
     }
     return config;
 }

@@ -167,15 +167,15 @@ def test_early_settling_settles_sooner_and_in_order(toy_clips):
 
 
 def test_the_jump_bound_is_a_stream_setting(toy_model, toy_clips):
-    """max_joint_speed: 0 never restarts the motion, a negative bound is refused,
+    """max_pose_speed: 0 never restarts the motion, a negative bound is refused,
     and evaluate() and annotate() take it as the Annotator does."""
-    actionstring.Annotator(toy_model, max_joint_speed=0)
-    actionstring.Annotator(toy_model, max_joint_speed=12.5)
-    with pytest.raises(ValueError, match="option --max-joint-speed expects"):
-        actionstring.Annotator(toy_model, max_joint_speed=-1)
-    with pytest.raises(ValueError, match="option --max-joint-speed expects"):
-        toy_model.annotate(toy_clips[0], max_joint_speed=float("nan"))
-    report = toy_model.evaluate(toy_clips, online=True, max_joint_speed=0)
+    actionstring.Annotator(toy_model, max_pose_speed=0)
+    actionstring.Annotator(toy_model, max_pose_speed=12.5)
+    with pytest.raises(ValueError, match="option --max-pose-speed expects"):
+        actionstring.Annotator(toy_model, max_pose_speed=-1)
+    with pytest.raises(ValueError, match="option --max-pose-speed expects"):
+        toy_model.annotate(toy_clips[0], max_pose_speed=float("nan"))
+    report = toy_model.evaluate(toy_clips, online=True, max_pose_speed=0)
     assert report["online"]["settled"]["frames"] > 0
 
 

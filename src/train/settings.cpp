@@ -88,7 +88,7 @@ bool apply_segmenter_setting(const std::string& name, const std::string& value, 
 bool apply_online_setting(const std::string& name, const std::string& value, AnnotatorConfig& config) {
     if (name == "min-action") config.min_action_us = std::llround(number(name, value, 0, 60) * 1e6);
     else if (name == "label-lead") config.label_lead_us = std::llround(number(name, value, 0, 60) * 1e6);
-    else if (name == "max-joint-speed") config.max_joint_speed = static_cast<float>(number(name, value, 0, 1e6));
+    else if (name == "max-pose-speed") config.max_pose_speed = static_cast<float>(number(name, value, 0, 1e6));
     else return apply_segmenter_setting(name, value, config.segmenter);
     return true;
 }

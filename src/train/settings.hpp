@@ -34,8 +34,8 @@ bool apply_segmenter_setting(const std::string& name, const std::string& value, 
 /// Applies one of the online settings a model carries to a runtime config:
 /// the segmenter's (apply_segmenter_setting()), the events' shortest action
 /// (min-action, in seconds, up to a minute) or the label lead (label-lead, in
-/// seconds, up to a minute); or the stream's max-joint-speed (metres per
-/// second, AnnotatorConfig::max_joint_speed), which no model carries. Returns
+/// seconds, up to a minute); or the stream's max-pose-speed (metres per
+/// second, AnnotatorConfig::max_pose_speed), which no model carries. Returns
 /// false when `name` is not one; throws std::invalid_argument for a bad value.
 bool apply_online_setting(const std::string& name, const std::string& value, AnnotatorConfig& config);
 
