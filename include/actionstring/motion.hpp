@@ -46,9 +46,9 @@ constexpr std::size_t motion_ring_poses = 6;
 constexpr float default_max_pose_speed = 8.0f;
 
 /// How many times the stream's typical frame-to-frame change a jump must be
-/// as well: a noisy sensor at a high frame rate changes every frame fast, by
-/// about the same amount each frame (3 cm of noise at 120 Hz: about 4 m/s),
-/// and none of those frames is a jump. Twice lets noise through on the
+/// as well: a noisy sensor at a high frame rate (3 cm of noise at 120 Hz)
+/// changes every frame fast, by about the same amount each frame, and none
+/// of those frames is a jump. Twice lets noise through on the
 /// training subjects' folds; three times does not.
 constexpr float jump_over_typical = 3.0f;
 
