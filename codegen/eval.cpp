@@ -70,7 +70,7 @@ void print_eval_usage(std::FILE* out) {
                  "--max-pose-speed V: a pose that moved faster than V m/s since the previous\n"
                  "frame (the mean over its coordinates), and by three times what the stream's\n"
                  "frames typically move, jumped (tracking lost and found, clips joined), and its\n"
-                 "motion starts again from it [8; 0: never].\n"
+                 "motion starts again from it [3; 0: never].\n"
                  "--spread-work spreads each character's work (encoder and segmenter) over the\n"
                  "frames until the next character (AnnotatorConfig::spread_work): the same labels and\n"
                  "events, each reported up to one string period later (the latency shows it).\n"

@@ -664,12 +664,12 @@ TEST_CASE("a restart and flush() give the ended stream's tail its labels: flushe
     CHECK(unknown_after <= 2);  // and the end of the stream is flushed too
 }
 
-TEST_CASE("a stream's jump bound: 8 m/s unless set, 0 turns it off, a negative or NaN one refused") {
+TEST_CASE("a stream's jump bound: 3 m/s unless set, 0 turns it off, a negative or NaN one refused") {
     host::ToyWorld world = host::make_toy_world();
     const ModelView view = world.model.view();
     CHECK(AnnotatorConfig{}.max_pose_speed == default_max_pose_speed);
     CHECK(annotator_config(view).max_pose_speed == default_max_pose_speed);
-    CHECK(default_max_pose_speed == 8.0f);
+    CHECK(default_max_pose_speed == 3.0f);
     // The encoder takes a clip as recorded unless told otherwise.
     CHECK(EncoderConfig{}.max_pose_speed == 0.0f);
     host::Stateful<Annotator> annotator;

@@ -39,11 +39,15 @@ constexpr std::size_t motion_ring_poses = 6;
 /// (AnnotatorConfig::max_pose_speed). Within HDM05's clips the mean speed
 /// stays under 1.2 m/s (99.9th percentile, frame to frame, at most 3.3);
 /// joining one actor's clips moves it faster than 5 m/s in half of the
-/// joinings, and a tracker that loses and finds the body does too. Chosen on
-/// the training subjects' online folds of every config in models/
-/// (models/README.md, "Jumps in a stream"): 3 to 8 m/s tie, and the largest
-/// restarts least.
-constexpr float default_max_pose_speed = 8.0f;
+/// joinings, and a tracker that loses and finds the body does too. A jump is
+/// a distance, so the speed it shows falls with the frame rate: joined clips
+/// at 30 Hz move about a quarter as fast as at 120 Hz, and 8 m/s missed most
+/// joinings there (HDM05's folds resampled to 30 Hz settled 0.05 fewer
+/// frames). Chosen on the training subjects' online folds of every config in
+/// models/ (models/README.md, "Jumps in a stream" and "The jump bound at any
+/// frame rate"): at the lists' own rates 3 to 8 m/s tie, and at 15 and 30 Hz
+/// 3 m/s keeps what 120 Hz gets.
+constexpr float default_max_pose_speed = 3.0f;
 
 /// How many times the stream's typical frame-to-frame change a jump must be
 /// as well: a noisy sensor at a high frame rate (3 cm of noise at 120 Hz)

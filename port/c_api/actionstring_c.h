@@ -102,7 +102,7 @@ typedef struct actionstring_config {
     float max_pose_speed;    /**< a pose that moved faster than this since the previous frame (metres per second,
                                   the mean over the normalised pose's coordinates), and by three times what the
                                   stream's frames typically move, jumped: the tracker lost and found the body, or
-                                  clips were joined, and the motion starts again from it (default 8; 0: never).
+                                  clips were joined, and the motion starts again from it (default 3; 0: never).
                                   Negative or NaN: INVALID_ARGUMENT */
 } actionstring_config;
 

@@ -362,7 +362,7 @@ class Annotator:
     differs from the model's up axis (a Kinect's floor plane normal, an IMU's
     gravity): every frame is turned to put it along the axis, so a sensor mounted
     higher or lower than the training one gives the poses it gave.
-    ``max_pose_speed`` (metres per second, 8 unless given; 0: never): a pose that
+    ``max_pose_speed`` (metres per second, 3 unless given; 0: never): a pose that
     moved faster since the previous frame (the mean over its coordinates), and by
     three times what the stream's frames typically move, jumped (the tracker lost
     and found the body, or clips were joined), and its motion starts again from it.

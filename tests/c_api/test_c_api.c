@@ -203,8 +203,8 @@ static void contract_checks(const actionstring_model* model) {
         CHECK(actionstring_state_size(model, &tilted) == actionstring_state_size(model, &config));
     }
     CHECK(actionstring_set_up_direction(state, 0.0f, 0.0f, 0.0f) == ACTIONSTRING_OK);
-    /* The jump bound: 8 m/s by default, 0 never restarts the motion, a negative or NaN one refused. */
-    CHECK(config.max_pose_speed == 8.0f);
+    /* The jump bound: 3 m/s by default, 0 never restarts the motion, a negative or NaN one refused. */
+    CHECK(config.max_pose_speed == 3.0f);
     {
         actionstring_config jumps = config;
         jumps.max_pose_speed = 0.0f;
