@@ -69,6 +69,10 @@ host::TrainingOptions toy_motion_options() {
     return options;
 }
 
+// Poses of three coordinates whose mean change from `origin` is c metres (JumpCheck's tests).
+constexpr float origin[3] = {0.0f, 0.0f, 0.0f};
+std::array<float, 3> shifted(float c) { return {3.0f * c, 0.0f, 0.0f}; }
+
 }  // namespace
 
 TEST_CASE("the velocity of a steady motion is its speed, weighted, at any frame rate, jitter or drops") {
@@ -289,35 +293,32 @@ TEST_CASE("the encoder's string and features equal the eagerly sampled features'
 }
 
 TEST_CASE("a jump: faster than the bound, and well beyond the stream's typical change") {
-    // Poses of three coordinates whose mean change from `still` is c metres.
-    const float still[3] = {0.0f, 0.0f, 0.0f};
-    auto moved = [](float c) { return std::array<float, 3>{3.0f * c, 0.0f, 0.0f}; };
     JumpCheck check;
     check.configure(5.0f);
     // The first step judged sets the typical change and never jumps, however large.
-    CHECK_FALSE(check.jumped(10000, moved(0.01f).data(), still, 3));
-    for (int f = 0; f < 40; ++f) CHECK_FALSE(check.jumped(10000, moved(0.01f).data(), still, 3));  // 1 m/s
+    CHECK_FALSE(check.jumped(10000, shifted(0.01f).data(), origin, 3));
+    for (int f = 0; f < 40; ++f) CHECK_FALSE(check.jumped(10000, shifted(0.01f).data(), origin, 3));  // 1 m/s
     // 10 m/s, ten times the typical change: a jump. It does not move the typical
     // change, so a 2 m/s step after it is none.
-    CHECK(check.jumped(10000, moved(0.1f).data(), still, 3));
-    CHECK_FALSE(check.jumped(10000, moved(0.02f).data(), still, 3));
+    CHECK(check.jumped(10000, shifted(0.1f).data(), origin, 3));
+    CHECK_FALSE(check.jumped(10000, shifted(0.02f).data(), origin, 3));
     // One instant judges nothing.
-    CHECK_FALSE(check.jumped(0, moved(1.0f).data(), still, 3));
+    CHECK_FALSE(check.jumped(0, shifted(1.0f).data(), origin, 3));
     // A jittery clock: 2 cm 1 ms after the last frame is 2 m/s over the typical
     // 10 ms interval, though it would be 20 m/s over 1 ms.
-    CHECK_FALSE(check.jumped(1000, moved(0.02f).data(), still, 3));
+    CHECK_FALSE(check.jumped(1000, shifted(0.02f).data(), origin, 3));
     // A dropped frame: 12 cm over 30 ms is 4 m/s.
-    CHECK_FALSE(check.jumped(30000, moved(0.12f).data(), still, 3));
+    CHECK_FALSE(check.jumped(30000, shifted(0.12f).data(), origin, 3));
     // A noisy sensor: every frame changes by 6 cm in 10 ms (6 m/s, over the bound),
     // so none of them is a jump; 30 cm, five times as much, is.
     check.reset();
-    for (int f = 0; f < 40; ++f) CHECK_FALSE(check.jumped(10000, moved(0.06f).data(), still, 3));
-    CHECK_FALSE(check.jumped(10000, moved(0.15f).data(), still, 3));  // 2.5 times: not yet
-    CHECK(check.jumped(10000, moved(0.3f).data(), still, 3));
+    for (int f = 0; f < 40; ++f) CHECK_FALSE(check.jumped(10000, shifted(0.06f).data(), origin, 3));
+    CHECK_FALSE(check.jumped(10000, shifted(0.15f).data(), origin, 3));  // 2.5 times: not yet
+    CHECK(check.jumped(10000, shifted(0.3f).data(), origin, 3));
     // 0 never jumps.
     check.configure(0.0f);
-    CHECK_FALSE(check.jumped(10000, moved(0.01f).data(), still, 3));
-    CHECK_FALSE(check.jumped(10000, moved(100.0f).data(), still, 3));
+    CHECK_FALSE(check.jumped(10000, shifted(0.01f).data(), origin, 3));
+    CHECK_FALSE(check.jumped(10000, shifted(100.0f).data(), origin, 3));
 }
 
 TEST_CASE("the default bound sees a joining at 30 Hz as at 120 Hz") {
@@ -325,19 +326,17 @@ TEST_CASE("the default bound sees a joining at 30 Hz as at 120 Hz") {
     // shows 18 m/s between frames at 120 Hz but 4.5 m/s at 30 Hz, which the
     // 8 m/s bound of before missed (models/README.md, "The jump bound at any
     // frame rate"). Real movement, 1 m/s at either rate, is no jump.
-    const float still[3] = {0.0f, 0.0f, 0.0f};
-    auto moved = [](float c) { return std::array<float, 3>{3.0f * c, 0.0f, 0.0f}; };
     for (const std::int64_t step_us : {std::int64_t{8333}, std::int64_t{33333}}) {
         CAPTURE(step_us);
         const float per_frame = 1.0f * static_cast<float>(step_us) * 1e-6f;  // 1 m/s
         JumpCheck check;
         check.configure(default_max_pose_speed);
-        for (int f = 0; f < 40; ++f) CHECK_FALSE(check.jumped(step_us, moved(per_frame).data(), still, 3));
-        CHECK(check.jumped(step_us, moved(0.15f).data(), still, 3));
+        for (int f = 0; f < 40; ++f) CHECK_FALSE(check.jumped(step_us, shifted(per_frame).data(), origin, 3));
+        CHECK(check.jumped(step_us, shifted(0.15f).data(), origin, 3));
         JumpCheck before;
         before.configure(8.0f);
-        for (int f = 0; f < 40; ++f) CHECK_FALSE(before.jumped(step_us, moved(per_frame).data(), still, 3));
-        CHECK(before.jumped(step_us, moved(0.15f).data(), still, 3) == (step_us < 20000));
+        for (int f = 0; f < 40; ++f) CHECK_FALSE(before.jumped(step_us, shifted(per_frame).data(), origin, 3));
+        CHECK(before.jumped(step_us, shifted(0.15f).data(), origin, 3) == (step_us < 20000));
     }
 }
 
