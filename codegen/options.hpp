@@ -191,7 +191,7 @@ inline bool parse_online_option(ArgumentReader& args, const std::string& option,
     AnnotatorConfig check;
     if (name != "settle" && name != "settle-stable" && name != "segment-penalty" && name != "stay-penalty" &&
         name != "skip-penalty" && name != "unknown-cost" && name != "segment-votes" && name != "segment-exemplars" &&
-        name != "min-action" && name != "label-lead" && name != "max-pose-speed")
+        name != "segment-directions" && name != "min-action" && name != "label-lead" && name != "max-pose-speed")
         return false;
     const std::string value = args.value(option);
     if (args.ok() && apply_online_setting(args, name, value, check)) overrides.settings.emplace_back(name, value);

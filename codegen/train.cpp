@@ -87,6 +87,11 @@ void print_train_usage(std::FILE* out) {
                  "                          ridge regression beside the descriptor, 0 = none [0]\n"
                  "  --direction-weight W    its weight [0]\n"
                  "  --direction-ridge X     its ridge regression's penalty on squared weights [1000]\n"
+                 "  --direction-window S    the same histograms over a stream's last S seconds of\n"
+                 "                          characters, scored per label by a third ridge regression\n"
+                 "                          fitted on every training clip's windows, for the segmenter\n"
+                 "                          (--segment-directions weighs it), 0 = none [0]\n"
+                 "  --direction-window-ridge X  its ridge regression's penalty [1000]\n"
                  "  --no-action-exemplars true|false  with a list of recordings, centres of their\n"
                  "                          unlabelled stretches too, for the segmenter [true]\n"
                  "  --window S, --step S    sliding window and step in seconds [%g, %g]\n"
@@ -501,6 +506,12 @@ int run_train(int argc, char** argv) {
                 "motion directions: %u levels over %u pose joints, %zu weights per label (ridge %g), weight %g\n",
                 view.direction_levels, view.pose_joint_count, view.direction_size(), options.direction_ridge,
                 static_cast<double>(view.direction_weight));
+        if (view.has_window_directions())
+            std::printf(
+                "window directions: the last %u characters, %zu weights per label (ridge %g); "
+                "in the explanation with weight %g\n",
+                view.window_direction_chars, view.window_direction_size(), options.direction_window_ridge,
+                static_cast<double>(view.segment_direction_weight));
         if (!report.label_bounds.empty()) {
             std::printf("rejection:        each label's bound, from its held-out training clips (positives) and\n"
                         "                  what lands on it but is not it (negatives; keep >= %g of positives):\n",

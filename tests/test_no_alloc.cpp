@@ -150,6 +150,49 @@ TEST_CASE("streaming thousands of frames through the annotator allocates nothing
         }
 }
 
+TEST_CASE("a segmenter weighing exemplars and the window's directions allocates nothing, spread or not") {
+    actionstring::host::ToyWorld world = actionstring::host::make_toy_world();
+    actionstring::host::TrainingOptions options = test::toy_options();
+    options.components = 0;
+    options.pca_dim = 6;
+    options.velocity_weight = 1.0;
+    options.exemplars = 4;
+    options.exemplar_weight = 1.0;
+    options.direction_window_s = 1.0;
+    options.online.exemplar_weight = 0.1f;
+    options.online.direction_weight = 0.25f;
+    const actionstring::host::ModelData model =
+        actionstring::host::train_model(actionstring::host::toy_clips(world, 6, 100), options);
+    const actionstring::ModelView view = model.view();
+    REQUIRE(view.has_window_directions());
+    for (const bool spread : {false, true}) {
+        actionstring::host::Stateful<actionstring::Annotator> annotator;
+        actionstring::AnnotatorConfig config = actionstring::annotator_config(view);
+        config.spread_work = spread;
+        REQUIRE(annotator.init(view, config) == actionstring::Status::ok);
+        std::vector<int> sequence;
+        for (int i = 0; i < 20; ++i) sequence.push_back(i % 4);
+        auto frames = actionstring::host::toy_stream(world, sequence);
+        for (std::size_t i = frames.size() / 2; i < frames.size(); ++i)  // a jump: the window starts again
+            frames[i].positions[3 * 3 + 1] += 1.0f, frames[i].positions[4 * 3 + 1] += 1.0f;
+
+        Eigen::internal::set_is_malloc_allowed(false);
+        const Counts before = snapshot();
+        std::size_t settled = 0;
+        for (const auto& frame : frames)
+            settled += annotator->push_frame(frame.time_us, frame.positions.data()).characters_settled;
+        settled += annotator->finish_work().characters_settled;
+        annotator->flush();
+        const Counts after = snapshot();
+        Eigen::internal::set_is_malloc_allowed(true);
+
+        CHECK(settled > 100);
+        CHECK(after.mallocs == before.mallocs);
+        CHECK(after.news == before.news);
+        CHECK(after.eigen == before.eigen);
+    }
+}
+
 TEST_CASE("classifying and scoring whole clips with votes, exemplars and a clip descriptor allocates nothing") {
     actionstring::host::ToyWorld world = actionstring::host::make_toy_world();
     const auto train = actionstring::host::toy_clips(world, 6, 100);

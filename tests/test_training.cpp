@@ -737,7 +737,8 @@ namespace {
 // A model's artifact as an earlier version wrote it: the version line, and
 // none of the fields added since (version 6: the exemplars; 7: the
 // acceleration's weight; 8: the events' shortest action; 9: the exemplars'
-// dimension; 10: the clip descriptor; 11: the label lead).
+// dimension; 10: the clip descriptor; 11: the label lead; 12: the motion
+// directions; 13: early settling; 14: the window's directions).
 std::string older_artifact(const ModelData& model, int version) {
     std::string body;
     const std::string fields = serialize_fields(model);
@@ -750,7 +751,8 @@ std::string older_artifact(const ModelData& model, int version) {
             (version < 8 && line.find("min_action_us") != std::string::npos) ||
             (version < 9 && line.find("exemplar_dim ") == 0) || (version < 10 && line.find("descriptor") == 0) ||
             (version < 11 && line.find("label_lead_us") == 0) || (version < 12 && line.find("direction") == 0) ||
-            (version < 13 && line.find("settle_stable_us") == 0);
+            (version < 13 && line.find("settle_stable_us") == 0) ||
+            (version < 14 && (line.find("window_direction") == 0 || line.find("segment_direction_weight") == 0));
         if (!added) body += line;
         at = end;
     }
@@ -762,13 +764,14 @@ std::string older_artifact(const ModelData& model, int version) {
 }  // namespace
 
 TEST_CASE(
-    "version-5 to 12 artifacts (before the exemplars, the acceleration, the shortest action, the exemplars' "
-    "dimension, the clip descriptor, the label lead, the motion directions, early settling) are read") {
+    "version-5 to 13 artifacts (before the exemplars, the acceleration, the shortest action, the exemplars' "
+    "dimension, the clip descriptor, the label lead, the motion directions, early settling, the window's "
+    "directions) are read") {
     const ToyWorld world = make_toy_world();
     REQUIRE_FALSE(world.model.view().has_exemplars());
     REQUIRE_FALSE(world.model.view().has_acceleration());
     REQUIRE(world.model.min_action_us == 250000u);  // what a model without the field has
-    for (const int version : {5, 6, 7, 8, 9, 10, 11, 12}) {
+    for (const int version : {5, 6, 7, 8, 9, 10, 11, 12, 13}) {
         CAPTURE(version);
         const std::string old = older_artifact(world.model, version);
         CHECK(serialize_model(parse_model("old.model", old)) == serialize_model(world.model));
@@ -779,8 +782,8 @@ TEST_CASE(
         const char* const missing = version < 7    ? "expected 'acceleration_weight'"
                                     : version < 9  ? "expected 'exemplar_dim'"
                                     : version < 10 ? "expected 'descriptor_weight'"
-                                    : version < 12 ? "expected 'direction_weight'"  // before label_lead_us
-                                                   : "expected 'settle_stable_us'";
+                                    : version < 12 ? "expected 'direction_weight'"         // before label_lead_us
+                                                   : "expected 'window_direction_chars'";  // before settle_stable_us
         CHECK_THROWS_WITH_AS(parse_model("new.model", current), doctest::Contains(missing), ReadError);
     }
     // A version-7 model's events keep the runtime's default shortest action.
@@ -795,7 +798,11 @@ TEST_CASE(
     // A version-12 model settles by the delay alone.
     shorter.settle_stable_us = 1000000;
     CHECK(parse_model("v12.model", older_artifact(shorter, 12)).settle_stable_us == 0u);
-    CHECK(parse_model("v13.model", serialize_model(shorter)).settle_stable_us == 1000000u);
+    CHECK(parse_model("v13.model", older_artifact(shorter, 13)).settle_stable_us == 1000000u);
+    // A version-13 model has no window of directions, and its segmenter does not weigh one.
+    shorter.segment_direction_weight = 0.5f;
+    CHECK(parse_model("v13.model", older_artifact(shorter, 13)).segment_direction_weight == 0.0f);
+    CHECK(parse_model("v14.model", serialize_model(shorter)).segment_direction_weight == 0.5f);
     // A version-8 model's exemplars keep every coordinate of the feature.
     TrainingOptions options = toy_pca_only_options();
     options.exemplars = 3;

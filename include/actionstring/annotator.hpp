@@ -278,8 +278,12 @@ public:
         pushed_ += encoded.count();
         result.characters = encoded.count();
         if (!config_.spread_work) {
-            feed(encoded.previous, encoded.from_previous, encoded.previous_feature, result, encoder_.tick_time_us(0));
-            feed(encoded.current, encoded.from_current, encoded.current_feature, result, encoder_.tick_time_us(0));
+            feed(Fed{encoded.previous, encoded.from_previous, encoded.previous_feature, encoded.previous_pose,
+                     encoded.previous_facing, encoded.previous_epoch},
+                 result, encoder_.tick_time_us(0));
+            feed(Fed{encoded.current, encoded.from_current, encoded.current_feature, encoded.current_pose,
+                     encoded.current_facing, encoded.current_epoch},
+                 result, encoder_.tick_time_us(0));
         } else {
             if (encoded.count() > 0) {
                 // The characters before are computed and given to the
@@ -380,17 +384,31 @@ public:
     bool initialized() const noexcept { return model_ != nullptr; }
 
 private:
-    // Gives `count` ticks' character to the segmenter (and the window rule),
-    // in a stream whose character 0 ticked at origin_us. The segmenter's
-    // character before is finished first (when spread, it usually is).
-    void feed(Character character, std::uint32_t count, const float* feature, FrameResult& result,
-              std::int64_t origin_us) noexcept {
-        for (std::uint32_t t = 0; t < count; ++t) {
+    // A character for the segmenter: `count` ticks take it; what it was made
+    // from (its feature, pose and facing turn; each may be null).
+    struct Fed {
+        Character character;
+        std::uint32_t count;
+        const float* feature;
+        const float* pose;
+        const float* facing;
+        std::uint32_t epoch;  // its pose's stretch of unbroken motion (EncodedFrame::current_epoch)
+    };
+
+    // Gives a character to the segmenter (and the window rule), in a stream
+    // whose character 0 ticked at origin_us. The segmenter's character before
+    // is finished first (when spread, it usually is).
+    void feed(const Fed& c, FrameResult& result, std::int64_t origin_us) noexcept {
+        const Character character = c.character;
+        for (std::uint32_t t = 0; t < c.count; ++t) {
             const std::uint64_t index = fed_++;
             last_character_ = character;
             report(segmenter_.finish(), result, origin_us);
-            segmenter_.begin(character, feature);
-            if (!config_.spread_work || t + 1 < count) report(segmenter_.finish(), result, origin_us);
+            // Across a jump a step is no movement: the window of directions starts again.
+            if (c.epoch != epoch_) segmenter_.restart_window();
+            epoch_ = c.epoch;
+            segmenter_.begin(character, c.feature, c.pose, c.facing);
+            if (!config_.spread_work || t + 1 < c.count) report(segmenter_.finish(), result, origin_us);
             if (!window_rule_ || !matcher_.push(character)) continue;
             ++result.windows_completed;
             has_window_ = true;
@@ -430,7 +448,7 @@ private:
         budget = spend(budget, before - encoder_.deferred_work_left());
         if (!ready) return 0;
         const DeferredCharacter* c = encoder_.ready_character();
-        feed(c->character, c->count, c->feature, result, origin_us);
+        feed(Fed{c->character, c->count, c->feature, c->pose, c->facing, c->epoch}, result, origin_us);
         encoder_.pop_character();
         return budget;
     }
@@ -583,6 +601,7 @@ private:
     bool window_rule_ = false;
     std::uint64_t pushed_ = 0;  // ticks taken in this stream
     std::uint64_t fed_ = 0;     // characters given to the segmenter (pushed_ less those queued)
+    std::uint32_t epoch_ = 0;   // the epoch of the last character given to the segmenter
     ActionEventTracker events_;
     LabelId* live_ = nullptr;  // live label of each remembered character, by index mod live_ring_
     std::size_t live_ring_ = 1;

@@ -41,7 +41,7 @@ namespace actionstring {
 // 3: the label bounds; 4: interleaved GMM factors; 5: exemplars; 6: acceleration;
 // 7: the events' shortest action; 8: the exemplars' dimension; 9: the clip descriptor;
 // 10: the labels' lead; 11: the clip's motion directions; 12: early settling
-constexpr std::uint32_t blob_version = 12;
+constexpr std::uint32_t blob_version = 13;
 /// Alignment a blob's first byte must have (its tables are aligned to it within).
 constexpr std::size_t blob_alignment = 16;
 

@@ -261,6 +261,32 @@ inline void direction_penalties(const ModelView& model, const float* records, st
     detail::shortfall_penalties(model.direction_weight, L, penalties);
 }
 
+/// What the motion directions of a stream's last characters add to the cost
+/// of each label's explanations in the segmenter (segmenter.hpp): the
+/// histograms of clip_directions() over one level of the `n` records (the
+/// newest at most window_direction_chars, oldest first, turned to the facing
+/// of the oldest), scored per label by the window's own classifier,
+/// score(l) = window_direction_bias[l] + Σ_p window_direction_weights[l · P + p] · h[p]
+/// summed in p order, then weight · (max over labels of score − score(l)).
+/// ≥ 0, and 0 for the label scored highest. All 0 without window directions,
+/// with fewer than two records (no step yet), or when a score is not finite.
+/// The directions see which way the joints move, which the exemplars' poses
+/// and the characters do not: a push and a pull pass through the same poses.
+/// @param records   n × direction_record_floats() floats; read only during the call
+/// @param scratch   window_direction_size() floats (caller-owned), overwritten
+/// @param penalties receives label_count floats (caller-owned)
+inline void window_direction_penalties(const ModelView& model, const float* records, std::size_t n, float weight,
+                                       float* scratch, float* penalties) noexcept {
+    if (penalties == nullptr) return;
+    const std::size_t L = model.label_count;
+    for (std::size_t l = 0; l < L; ++l) penalties[l] = 0.0f;
+    if (!model.has_window_directions() || records == nullptr || n < 2 || scratch == nullptr) return;
+    clip_directions(records, n, model.pose_joint_count, model.up_axis, 1, scratch);
+    detail::linear_scores(model.window_direction_weights, model.window_direction_bias, scratch,
+                          model.window_direction_size(), L, penalties);
+    detail::shortfall_penalties(weight, L, penalties);
+}
+
 /// What the clip's two summaries add together to each label's distance:
 /// descriptor_penalties() of `features`, then direction_penalties() of
 /// `records` added, each only when the model has it and its input is given

@@ -53,6 +53,12 @@ struct EncodedFrame {
     /// The frame's pose jumped (EncoderConfig::max_pose_speed): its motion,
     /// and the motion of the frames after it, start again from it.
     bool motion_restarted = false;
+    /// Which stretch of unbroken motion each emitted pose belongs to: the
+    /// count of the stream's jumps before it (mod 2^32). Two characters whose
+    /// epochs differ have a jump between them: a step from one to the other
+    /// is no movement (the segmenter's window of directions starts again).
+    std::uint32_t previous_epoch = 0;
+    std::uint32_t current_epoch = 0;
 
     std::uint32_t count() const noexcept { return from_previous + from_current; }
     bool accepted() const noexcept { return status == Status::ok || status == Status::stream_restarted; }
@@ -67,6 +73,7 @@ struct DeferredCharacter {
     const float* feature = nullptr;
     const float* pose = nullptr;    ///< the pose it was projected from (input_dim() floats), as long as `feature`
     const float* facing = nullptr;  ///< that pose's facing turn ({cos, sin}), as long as `feature`
+    std::uint32_t epoch = 0;        ///< that pose's stretch of unbroken motion (EncodedFrame::current_epoch)
 };
 
 /// Stream timing of an encoder (AnnotatorConfig carries the same two), and
@@ -193,12 +200,14 @@ public:
             out.previous_feature = feature(1u - previous_);
             out.previous_pose = poses_[1u - previous_];
             out.previous_facing = facings_[1u - previous_];
+            out.previous_epoch = epochs_[1u - previous_];
         }
         if (out.from_current > 0) {
             out.current = character(previous_);
             out.current_feature = feature(previous_);
             out.current_pose = poses_[previous_];
             out.current_facing = facings_[previous_];
+            out.current_epoch = epochs_[previous_];
         }
         return out;
     }
@@ -235,10 +244,12 @@ public:
                 jump_.jumped(time_us - times_[previous_], poses_[current], poses_[previous_], model_->pose_dim())) {
                 motion_.reset();
                 out.motion_restarted = true;
+                ++epoch_;
             }
             if (plan.from_current > 0) motion_.motion(*model_, time_us, poses_[current]);
             motion_.keep(*model_, time_us, poses_[current]);
         }
+        epochs_[current] = epoch_;
         out.from_previous = plan.from_previous;
         out.from_current = plan.from_current;
         previous_ = current;
@@ -346,7 +357,7 @@ public:
     const DeferredCharacter* ready_character() noexcept {
         if (queued_ == 0 || entries_[head_].stage != Stage::ready) return nullptr;
         ready_out_ = DeferredCharacter{entries_[head_].character, entries_[head_].count, queue_features_[head_],
-                                       queue_poses_[head_], queue_facings_[head_]};
+                                       queue_poses_[head_],       queue_facings_[head_], queue_epochs_[head_]};
         return &ready_out_;
     }
 
@@ -389,6 +400,7 @@ private:
         for (std::size_t i = 0; i < n; ++i) queue_poses_[e][i] = poses_[slot][i];
         queue_facings_[e][0] = facings_[slot][0];
         queue_facings_[e][1] = facings_[slot][1];
+        queue_epochs_[e] = epochs_[slot];
         entries_[e] = Entry{};
         entries_[e].count = count;
         ready_[slot] = true;  // its motion is taken (accept_frame())
@@ -497,6 +509,9 @@ private:
     float* poses_[2] = {};  // input_dim() floats each: the pose, then with motion its velocity and acceleration
     float facings_[2][2] = {};        // each slot's facing turn, {cos, sin}
     float queue_facings_[2][2] = {};  // deferred: the queued poses' facing turns
+    std::uint32_t queue_epochs_[2] = {};  // deferred: the queued poses' epochs
+    std::uint32_t epochs_[2] = {};        // each pose slot's stretch of unbroken motion
+    std::uint32_t epoch_ = 0;             // the jumps seen so far (the newest pose's epoch)
     MotionRing motion_;
     float* skeleton_ = nullptr;  // the rebuilt skeleton (bone-length scaling)
     float rotation_[9] = {};     // EncoderConfig::up's turn (up_rotation()), used when turned_

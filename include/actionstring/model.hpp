@@ -173,6 +173,17 @@ struct ModelView {
     constexpr std::size_t direction_size() const noexcept {
         return std::size_t{direction_levels} * (direction_levels + 1u) / 2u * pose_joint_count * 3u * direction_bins;
     }
+    /// Floats of one window's direction histograms (window_directions()): per
+    /// pose joint, per coordinate plane, direction_bins sectors; 0 without a window.
+    constexpr std::size_t window_direction_size() const noexcept {
+        return window_direction_chars > 0 ? std::size_t{pose_joint_count} * 3u * direction_bins : 0u;
+    }
+    /// Whether the model can score the directions of a stream's last
+    /// window_direction_chars characters (the segmenter's evidence beside the exemplars).
+    constexpr bool has_window_directions() const noexcept {
+        return window_direction_chars > 1 && pose_joint_count > 0 && window_direction_weights != nullptr &&
+               window_direction_bias != nullptr;
+    }
     /// Whether the exemplars include centres of "no action" (labelled
     /// unknown_label, after every label's): the segmenter then weighs "no
     /// action" by its exemplars too. Learned from the unlabelled stretches of
@@ -499,6 +510,15 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
             return refuse(problem, "direction_weights: missing, non-finite or beyond 1e6");
         if (!detail::all_within(m.direction_bias, m.label_count, -max_table_value, max_table_value))
             return refuse(problem, "direction_bias: missing, non-finite or beyond 1e6");
+    }
+    // The window's directions: the same histograms over a stream's last characters.
+    if (m.window_direction_chars > 0) {
+        if (m.pose_joint_count == 0) return refuse(problem, "window_direction_chars: no pose joints to follow");
+        if (!detail::all_within(m.window_direction_weights, std::size_t{m.label_count} * m.window_direction_size(),
+                                -max_table_value, max_table_value))
+            return refuse(problem, "window_direction_weights: missing, non-finite or beyond 1e6");
+        if (!detail::all_within(m.window_direction_bias, m.label_count, -max_table_value, max_table_value))
+            return refuse(problem, "window_direction_bias: missing, non-finite or beyond 1e6");
     }
     // Matching.
     if (m.variant > MatchVariant::subsequence) return refuse(problem, "variant: unknown");

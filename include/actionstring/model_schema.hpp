@@ -123,6 +123,12 @@
     SCALAR(std::uint8_t, direction_levels, 0, 0, 8)        /* level v cuts the clip in v parts; 0 = none */ \
     TABLE(float, direction_weights, std::size_t{m.label_count} * m.direction_size(), 0, 0)                 \
     TABLE(float, direction_bias, (m.direction_levels > 0 ? m.label_count : 0u), 0, 0)                     \
+    /* the motion directions of the last few characters of a stream (descriptor.hpp,              */ \
+    /* window_directions()): the histograms over a window of that many characters, scored per      */ \
+    /* label by a third ridge classifier fitted on every training clip's windows, for the segmenter */ \
+    SCALAR(std::uint16_t, window_direction_chars, 0, 0, 1024) /* the window; 0 = none */               \
+    TABLE(float, window_direction_weights, std::size_t{m.label_count} * m.window_direction_size(), 0, 0)   \
+    TABLE(float, window_direction_bias, (m.window_direction_chars > 0 ? m.label_count : 0u), 0, 0)       \
     /* --- online settings of the segmenter (design §1.8), chosen at training --- */                      \
     SCALAR(std::uint32_t, settle_delay_us, 2000000, 0, 600000000) /* a character's label is final then */ \
     /* or sooner, once every best explanation has given it that label this long; 0: the delay alone */   \
@@ -133,6 +139,7 @@
     SCALAR(float, unknown_cost, detail::infinity(), 0, 0)  /* per character of "no action"; inf: none */ \
     SCALAR(float, segment_vote_weight, 0.0f, 0, 0)         /* the characters' votes in the explanation */ \
     SCALAR(float, segment_exemplar_weight, 0.0f, 0, 0)     /* the exemplars in the explanation */         \
+    SCALAR(float, segment_direction_weight, 0.0f, 0, 0)    /* the window's directions in the explanation */ \
     /* an action event needs a settled run this long (events.hpp): a shorter one is flicker */            \
     SCALAR(std::uint32_t, min_action_us, 250000, 0, 600000000)                                           \
     /* how much earlier than its tick a character's label applies (annotator.hpp, label_time_us()): */  \

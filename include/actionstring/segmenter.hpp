@@ -30,6 +30,7 @@
 
 #include "actionstring/detail/lanes.hpp"
 #include "actionstring/detail/math.hpp"
+#include "actionstring/descriptor.hpp"
 #include "actionstring/exemplars.hpp"
 #include "actionstring/model.hpp"
 #include "actionstring/status.hpp"
@@ -78,6 +79,14 @@ struct SegmenterConfig {
     /// same way and "nearest" includes it. 0 = off; it needs push() given
     /// the character's feature, and exemplars in the model.
     float exemplar_weight = 0.0f;
+    /// Weight of the motion directions of the stream's last characters
+    /// (descriptor.hpp, window_direction_penalties()) in the explanation: each
+    /// stream character also costs a label's representatives
+    /// direction_weight × (the best label's window score − their label's), so
+    /// an explanation pays for a motion its action's training windows did not
+    /// make; "no action" pays nothing here. 0 = off; it needs push() given
+    /// the character's pose and facing, and window directions in the model.
+    float direction_weight = 0.0f;
 };
 
 /// The online settings a model carries (chosen at training); a device uses
@@ -92,6 +101,7 @@ constexpr SegmenterConfig segmenter_config(const ModelView& m) noexcept {
     c.unknown_cost = m.unknown_cost;
     c.vote_weight = m.segment_vote_weight;
     c.exemplar_weight = m.segment_exemplar_weight;
+    c.direction_weight = m.segment_direction_weight;
     return c;
 }
 
@@ -133,6 +143,9 @@ public:
         vote_costs_ = p.votes_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.votes);
         exemplar_distances_ = p.exemplars_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.exemplars);
         feature_ = p.exemplars_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.feature);
+        window_ = p.window_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.window);
+        histogram_ = p.window_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.histogram);
+        window_costs_ = p.window_bytes == 0 ? nullptr : detail::storage_at<float>(storage, p.window_costs);
         use_votes_ = uses_votes(model, config);
         config_ = config;
         model_ = &model;
@@ -153,7 +166,8 @@ public:
             !detail::is_finite(config.segment_penalty) || !detail::is_finite(config.stay_penalty) ||
             !detail::is_finite(config.skip_penalty) || !(config.vote_weight >= 0.0f) ||
             !(config.vote_weight <= 1000.0f) || !(config.exemplar_weight >= 0.0f) ||
-            !(config.exemplar_weight <= 1000.0f))
+            !(config.exemplar_weight <= 1000.0f) || !(config.direction_weight >= 0.0f) ||
+            !(config.direction_weight <= 1000.0f))
             return Status::invalid_argument;
         if (model.representative_count >= unknown_rep) return Status::model_exceeds_capacity;
         if (model.string_period_us == 0) return Status::invalid_model;
@@ -171,6 +185,7 @@ public:
         margin_ = 0.0f;
         best_ = Hypothesis{};
         update_ = Update{};
+        window_count_ = 0;
         const std::size_t cells = model_->total_representative_chars();
         for (std::size_t i = 0; i < cells; ++i) {
             cells_.cost(i) = detail::infinity();
@@ -197,10 +212,28 @@ public:
     ///                (feature_dim floats, EncodedFrame's previous_feature /
     ///                current_feature; read only during the call), for the
     ///                exemplars' costs when the settings weigh them
-    bool push(Character character, const float* feature = nullptr) noexcept {
-        if (!begin(character, feature)) return false;
+    /// @param pose    null, or the normalised pose it was projected from (its
+    ///                first pose_dim() floats are read: EncodedFrame's
+    ///                previous_pose / current_pose) and
+    /// @param facing  the facing turn taken out of it ({cos, sin}), for the
+    ///                window's directions when the settings weigh them; read
+    ///                only during the call
+    bool push(Character character, const float* feature = nullptr, const float* pose = nullptr,
+              const float* facing = nullptr) noexcept {
+        if (!begin(character, feature, pose, facing)) return false;
         return finish() == Progress::settled;
     }
+
+    /// What the window's directions added to each label's cost for the
+    /// newest character begun (label_count floats, owned by the segmenter,
+    /// valid until the next begin()), all 0 when it came without a pose or
+    /// the window held one pose; null when the settings do not weigh them.
+    const float* window_costs() const noexcept { return window_costs_; }
+
+    /// Empties the window of directions (the next character starts it
+    /// again), as at a stream's start: across a jump in the pose a step is no
+    /// movement (the annotator calls it where the encoder's epoch changes).
+    void restart_window() noexcept { window_count_ = 0; }
 
     /// How far a character begun with begin() has come.
     enum class Progress : std::uint8_t {
@@ -217,9 +250,11 @@ public:
     /// characters_pushed(), …); the result is bit for bit push()'s. A character
     /// still in progress is finished first, and what it settled is then in
     /// settled_label() without being reported: finish() it before, to know.
-    /// The feature is copied. Returns false (nothing begun) when not
-    /// initialised or the character is not the model's.
-    bool begin(Character character, const float* feature = nullptr) noexcept {
+    /// The feature is copied; the window's directions are scored here, at
+    /// once (the pose and facing join the window). Returns false (nothing
+    /// begun) when not initialised or the character is not the model's.
+    bool begin(Character character, const float* feature = nullptr, const float* pose = nullptr,
+               const float* facing = nullptr) noexcept {
         if (model_ == nullptr || character >= model_->character_count) return false;
         if (update_.active) finish();
         const ModelView& m = *model_;
@@ -247,6 +282,14 @@ public:
             if (no_action) u.no_action_vote = config_.vote_weight * (best_vote - m.no_action_votes[character]);
         } else if (vote_costs_ != nullptr) {
             for (std::size_t l = 0; l < m.label_count; ++l) vote_costs_[l] = 0.0f;
+        }
+        // And what the window's motion costs them (its directions), now.
+        if (window_ != nullptr) {
+            if (pose != nullptr && facing != nullptr) {
+                fold_window(pose, facing);
+            } else {
+                for (std::size_t l = 0; l < m.label_count; ++l) window_costs_[l] = 0.0f;
+            }
         }
         // And what its pose costs them (the exemplars' distances), once
         // advance() has measured them: the feature is kept until then.
@@ -409,6 +452,24 @@ private:
             for (std::size_t l = 0; l < m.label_count; ++l) vote_costs_[l] += (exemplar_distances_[l] - nearest) * scale;
             if (detail::is_finite(u.none)) u.no_action_vote += (u.none - nearest) * scale;
         }
+    }
+
+    // The character's pose joins the window (the oldest leaves a full one),
+    // and the window's directions add their part of each label's cost.
+    void fold_window(const float* pose, const float* facing) noexcept {
+        const ModelView& m = *model_;
+        const std::size_t width = m.direction_record_floats(), D = m.pose_dim(), N = m.window_direction_chars;
+        if (window_count_ == N) {
+            for (std::size_t i = 0; i + width < N * width; ++i) window_[i] = window_[i + width];
+            --window_count_;
+        }
+        float* record = window_ + window_count_ * width;
+        for (std::size_t i = 0; i < D; ++i) record[i] = pose[i];
+        record[D] = facing[0];
+        record[D + 1] = facing[1];
+        ++window_count_;
+        window_direction_penalties(m, window_, window_count_, config_.direction_weight, histogram_, window_costs_);
+        for (std::size_t l = 0; l < m.label_count; ++l) vote_costs_[l] += window_costs_[l];
     }
 
     // The character's update is in: the ring, the best explanation, the settled label.
@@ -636,14 +697,17 @@ private:
 
     struct Plan {
         std::size_t costs = 0, starts = 0, ends = 0, settled = 0, candidates = 0, agreed_since = 0, stable_bytes = 0,
-                    votes = 0, votes_bytes = 0, exemplars = 0, exemplars_bytes = 0, feature = 0, column = 0,
-                    ring_size = 0, bytes = unsatisfiable_bytes;
+                    votes = 0, votes_bytes = 0, exemplars = 0, exemplars_bytes = 0, feature = 0, column = 0, window = 0,
+                    histogram = 0, window_costs = 0, window_bytes = 0, ring_size = 0, bytes = unsatisfiable_bytes;
     };
     static constexpr bool uses_votes(const ModelView& model, const SegmenterConfig& config) noexcept {
         return config.vote_weight > 0.0f && model.has_votes();
     }
     static constexpr bool uses_exemplars(const ModelView& model, const SegmenterConfig& config) noexcept {
         return config.exemplar_weight > 0.0f && model.has_exemplars();
+    }
+    static constexpr bool uses_window(const ModelView& model, const SegmenterConfig& config) noexcept {
+        return config.direction_weight > 0.0f && model.has_window_directions();
     }
     static constexpr Plan plan(const ModelView& model, const SegmenterConfig& config) noexcept;
 
@@ -834,12 +898,16 @@ private:
     // every best explanation has given it.
     LabelId* candidates_ = nullptr;
     std::uint32_t* agreed_since_ = nullptr;
-    float* vote_costs_ = nullptr;      // label_count: the newest character's cost per label (votes or exemplars on)
+    float* vote_costs_ = nullptr;  // label_count: the newest character's cost per label (votes, exemplars or window on)
     float* exemplar_distances_ = nullptr;  // label_count: its exemplar distances (exemplars on only)
     bool use_votes_ = false;
     float* column_ = nullptr;          // K: W(·, newest character), when W is not symmetric
     bool w_symmetric_ = true;
     float* feature_ = nullptr;         // feature_dim: the character's feature, kept for advance() (exemplars on only)
+    float* window_ = nullptr;          // window_direction_chars records, oldest first (window directions on only)
+    float* histogram_ = nullptr;       // window_direction_size(): the window's histograms
+    float* window_costs_ = nullptr;    // label_count: what the window's directions add
+    std::size_t window_count_ = 0;     // records in window_
     Update update_;
 };
 
@@ -866,7 +934,8 @@ constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, co
     }
     p.column = layout.add<float>(model.character_count);
     // Per label, the newest character's cost: its votes', its exemplars', or both.
-    if (ActionSegmenter::uses_votes(model, config) || ActionSegmenter::uses_exemplars(model, config)) {
+    if (ActionSegmenter::uses_votes(model, config) || ActionSegmenter::uses_exemplars(model, config) ||
+        ActionSegmenter::uses_window(model, config)) {
         p.votes = layout.add<float>(model.label_count);
         p.votes_bytes = std::size_t{model.label_count} * sizeof(float);
     }
@@ -874,6 +943,14 @@ constexpr ActionSegmenter::Plan ActionSegmenter::plan(const ModelView& model, co
         p.exemplars = layout.add<float>(model.label_count);
         p.exemplars_bytes = std::size_t{model.label_count} * sizeof(float);
         p.feature = layout.add<float>(model.feature_dim);
+    }
+    // The window's records, its histograms and their costs.
+    if (ActionSegmenter::uses_window(model, config)) {
+        const std::size_t records = std::size_t{model.window_direction_chars} * model.direction_record_floats();
+        p.window = layout.add<float>(records);
+        p.histogram = layout.add<float>(model.window_direction_size());
+        p.window_costs = layout.add<float>(model.label_count);
+        p.window_bytes = (records + model.window_direction_size() + model.label_count) * sizeof(float);
     }
     p.bytes = layout.bytes();
     return p;

@@ -133,11 +133,13 @@ actionstring::SegmenterConfig from_settings(const actionstring_online_settings& 
     c.vote_weight = s.vote_weight;
     c.exemplar_weight = s.exemplar_weight;
     c.settle_stable_us = s.settle_stable_us;
+    c.direction_weight = s.direction_weight;
     return c;
 }
 actionstring_online_settings to_settings(const actionstring::SegmenterConfig& c) {
-    return actionstring_online_settings{c.settle_delay_us, c.segment_penalty, c.stay_penalty,    c.skip_penalty,
-                                        c.unknown_cost,    c.vote_weight,     c.exemplar_weight, c.settle_stable_us};
+    return actionstring_online_settings{c.settle_delay_us, c.segment_penalty,  c.stay_penalty,
+                                        c.skip_penalty,    c.unknown_cost,     c.vote_weight,
+                                        c.exemplar_weight, c.settle_stable_us, c.direction_weight};
 }
 
 AnnotatorConfig to_config(const ModelView& model, const actionstring_config* c) {
@@ -394,7 +396,7 @@ actionstring_status actionstring_reset(actionstring_state* handle) {
 
 actionstring_online_settings actionstring_model_online_settings(const actionstring_model* handle) {
     const Model* model = checked_model(handle);
-    if (model == nullptr) return actionstring_online_settings{0, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0};
+    if (model == nullptr) return actionstring_online_settings{0, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0, 0.0f};
     return to_settings(actionstring::segmenter_config(model->view));
 }
 

@@ -78,6 +78,8 @@ typedef struct actionstring_online_settings {
     float exemplar_weight;   /**< weight of the exemplars in the explanation; 0 = off (needs exemplars in the model) */
     int64_t settle_stable_us; /**< or final sooner, once every best explanation has given a character the same label
                                    this long (0: the delay alone); more state (actionstring_state_size()) */
+    float direction_weight;   /**< weight of the last characters' motion directions in the explanation; 0 = off
+                                  (needs window directions in the model); more state (actionstring_state_size()) */
 } actionstring_online_settings;
 
 /** Everything a state is set up with. actionstring_default_config() gives the model's own. */

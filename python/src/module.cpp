@@ -255,7 +255,7 @@ AnnotatorConfig online_config(const ModelData& model, const py::dict& settings) 
         } else if (!host::apply_online_setting(setting_name(key), setting_value(item.second), config))
             throw py::value_error(
                 "unknown online setting '" + key +
-                "' (settle, settle_stable, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, segment_exemplars, "
+                "' (settle, settle_stable, segment_penalty, stay_penalty, skip_penalty, unknown_cost, segment_votes, segment_exemplars, segment_directions, "
                 "window_rule, spread_work, max_gap, max_backward, max_pose_speed, min_action, label_lead, up)");
     }
     return config;
@@ -677,6 +677,7 @@ PYBIND11_MODULE(_actionstring, m) {
                                    d["unknown_cost"] = model.unknown_cost;
                                    d["segment_votes"] = model.segment_vote_weight;
                                    d["segment_exemplars"] = model.segment_exemplar_weight;
+                                   d["segment_directions"] = model.segment_direction_weight;
                                    d["min_action"] = static_cast<double>(model.min_action_us) * 1e-6;
                                    d["label_lead"] = static_cast<double>(model.label_lead_us) * 1e-6;
                                    return d;

@@ -168,6 +168,7 @@ int field_since(std::string_view name) {
     if (name.substr(0, 10) == "descriptor") return 10;
     if (name == "label_lead_us") return 11;
     if (name == "settle_stable_us") return 13;
+    if (name.substr(0, 16) == "window_direction" || name == "segment_direction_weight") return 14;
     return name.find("exemplar") != std::string_view::npos ? 6 : 0;
 }
 

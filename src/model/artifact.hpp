@@ -27,7 +27,7 @@ namespace host {
 /// exemplars of every feature coordinate, 4 to 9 without a clip descriptor,
 /// all but 11 with labels at their characters' ticks, a lead of 0, 4 to 11
 /// without the clip's motion directions, and all settling by the delay alone).
-constexpr int artifact_version = 13;
+constexpr int artifact_version = 14;
 
 /// 64-bit FNV-1a of the bytes.
 std::uint64_t fnv1a64(std::string_view bytes);

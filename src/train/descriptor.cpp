@@ -153,5 +153,54 @@ void set_directions(ModelData& m, const std::vector<std::vector<float>>& records
     m.direction_weight = static_cast<float>(weight);
 }
 
+void set_window_directions(ModelData& m, const std::vector<std::vector<float>>& records,
+                           const std::vector<LabelId>& labels, std::size_t chars, double ridge) {
+    m.window_direction_chars = 0;
+    m.window_direction_weights.clear();
+    m.window_direction_bias.clear();
+    if (chars == 0) return;
+    if (chars < 2 || chars > 1024)
+        throw std::invalid_argument("window directions: a window of 2 to 1024 characters, not " +
+                                    std::to_string(chars) + " (set direction-window)");
+    if (!(ridge > 0) || !std::isfinite(ridge))
+        throw std::invalid_argument("window directions: the ridge must be positive");
+    if (m.pose_joints.empty()) throw std::invalid_argument("window directions: the model has no pose joints to follow");
+    const std::size_t L = m.label_names.size();
+    ModelView shape = m.view();
+    shape.window_direction_chars = static_cast<std::uint16_t>(chars);
+    const std::size_t P = shape.window_direction_size(), width = shape.direction_record_floats();
+
+    // Every labelled clip's windows, each ending at one of its characters after the first.
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < records.size() && i < labels.size(); ++i)
+        if (labels[i] < L && records[i].size() % width == 0 && records[i].size() >= 2 * width)
+            total += records[i].size() / width - 1;
+    constexpr std::size_t most = 20000;
+    const std::size_t every = total > most ? (total + most - 1) / most : 1;
+    std::vector<std::pair<std::size_t, std::size_t>> windows;  // (clip, last character)
+    std::size_t seen = 0;
+    for (std::size_t i = 0; i < records.size() && i < labels.size(); ++i) {
+        if (!(labels[i] < L && records[i].size() % width == 0 && records[i].size() >= 2 * width)) continue;
+        for (std::size_t t = 1; t < records[i].size() / width; ++t, ++seen)
+            if (seen % every == 0) windows.emplace_back(i, t);
+    }
+    if (windows.size() < 2) throw std::invalid_argument("window directions: fewer than two labelled windows");
+    Eigen::MatrixXd x(static_cast<Eigen::Index>(windows.size()), static_cast<Eigen::Index>(P));
+    std::vector<LabelId> kept;
+    std::vector<float> one(P);
+    for (std::size_t row = 0; row < windows.size(); ++row) {
+        const auto [clip, last] = windows[row];
+        const std::size_t first = last + 1 > chars ? last + 1 - chars : 0;
+        clip_directions(records[clip].data() + first * width, last + 1 - first, shape.pose_joint_count, shape.up_axis,
+                        1, one.data());
+        for (std::size_t c = 0; c < P; ++c)
+            x(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(c)) = static_cast<double>(one[c]);
+        kept.push_back(labels[clip]);
+    }
+    fit_ridge(x, kept, L, ridge, "window directions", "try a larger direction-window-ridge", m.window_direction_weights,
+              m.window_direction_bias);
+    m.window_direction_chars = static_cast<std::uint16_t>(chars);
+}
+
 }  // namespace host
 }  // namespace actionstring

@@ -40,5 +40,19 @@ void set_descriptor(ModelData& m, const std::vector<std::vector<float>>& feature
 void set_directions(ModelData& m, const std::vector<std::vector<float>>& records, const std::vector<LabelId>& labels,
                     std::size_t levels, double ridge, double weight);
 
+/// Sets the model's window directions (descriptor.hpp,
+/// window_direction_penalties()) from the training clips' records (as
+/// set_directions() takes them): every character t ≥ 1 of every labelled
+/// clip gives a sample, clip_directions() over one level of the window of
+/// `chars` records ending at t (fewer at the clip's start, as at a stream's),
+/// labelled with its clip's label; the linear classifier is fitted as
+/// set_descriptor()'s, with penalty `ridge`. Long lists take every k-th
+/// window (at most about 20,000). The model must already hold its pose joints
+/// and up axis. `chars` 0: none. Deterministic. Throws std::invalid_argument
+/// for a window of 1 or beyond 1024 characters, a non-positive ridge, a model
+/// without pose joints, or fewer than two labelled samples.
+void set_window_directions(ModelData& m, const std::vector<std::vector<float>>& records,
+                           const std::vector<LabelId>& labels, std::size_t chars, double ridge);
+
 }  // namespace host
 }  // namespace actionstring

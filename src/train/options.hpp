@@ -111,6 +111,14 @@ struct TrainingOptions {
     int direction_levels = 0;
     double direction_ridge = 1000.0;
     double direction_weight = 0.0;
+    /// The window's directions (descriptor.hpp, window_direction_penalties()):
+    /// the same histograms over a stream's last `direction_window_s` seconds
+    /// of characters, scored per label by a ridge regression (penalty
+    /// `direction_window_ridge`) fitted on every training clip's windows; the
+    /// segmenter weighs them by online.direction_weight (segment-directions).
+    /// 0 s: none.
+    double direction_window_s = 0.0;
+    double direction_window_ridge = 1000.0;
     int neighbours = 1;
     double window_seconds = 2.0;
     double step_seconds = 0.5;

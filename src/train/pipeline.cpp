@@ -88,6 +88,10 @@ void check_options(const TrainingOptions& o) {
     require(o.direction_levels >= 0 && o.direction_levels <= 8, "the directions' levels must be between 0 and 8");
     require(o.direction_ridge > 0 && o.direction_ridge <= 1e9, "the directions' ridge must be above 0, at most 1e9");
     require(o.direction_weight >= 0 && o.direction_weight <= 1000, "the direction weight must be between 0 and 1000");
+    require(o.direction_window_s >= 0 && o.direction_window_s <= 60,
+            "the directions' window must be between 0 and 60 seconds");
+    require(o.direction_window_ridge > 0 && o.direction_window_ridge <= 1e9,
+            "the window directions' ridge must be above 0, at most 1e9");
     require(o.max_representative_share >= 0 && o.max_representative_share < 1,
             "the representatives' share must be at least 0 and below 1");
     require(o.online.settle_delay_us >= 0 && o.online.settle_delay_us <= 60000000,
@@ -626,6 +630,7 @@ void set_matching(ModelData& m, const TrainingOptions& options, int representati
     m.unknown_cost = online.unknown_cost;
     m.segment_vote_weight = online.vote_weight;
     m.segment_exemplar_weight = online.exemplar_weight;
+    m.segment_direction_weight = online.direction_weight;
     m.min_action_us = static_cast<std::uint32_t>(options.min_action_us);
     m.label_lead_us = static_cast<std::uint32_t>(options.label_lead_us);
     // The model stores representative indices in 16 bits (0xFFFF means "no action").
@@ -683,11 +688,13 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
     const bool exemplars = options.exemplars > 0 && options.exemplar_weight > 0;
     const bool descriptor = options.descriptor_levels > 0 && options.descriptor_weight > 0;
     const bool directions = options.direction_levels > 0 && options.direction_weight > 0;
+    const bool window = options.direction_window_s > 0;
+    const bool records = directions || window;
     std::vector<std::vector<Character>> strings;
     std::vector<std::vector<float>> string_features;  // with exemplars or a descriptor: each character's feature
     std::vector<std::vector<float>> string_records;   // with motion directions: each character's pose and facing
     for (const LabelledClip& c : clips) {
-        EncodedClip encoded = encode_clip(m.view(), c.clip, exemplars || descriptor || directions, directions);
+        EncodedClip encoded = encode_clip(m.view(), c.clip, exemplars || descriptor || records, records);
         strings.push_back(std::move(encoded.string));
         string_features.push_back(std::move(encoded.features));
         string_records.push_back(std::move(encoded.records));
@@ -700,7 +707,7 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
         for (const LabelledClip& stretch : *no_action) {
             Clip clip = stretch.clip;
             conform_to_model(m.view(), clip);
-            stretches.push_back(encode_clip(m.view(), clip, exemplars || descriptor || directions, directions));
+            stretches.push_back(encode_clip(m.view(), clip, exemplars || descriptor || records, records));
         }
     stage.finish("training strings");
 
@@ -738,6 +745,13 @@ ModelData train_model(const std::vector<LabelledClip>& listed, const TrainingOpt
         set_directions(m, string_records, labels, static_cast<std::size_t>(options.direction_levels),
                        options.direction_ridge, options.direction_weight);
         stage.finish("directions");
+    }
+    if (window) {
+        stage.start("fitting the window's directions");
+        const long chars = std::max(2L, std::lround(options.direction_window_s * options.string_rate_hz));
+        set_window_directions(m, string_records, labels, static_cast<std::size_t>(chars),
+                              options.direction_window_ridge);
+        stage.finish("window directions");
     }
 
     set_matching(m, options, r.representatives);

@@ -81,6 +81,7 @@ bool apply_segmenter_setting(const std::string& name, const std::string& value, 
     else if (name == "unknown-cost") config.unknown_cost = static_cast<float>(number(name, value, 0, unbounded));
     else if (name == "segment-votes") config.vote_weight = static_cast<float>(number(name, value, 0, 1000));
     else if (name == "segment-exemplars") config.exemplar_weight = static_cast<float>(number(name, value, 0, 1000));
+    else if (name == "segment-directions") config.direction_weight = static_cast<float>(number(name, value, 0, 1000));
     else return false;
     return true;
 }
@@ -185,6 +186,8 @@ bool apply_training_setting(const std::string& name, const std::string& value, T
     else if (name == "direction-levels") o.direction_levels = static_cast<int>(whole(0, 8));
     else if (name == "direction-ridge") o.direction_ridge = num(1e-6, 1e9);
     else if (name == "direction-weight") o.direction_weight = num(0, 1000);
+    else if (name == "direction-window") o.direction_window_s = num(0, 60);
+    else if (name == "direction-window-ridge") o.direction_window_ridge = num(1e-6, 1e9);
     else if (name == "window") o.window_seconds = num(0.01, 3600);
     else if (name == "step") o.step_seconds = num(0.01, 3600);
     else if (name == "unknown-distance") o.unknown_distance = num(0, 1e30);
@@ -262,6 +265,8 @@ const std::vector<std::string>& training_setting_names() {
                                                 "direction-levels",
                                                 "direction-ridge",
                                                 "direction-weight",
+                                                "direction-window",
+                                                "direction-window-ridge",
                                                 "window",
                                                 "step",
                                                 "unknown-distance",
@@ -274,6 +279,7 @@ const std::vector<std::string>& training_setting_names() {
                                                 "unknown-cost",
                                                 "segment-votes",
                                                 "segment-exemplars",
+                                                "segment-directions",
                                                 "min-action",
                                                 "latency-budget",
                                                 "rate",

@@ -218,7 +218,11 @@ std::string options_as_config(const TrainingOptions& o) {
     if (o.direction_levels > 0 && o.direction_weight > 0)
         out << "direction-levels " << o.direction_levels << "\ndirection-weight " << number(o.direction_weight)
             << "\ndirection-ridge " << number(o.direction_ridge) << "\n";
+    if (o.direction_window_s > 0)
+        out << "direction-window " << number(o.direction_window_s) << "\ndirection-window-ridge "
+            << number(o.direction_window_ridge) << "\n";
     if (o.online.exemplar_weight > 0) out << "segment-exemplars " << number(o.online.exemplar_weight) << "\n";
+    if (o.online.direction_weight > 0) out << "segment-directions " << number(o.online.direction_weight) << "\n";
     if (!o.pose_joints.empty()) {
         out << "pose-joints ";
         for (std::size_t j = 0; j < o.pose_joints.size(); ++j) out << (j ? "," : "") << o.pose_joints[j];
