@@ -22,6 +22,7 @@
 #include "run/encode.hpp"
 #include "run/state.hpp"
 #include "toy/toy.hpp"
+#include "clip_records.hpp"
 #include "toy_options.hpp"
 #include "train/descriptor.hpp"
 #include "train/pipeline.hpp"
@@ -137,15 +138,7 @@ TEST_CASE("window directions: the fit refuses what it cannot use, and a window o
     const ToyWorld world = make_toy_world();
     const auto train = toy_clips(world, 3, 100);
     const ModelData reference = train_model(train, window_options());
-    const ModelView view = reference.view();
-    std::vector<std::vector<float>> records;
-    std::vector<LabelId> labels;
-    for (const LabelledClip& c : train) {
-        records.push_back(encode_clip(view, c.clip, false, true).records);
-        labels.push_back(
-            static_cast<LabelId>(std::find(reference.label_names.begin(), reference.label_names.end(), c.label) -
-                                 reference.label_names.begin()));
-    }
+    const auto [records, labels] = test::clip_records(reference, train);
     ModelData m = parse_model("copy.model", serialize_model(reference));
     set_window_directions(m, records, labels, 10, 100.0);
     CHECK(m.window_direction_weights == reference.window_direction_weights);  // what training fitted
