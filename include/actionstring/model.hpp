@@ -173,7 +173,7 @@ struct ModelView {
     constexpr std::size_t direction_size() const noexcept {
         return std::size_t{direction_levels} * (direction_levels + 1u) / 2u * pose_joint_count * 3u * direction_bins;
     }
-    /// Floats of one window's direction histograms (window_directions()): per
+    /// Floats of one window's direction histograms (window_direction_penalties()): per
     /// pose joint, per coordinate plane, direction_bins sectors; 0 without a window.
     constexpr std::size_t window_direction_size() const noexcept {
         return window_direction_chars > 0 ? std::size_t{pose_joint_count} * 3u * direction_bins : 0u;

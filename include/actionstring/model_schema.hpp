@@ -124,8 +124,9 @@
     TABLE(float, direction_weights, std::size_t{m.label_count} * m.direction_size(), 0, 0)                 \
     TABLE(float, direction_bias, (m.direction_levels > 0 ? m.label_count : 0u), 0, 0)                     \
     /* the motion directions of the last few characters of a stream (descriptor.hpp,              */ \
-    /* window_directions()): the histograms over a window of that many characters, scored per      */ \
-    /* label by a third ridge classifier fitted on every training clip's windows, for the segmenter */ \
+    /* window_direction_penalties()): the histograms over a window of that many characters,     */ \
+    /* scored per label by a third ridge classifier fitted on every training clip's windows,     */ \
+    /* for the segmenter                                                                          */ \
     SCALAR(std::uint16_t, window_direction_chars, 0, 0, 1024) /* the window; 0 = none */               \
     TABLE(float, window_direction_weights, std::size_t{m.label_count} * m.window_direction_size(), 0, 0)   \
     TABLE(float, window_direction_bias, (m.window_direction_chars > 0 ? m.label_count : 0u), 0, 0)       \
