@@ -126,8 +126,10 @@ void print_train_usage(std::FILE* out) {
                  "                          PCA by leave-one-subject-out cross-validation (the default)\n"
                  "  --tune-online           with settings given (a config of clip settings), still\n"
                  "                          choose the online ones as self-tuning does: the segmenter's,\n"
-                 "                          the events' shortest action and the label lead, by streaming\n"
-                 "                          each held-out subject; they replace the given online settings\n"
+                 "                          the window's directions (a window of 1.5 s when the config\n"
+                 "                          has none), the events' shortest action and the label lead,\n"
+                 "                          by streaming each held-out subject; they replace the given\n"
+                 "                          online settings\n"
                  "  --cv                    leave-one-subject-out cross-validation over the list's\n"
                  "                          subject column: a fold table and the mean (no model written)\n"
                  "  --sweep                 with --validate: vary one setting at a time around the\n"
@@ -247,9 +249,9 @@ host::TuningResult tune(const std::vector<host::LabelledClip>& clips, const host
 }
 
 // With no settings given, after the clip settings: the online settings (the
-// segmenter's, early settling, the events' shortest action, the label lead) by leave-one-subject-out
-// streaming (the held-out subject's clips joined, or its whole recordings),
-// shown as tables, and set in `options`.
+// segmenter's, the window's directions, early settling, the events' shortest
+// action, the label lead) by leave-one-subject-out streaming (the held-out
+// subject's clips joined, or its whole recordings), shown as tables, and set in `options`.
 void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::TrainingOptions& options,
                           const std::vector<host::LabelledRecording>* recordings) {
     std::fprintf(stderr, "train: choosing the online settings by streaming each held-out subject's %s\n",
@@ -267,6 +269,14 @@ void tune_online_settings(const std::vector<host::LabelledClip>& clips, host::Tr
                         ? "(only settings whose latency is within the budget of %g s were chosen from)\n"
                         : "NO setting met the latency budget of %g s on the folds: the fastest was kept\n",
                     options.latency_budget_s);
+    std::printf(
+        "the window's directions with them, over the last %g s (the best settled frames; within %g, the "
+        "smaller weight):\n",
+        tuned.direction_window_s_tried, host::direction_window_tie);
+    for (const host::DirectionWindowStep& step : tuned.direction_window_steps)
+        std::printf("  segment-directions %-6g settled frames %.3f  segment F1 %.3f%s\n",
+                    static_cast<double>(step.direction_weight), step.frame_accuracy, step.segment_f1,
+                    step.kept ? "  <- chosen" : "");
     std::printf(
         "early settling with them (0: the delay alone), then the events' shortest action: the fastest\n"
         "whose events' segment F1 is short of the best by at most a standard error, fold by fold:\n");

@@ -267,15 +267,31 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     REQUIRE(a.label_lead_steps.size() == std::size(label_lead_candidates_us));
     const LabelLeadStep& longest_lead = a.label_lead_steps.back();
     CHECK(longest_lead.label_lead_us == 500000);
+    // The window's weights are tried with the grid's choice, on models that
+    // carry a window of online_tuning_window_s (the options have none): the
+    // heaviest weight's figures too.
+    REQUIRE(a.direction_window_steps.size() == std::size(direction_window_candidates));
+    CHECK(a.direction_window_s_tried == online_tuning_window_s);
+    const DirectionWindowStep& heaviest = a.direction_window_steps.back();
+    CHECK(heaviest.direction_weight == 0.25f);
+    TrainingOptions windowed = options;
+    windowed.direction_window_s = online_tuning_window_s;
     double f1 = 0, frames = 0, latency = 0, led_frames = 0, led_f1 = 0, eager_latency = 0, eager_frames = 0;
+    double window_frames = 0, window_f1 = 0;
     std::vector<double> event_f1, eager_f1;  // per fold
     for (const auto& held : folds) {
         REQUIRE(held.size() == 1);  // one subject per fold
         std::vector<LabelledClip> train, test;
         for (const LabelledClip& c : clips) (c.subject == held.front() ? test : train).push_back(c);
-        const ModelData model = train_model(train, options);
+        const ModelData model = train_model(train, windowed);
+        REQUIRE(model.view().has_window_directions());
         actionstring::AnnotatorConfig config = actionstring::annotator_config(model.view());
         config.segmenter = a.steps[0].config;
+        actionstring::AnnotatorConfig window = actionstring::annotator_config(model.view());
+        window.segmenter = a.steps[0].config;
+        for (const OnlineTuningStep& step : a.steps)
+            if (step.kept) window.segmenter = step.config;
+        window.segmenter.direction_weight = heaviest.direction_weight;
         actionstring::AnnotatorConfig events = actionstring::annotator_config(model.view());
         events.segmenter = a.chosen;
         events.min_action_us = longest.min_action_us;
@@ -297,6 +313,10 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
                 evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), events);
             event_f1.back() += reported.settled.event_segment_f1 / online_tuning_orders;
             latency += reported.settled.detection_latency_s;
+            const OnlineReport windowing =
+                evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), window);
+            window_frames += windowing.settled.frame_accuracy;
+            window_f1 += windowing.settled.segment_f1;
             const OnlineReport leading = evaluate_online(model.view(), test, static_cast<std::uint32_t>(order), led);
             led_frames += leading.settled.frame_accuracy;
             led_f1 += leading.settled.segment_f1;
@@ -333,6 +353,26 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     const std::size_t stable = one_standard_error_choice(a.settle_stable_steps);
     CHECK(a.settle_stable_steps[stable].kept);
     CHECK(a.chosen.settle_stable_us == a.settle_stable_steps[stable].settle_stable_us);
+    CHECK(heaviest.frame_accuracy == doctest::Approx(window_frames / n).epsilon(1e-12));
+    CHECK(heaviest.segment_f1 == doctest::Approx(window_f1 / n).epsilon(1e-12));
+    // One weight kept: the best settled frames, a heavier one only when it gains more
+    // than the tie over the one kept before it; deterministic.
+    std::size_t kept_windows = 0, expected_window = 0;
+    for (std::size_t i = 0; i < a.direction_window_steps.size(); ++i) {
+        const DirectionWindowStep& step = a.direction_window_steps[i];
+        CHECK(step.direction_weight == direction_window_candidates[i]);
+        CHECK(step.frame_accuracy == b.direction_window_steps[i].frame_accuracy);
+        if (step.frame_accuracy > a.direction_window_steps[expected_window].frame_accuracy + direction_window_tie)
+            expected_window = i;
+        kept_windows += step.kept;
+    }
+    CHECK(kept_windows == 1);
+    CHECK(a.direction_window_steps[expected_window].kept);
+    CHECK(a.chosen.direction_weight == a.direction_window_steps[expected_window].direction_weight);
+    for (const DirectionWindowStep& step : a.direction_window_steps)
+        CHECK(step.frame_accuracy <= a.direction_window_steps[expected_window].frame_accuracy + direction_window_tie);
+    // The model keeps the window only when it is weighed.
+    CHECK(a.chosen_direction_window_s == (a.chosen.direction_weight > 0 ? online_tuning_window_s : 0.0));
     CHECK(longest_lead.frame_accuracy == doctest::Approx(led_frames / n).epsilon(1e-12));
     CHECK(longest_lead.segment_f1 == doctest::Approx(led_f1 / n).epsilon(1e-12));
     // One lead kept: the best settled frames, the shorter on a tie; deterministic.
@@ -354,6 +394,8 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
     CHECK(adopted.min_action_us == a.chosen_min_action_us);
     CHECK(adopted.online.segment_penalty == a.chosen.segment_penalty);
     CHECK(adopted.online.settle_stable_us == a.chosen.settle_stable_us);
+    CHECK(adopted.online.direction_weight == a.chosen.direction_weight);
+    CHECK(adopted.direction_window_s == a.chosen_direction_window_s);
     // One kept, by the one-standard-error rule, and it is the model's.
     std::size_t kept_actions = 0;
     for (std::size_t i = 0; i < a.min_action_steps.size(); ++i) {

@@ -288,8 +288,9 @@ def train(clips: Sequence[Clip], *, config: Optional[PathLike] = None, tune: Uni
     reads it (``models/*.config``), applied first. With neither given and
     ``tune`` left None, training tunes itself as ``actionstring train`` does: the
     clip settings that matter most by leave-one-subject-out cross-validation over
-    the clips' subjects, then the online ones (the segmenter's, early settling,
-    the events' shortest action and the label lead) by streaming each held-out
+    the clips' subjects, then the online ones (the segmenter's, the window's
+    directions, early settling, the events' shortest action and the label
+    lead) by streaming each held-out
     subject's clips joined. The
     model's ``training_report["tuning"]`` then holds the clip search's table
     (each setting tried with its fold mean, the folds' mean signed margin that

@@ -397,8 +397,19 @@ py::tuple train(const std::vector<LabelledClip>& clips, const py::dict& settings
             row["kept"] = step.kept;
             leads.append(row);
         }
+        py::list windows;
+        for (const host::DirectionWindowStep& step : online.direction_window_steps) {
+            py::dict row;
+            row["segment_directions"] = static_cast<double>(step.direction_weight);
+            row["frame_accuracy"] = step.frame_accuracy;
+            row["segment_f1"] = step.segment_f1;
+            row["kept"] = step.kept;
+            windows.append(row);
+        }
         py::dict tuning;
         tuning["settings"] = settings_tried;
+        tuning["direction_window"] = windows;
+        tuning["direction_window_s"] = online.direction_window_s_tried;
         tuning["settle_stable"] = stables;
         tuning["min_action"] = min_actions;
         tuning["label_lead"] = leads;

@@ -161,6 +161,15 @@ def test_self_tuning_chooses_the_online_settings_too(toy_clips):
     assert len(kept) == 1
     assert all(row["segment_f1"] <= kept[0]["segment_f1"] for row in tuning["settings"])
     assert "segment-penalty %g" % model.online_settings["segment_penalty"] in kept[0]["settings"]
+    # The window's directions: the best settled frames of three weights (the smaller
+    # within 0.001), over a window of 1.5 s, stored in the model.
+    windows = tuning["direction_window"]
+    assert [row["segment_directions"] for row in windows] == pytest.approx([0, 0.1, 0.25])
+    assert tuning["direction_window_s"] == pytest.approx(1.5)
+    window = [row for row in windows if row["kept"]]
+    assert len(window) == 1
+    assert all(row["frame_accuracy"] <= window[0]["frame_accuracy"] + 0.001 for row in windows)
+    assert model.online_settings["segment_directions"] == pytest.approx(window[0]["segment_directions"])
     # Early settling: the fastest within one standard error of the best events, stored in the model.
     stable = [row for row in tuning["settle_stable"] if row["kept"]]
     assert [row["settle_stable"] for row in tuning["settle_stable"]] == [0.5, 0.75, 1.0, 1.25, 1.5, 0]

@@ -103,6 +103,7 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     result.chosen = options.online;
     result.chosen_min_action_us = options.min_action_us;
     result.chosen_label_lead_us = options.label_lead_us;
+    result.chosen_direction_window_s = options.direction_window_s;
     // The folds of self-tuning (at most tuning_max_folds, subjects dealt round-robin).
     const std::vector<std::vector<std::string>> folds = subject_folds(clips, tuning_max_folds);
     if (folds.size() < 2) return result;
@@ -174,6 +175,11 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
 
     // One model per fold, every setting streamed through it: recordings as they
     // are, joined clips in several orders; every fold and order weighs the same.
+    // The models carry the window's directions, which only the window's step
+    // weighs (the grid's settings keep the options' weight).
+    TrainingOptions fold_options = options;
+    if (fold_options.direction_window_s <= 0) fold_options.direction_window_s = online_tuning_window_s;
+    result.direction_window_s_tried = fold_options.direction_window_s;
     const int orders = recordings != nullptr ? 1 : online_tuning_orders;
     const double share = 1.0 / static_cast<double>(folds.size() * static_cast<std::size_t>(orders));
     std::vector<Fold> trained;
@@ -189,7 +195,7 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
             for (const LabelledRecording& r : *recordings)
                 (held_out(r.subject) ? fold.test_recordings : train_recordings).push_back(r);
         const std::vector<LabelledClip> no_action = unlabelled_stretches(train_recordings, min_no_action_seconds);
-        fold.model = train_model(train, options, nullptr, &no_action);
+        fold.model = train_model(train, fold_options, nullptr, &no_action);
         trained.push_back(std::move(fold));
     }
     // One held-out stream set's report under `config`, in order `order`:
@@ -230,6 +236,33 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     for (const OnlineTuningStep& step : steps)
         if (progress) progress(step);
     result.steps = std::move(steps);
+
+    // The window's directions in the explanation, with the settings chosen:
+    // judged by the settled frames, as the configs' windows were.
+    for (const float weight : direction_window_candidates) {
+        DirectionWindowStep step;
+        step.direction_weight = weight;
+        for (const Fold& fold : trained) {
+            AnnotatorConfig config = annotator_config(fold.model.view());
+            config.segmenter = result.chosen;
+            config.segmenter.direction_weight = weight;
+            for (int order = 1; order <= orders; ++order) {
+                const OnlineReport report = stream(fold, config, order);
+                step.frame_accuracy += report.settled.frame_accuracy * share;
+                step.segment_f1 += report.settled.segment_f1 * share;
+            }
+        }
+        result.direction_window_steps.push_back(step);
+    }
+    std::size_t window = 0;
+    for (std::size_t i = 1; i < result.direction_window_steps.size(); ++i)
+        if (result.direction_window_steps[i].frame_accuracy >
+            result.direction_window_steps[window].frame_accuracy + direction_window_tie)
+            window = i;
+    result.direction_window_steps[window].kept = true;
+    result.chosen.direction_weight = result.direction_window_steps[window].direction_weight;
+    result.chosen_direction_window_s =
+        result.chosen.direction_weight > 0 ? fold_options.direction_window_s : options.direction_window_s;
 
     // The events of every fold's streams under `segmenter` and a shortest
     // action: their segment F1 (per fold, and its mean and standard error over
@@ -312,6 +345,7 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
 
 void adopt_online_tuning(const OnlineTuningResult& tuned, TrainingOptions& options) {
     options.online = tuned.chosen;
+    options.direction_window_s = tuned.chosen_direction_window_s;
     options.min_action_us = tuned.chosen_min_action_us;
     options.label_lead_us = tuned.chosen_label_lead_us;
 }

@@ -63,11 +63,26 @@ struct LabelLeadStep {
     bool kept = false;
 };
 
+/// One weight of the window's directions tried in the explanation
+/// (SegmenterConfig::direction_weight), with the chosen grid settings.
+struct DirectionWindowStep {
+    float direction_weight = 0.0f;
+    double frame_accuracy = 0;  ///< Mean over the folds of settled frame accuracy.
+    double segment_f1 = 0;      ///< Mean over the folds of the settled labels' segment F1 (IoU ≥ 0.5).
+    bool kept = false;
+};
+
 struct OnlineTuningResult {
     SegmenterConfig chosen;
     std::int64_t chosen_min_action_us = 250000;
     std::int64_t chosen_label_lead_us = 0;
+    /// The window's length the model needs for chosen.direction_weight (the
+    /// options' own, or online_tuning_window_s when they had none); 0 when
+    /// the weight chosen is 0 and the options had no window.
+    double chosen_direction_window_s = 0;
+    double direction_window_s_tried = 0;  ///< The window the folds' models carried.
     std::vector<OnlineTuningStep> steps;
+    std::vector<DirectionWindowStep> direction_window_steps;
     std::vector<SettleStableStep> settle_stable_steps;
     std::vector<MinActionStep> min_action_steps;
     std::vector<LabelLeadStep> label_lead_steps;
@@ -118,6 +133,18 @@ std::size_t one_standard_error_choice(const std::vector<MinActionStep>& steps);
 /// has no velocity; models/README.md, "The label lead".
 constexpr std::int64_t label_lead_candidates_us[] = {0, 50000, 100000, 150000, 200000, 300000, 400000, 500000};
 
+/// The window's directions (descriptor.hpp, window_direction_penalties()):
+/// the window the folds' models get when the options have none, and the
+/// weights tried in the explanation, smallest first. On the configs' training
+/// folds (models/README.md, "The window's directions") settled frames peaked
+/// at 1.5 s with 0.15 on MSR Action3D and 0.25 on HDM05, and at 1 s with 0.25
+/// on UTKinect, where 1.5 s gave within 0.001 of it.
+constexpr double online_tuning_window_s = 1.5;
+constexpr float direction_window_candidates[] = {0.0f, 0.1f, 0.25f};
+/// Settled-frame means closer than this tie (the smaller weight is kept):
+/// the configs' rule, as the label lead's differences under it were noise.
+constexpr double direction_window_tie = 0.001;
+
 /// The stay and skip penalties tried beside the options' own (both at once):
 /// the explanation's time warping made cheaper.
 constexpr float online_tuning_warp = 0.1f;
@@ -141,7 +168,11 @@ constexpr int online_tuning_orders = 3;
 /// recordings, the flat unknown cost (0, 0.2; with exemplars 0, 0.05, 0.2), the
 /// rest as in `options.online`; keeps the best mean segment F1 (ties: frame
 /// accuracy, then the earlier, simpler settings). Then, with those settings on
-/// the same folds and streams, tries each of settle_stable_candidates_us and
+/// the same folds and streams (whose models carry the window's directions over
+/// options.direction_window_s, or online_tuning_window_s when that is 0), tries
+/// each of direction_window_candidates as the window's weight and keeps the
+/// best mean settled frame accuracy (means within direction_window_tie: the
+/// smaller weight). Then tries each of settle_stable_candidates_us and
 /// keeps one_standard_error_choice() (with the options' shortest action); then
 /// each of min_action_candidates_us for the events and keeps
 /// one_standard_error_choice(); then, with all, each of
@@ -159,7 +190,8 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
                                const std::function<void(const OnlineTuningStep&)>& progress = {});
 
 /// Sets what tune_online() chose in `options`: the segmenter's settings (early
-/// settling among them), the events' shortest action and the label lead.
+/// settling and the window's weight among them), the window's length, the
+/// events' shortest action and the label lead.
 void adopt_online_tuning(const OnlineTuningResult& tuned, TrainingOptions& options);
 
 }  // namespace host
