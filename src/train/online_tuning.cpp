@@ -237,29 +237,40 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
         if (progress) progress(step);
     result.steps = std::move(steps);
 
-    // The window's directions in the explanation, with the settings chosen:
-    // judged by the settled frames, as the configs' windows were.
-    for (const float weight : direction_window_candidates) {
-        DirectionWindowStep step;
-        step.direction_weight = weight;
+    // A step judged by the settled labels: their frame accuracy and their runs'
+    // segment F1 over every fold and order, with the settings chosen so far and
+    // `adjust` applied to each fold's configuration.
+    auto settled_on_folds = [&](const auto& adjust, auto& step) {
         for (const Fold& fold : trained) {
             AnnotatorConfig config = annotator_config(fold.model.view());
             config.segmenter = result.chosen;
-            config.segmenter.direction_weight = weight;
+            adjust(config);
             for (int order = 1; order <= orders; ++order) {
                 const OnlineReport report = stream(fold, config, order);
                 step.frame_accuracy += report.settled.frame_accuracy * share;
                 step.segment_f1 += report.settled.segment_f1 * share;
             }
         }
+    };
+    // Of steps so judged, the first with the best settled frames, a later one
+    // only when it gains more than `tie`; marked kept.
+    auto keep_best_settled = [](auto& tried, double tie) {
+        std::size_t kept = 0;
+        for (std::size_t i = 1; i < tried.size(); ++i)
+            if (tried[i].frame_accuracy > tried[kept].frame_accuracy + tie) kept = i;
+        tried[kept].kept = true;
+        return kept;
+    };
+
+    // The window's directions in the explanation, with the settings chosen:
+    // judged by the settled frames, as the configs' windows were.
+    for (const float weight : direction_window_candidates) {
+        DirectionWindowStep step;
+        step.direction_weight = weight;
+        settled_on_folds([weight](AnnotatorConfig& config) { config.segmenter.direction_weight = weight; }, step);
         result.direction_window_steps.push_back(step);
     }
-    std::size_t window = 0;
-    for (std::size_t i = 1; i < result.direction_window_steps.size(); ++i)
-        if (result.direction_window_steps[i].frame_accuracy >
-            result.direction_window_steps[window].frame_accuracy + direction_window_tie)
-            window = i;
-    result.direction_window_steps[window].kept = true;
+    const std::size_t window = keep_best_settled(result.direction_window_steps, direction_window_tie);
     result.chosen.direction_weight = result.direction_window_steps[window].direction_weight;
     result.chosen_direction_window_s =
         result.chosen.direction_weight > 0 ? fold_options.direction_window_s : options.direction_window_s;
@@ -321,23 +332,16 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     for (const std::int64_t lead_us : label_lead_candidates_us) {
         LabelLeadStep step;
         step.label_lead_us = lead_us;
-        for (const Fold& fold : trained) {
-            AnnotatorConfig config = annotator_config(fold.model.view());
-            config.segmenter = result.chosen;
-            config.min_action_us = result.chosen_min_action_us;
-            config.label_lead_us = lead_us;
-            for (int order = 1; order <= orders; ++order) {
-                const OnlineReport report = stream(fold, config, order);
-                step.frame_accuracy += report.settled.frame_accuracy * share;
-                step.segment_f1 += report.settled.segment_f1 * share;
-            }
-        }
+        const std::int64_t min_action_us = result.chosen_min_action_us;
+        settled_on_folds(
+            [&](AnnotatorConfig& config) {
+                config.min_action_us = min_action_us;
+                config.label_lead_us = lead_us;
+            },
+            step);
         result.label_lead_steps.push_back(step);
     }
-    std::size_t lead = 0;
-    for (std::size_t i = 1; i < result.label_lead_steps.size(); ++i)
-        if (result.label_lead_steps[i].frame_accuracy > result.label_lead_steps[lead].frame_accuracy + 1e-9) lead = i;
-    result.label_lead_steps[lead].kept = true;
+    const std::size_t lead = keep_best_settled(result.label_lead_steps, 1e-9);
     result.chosen_label_lead_us = result.label_lead_steps[lead].label_lead_us;
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
     return result;
