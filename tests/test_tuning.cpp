@@ -230,6 +230,17 @@ TEST_CASE("online settings: chosen by streaming held-out subjects, deterministic
         CHECK(a.steps[i].config.skip_penalty == (i < 6 ? options.online.skip_penalty : online_tuning_warp));
         CHECK((a.steps[i].settings.find("stay-penalty ") != std::string::npos));
     }
+    // Options with a window of their own and a weight not among the candidates:
+    // their window, and their weight tried in its place; the window stays.
+    TrainingOptions own_window = options;
+    own_window.direction_window_s = 1.0;
+    own_window.online.direction_weight = 0.15f;
+    const OnlineTuningResult own = tune_online(clips, own_window);
+    CHECK(own.direction_window_s_tried == 1.0);
+    REQUIRE(own.direction_window_steps.size() == std::size(direction_window_candidates) + 1);
+    CHECK(own.direction_window_steps[1].direction_weight == 0.1f);
+    CHECK(own.direction_window_steps[2].direction_weight == 0.15f);
+    CHECK(own.chosen_direction_window_s == 1.0);
     // Options already at the second warp try it once.
     TrainingOptions warped = options;
     warped.online.stay_penalty = warped.online.skip_penalty = online_tuning_warp;

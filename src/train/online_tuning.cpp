@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 #include <utility>
 
@@ -263,8 +264,15 @@ OnlineTuningResult tune_online(const std::vector<LabelledClip>& clips, const Tra
     };
 
     // The window's directions in the explanation, with the settings chosen:
-    // judged by the settled frames, as the configs' windows were.
-    for (const float weight : direction_window_candidates) {
+    // judged by the settled frames, as the configs' windows were. The options'
+    // own weight is tried too, in its place.
+    std::vector<float> window_weights(std::begin(direction_window_candidates), std::end(direction_window_candidates));
+    if (std::find(window_weights.begin(), window_weights.end(), options.online.direction_weight) ==
+        window_weights.end())
+        window_weights.insert(
+            std::upper_bound(window_weights.begin(), window_weights.end(), options.online.direction_weight),
+            options.online.direction_weight);
+    for (const float weight : window_weights) {
         DirectionWindowStep step;
         step.direction_weight = weight;
         settled_on_folds([weight](AnnotatorConfig& config) { config.segmenter.direction_weight = weight; }, step);

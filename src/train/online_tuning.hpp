@@ -170,9 +170,10 @@ constexpr int online_tuning_orders = 3;
 /// accuracy, then the earlier, simpler settings). Then, with those settings on
 /// the same folds and streams (whose models carry the window's directions over
 /// options.direction_window_s, or online_tuning_window_s when that is 0), tries
-/// each of direction_window_candidates as the window's weight and keeps the
-/// best mean settled frame accuracy (means within direction_window_tie: the
-/// smaller weight). Then tries each of settle_stable_candidates_us and
+/// each of direction_window_candidates (and options.online.direction_weight,
+/// in its place, when it is not one of them) as the window's weight and keeps the
+/// best mean settled frame accuracy (a heavier weight only when it gains more
+/// than direction_window_tie over the one kept before it). Then tries each of settle_stable_candidates_us and
 /// keeps one_standard_error_choice() (with the options' shortest action); then
 /// each of min_action_candidates_us for the events and keeps
 /// one_standard_error_choice(); then, with all, each of
