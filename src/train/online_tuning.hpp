@@ -141,8 +141,9 @@ constexpr std::int64_t label_lead_candidates_us[] = {0, 50000, 100000, 150000, 2
 /// on UTKinect, where 1.5 s gave within 0.001 of it.
 constexpr double online_tuning_window_s = 1.5;
 constexpr float direction_window_candidates[] = {0.0f, 0.1f, 0.25f};
-/// Settled-frame means closer than this tie (the smaller weight is kept):
-/// the configs' rule, as the label lead's differences under it were noise.
+/// A heavier weight is kept only when its settled-frame mean gains more than
+/// this over the weight kept before it (the configs' rule: on their folds,
+/// differences under it were noise, as the label lead's were).
 constexpr double direction_window_tie = 0.001;
 
 /// The stay and skip penalties tried beside the options' own (both at once):
@@ -173,8 +174,8 @@ constexpr int online_tuning_orders = 3;
 /// each of direction_window_candidates (and options.online.direction_weight,
 /// in its place, when it is not one of them) as the window's weight and keeps the
 /// best mean settled frame accuracy (a heavier weight only when it gains more
-/// than direction_window_tie over the one kept before it). Then tries each of settle_stable_candidates_us and
-/// keeps one_standard_error_choice() (with the options' shortest action); then
+/// than direction_window_tie over the one kept before it). Then tries each of
+/// settle_stable_candidates_us and keeps one_standard_error_choice() (with the options' shortest action); then
 /// each of min_action_candidates_us for the events and keeps
 /// one_standard_error_choice(); then, with all, each of
 /// label_lead_candidates_us, and keeps the best mean settled frame accuracy
