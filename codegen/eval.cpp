@@ -195,6 +195,8 @@ Evaluation evaluate(const ModelView& view, const std::string& clips_path, const 
     if (!train_path.empty()) train = host::load_labelled_clips(train_path, read);
     std::vector<host::LabelledRecording> recordings;
     if (online && host::has_intervals(entries)) recordings = host::read_recordings(entries, read);
+    for (const host::LabelledRecording& recording : recordings)
+        for (const std::string& note : recording.notes) std::fprintf(stderr, "eval: note: %s\n", note.c_str());
     Evaluation e = host::evaluate(view, host::load_labelled_clips(entries, read), std::move(train),
                                   std::move(recordings), online, seed, config, perturbation);
     e.recordings = host::has_intervals(entries);

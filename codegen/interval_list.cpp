@@ -1,6 +1,7 @@
 // `actionstring interval-list`: a continuous dataset's timeline file as a clip
 // list with labelled intervals (columns start and end, in seconds), which
 // train reads as cut clips and eval --online streams as whole recordings.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -9,6 +10,7 @@
 
 #include "commands.hpp"
 #include "io/formats.hpp"
+#include "io/recordings.hpp"
 #include "io/text.hpp"
 #include "options.hpp"
 
@@ -30,8 +32,9 @@ int run_interval_list(int argc, char** argv) {
                 "UTKinect's actionLabel.txt. Recordings are joints_<sequence>.txt beside LABELS;\n"
                 "the subject is the sequence name before '_'. --subjects keeps only those\n"
                 "subjects. Intervals marked NaN are left out (and reported): their frames count\n"
-                "as 'no action' when the recording is streamed. Paths are written absolute, so\n"
-                "the list can live anywhere.\n");
+                "as 'no action' when the recording is streamed. Intervals of one sequence that\n"
+                "overlap are written and reported: frames in both count as the one that starts\n"
+                "later. Paths are written absolute, so the list can live anywhere.\n");
             return 0;
         }
         if (arg == "--utkinect") labels_path = args.value(arg);
@@ -62,6 +65,21 @@ int run_interval_list(int argc, char** argv) {
             const std::string subject = sequence.substr(0, sequence.find('_'));
             if (!subjects.empty() && subjects.count(subject) == 0) continue;
             seen.insert(subject);
+            // Overlapping intervals are written as they are, and said: they are
+            // usually a slip in the timeline file (host::interval_overlaps()).
+            std::vector<host::LabelledRecording::Interval> kept;
+            for (const host::LabelInterval& interval : intervals)
+                if (interval.valid) kept.push_back({interval.label, interval.start_frame, interval.end_frame, 0});
+            for (const host::IntervalOverlap& overlap : host::interval_overlaps(kept)) {
+                const auto& a = kept[overlap.first];
+                const auto& b = kept[overlap.second];
+                const auto& later = host::interval_at({a, b}, std::max(a.start_s, b.start_s)) == 0 ? a : b;
+                std::fprintf(stderr,
+                             "interval-list: %s: %s (frames %g-%g) and %s (frames %g-%g) overlap; both are written, "
+                             "and frames in both count as %s, the one that starts later (check %s)\n",
+                             sequence.c_str(), a.label.c_str(), a.start_s, a.end_s, b.label.c_str(), b.start_s, b.end_s,
+                             later.label.c_str(), labels_path.c_str());
+            }
             for (const host::LabelInterval& interval : intervals) {
                 if (!interval.valid) {
                     std::fprintf(stderr, "interval-list: %s %s has no frames (NaN) and is left out\n", sequence.c_str(),

@@ -424,6 +424,8 @@ int run_train(int argc, char** argv) {
         std::vector<host::LabelledRecording> recordings;
         const std::vector<host::ClipListEntry> entries = host::read_clip_list(clips_path);
         if (host::has_intervals(entries)) recordings = host::read_recordings(entries, read);
+        for (const host::LabelledRecording& recording : recordings)
+            for (const std::string& note : recording.notes) std::fprintf(stderr, "train: note: %s\n", note.c_str());
         const std::vector<host::LabelledClip> no_action = host::unlabelled_stretches(recordings, 1.0);
         const bool tune_clips = !settings_given && !no_tune;
         if (tune_clips) {

@@ -440,7 +440,7 @@ TEST_CASE("continuous recordings: frames outside every interval are no action, a
     frames.erase(std::unique(frames.begin(), frames.end(),
                              [](const ToyFrame& a, const ToyFrame& b) { return a.time_us == b.time_us; }),
                  frames.end());
-    LabelledRecording recording{"s1", toy_clip(frames, "rec.txt"), {}};
+    LabelledRecording recording{"s1", toy_clip(frames, "rec.txt"), {}, {}};
     // Intervals from the toy's truth, except the third action, which stays unlabelled.
     std::size_t begin = 0, omitted_frames = 0;
     for (std::size_t f = 1; f <= frames.size(); ++f) {
@@ -496,6 +496,74 @@ TEST_CASE("continuous recordings: frames outside every interval are no action, a
     ClipListEntry whole;
     whole.path = "a.txt";
     CHECK_THROWS_AS(read_recordings({whole}), ReadError);
+}
+
+TEST_CASE("overlapping intervals: noted with both lines, and shared frames go to the one that starts later") {
+    using Interval = LabelledRecording::Interval;
+    // Back to back (one ends where the next starts) is how annotators mark
+    // actions in a row: no overlap, and the shared instant is the later one's.
+    const std::vector<Interval> touching{{"pull", 1.0, 2.0, 3}, {"push", 2.0, 3.0, 4}};
+    CHECK(interval_overlaps(touching).empty());
+    CHECK(interval_at(touching, 1.5) == 0);
+    CHECK(interval_at(touching, 2.0) == 1);
+    CHECK(interval_at(touching, 3.5) == -1);
+    // Listed the other way round, the same instant still goes to the action that starts there.
+    const std::vector<Interval> reversed{{"push", 2.0, 3.0, 3}, {"pull", 1.0, 2.0, 4}};
+    CHECK(interval_at(reversed, 2.0) == 0);
+
+    // UTKinect's s03_e01 slip, in seconds: push over 85.2-120.733 s around its throw.
+    const std::vector<Interval> nested{
+        {"throw", 107.533, 109.4, 30}, {"push", 85.2, 120.733, 31}, {"pull", 122.0, 124.333, 32}};
+    const std::vector<IntervalOverlap> overlaps = interval_overlaps(nested);
+    REQUIRE(overlaps.size() == 1);
+    CHECK(overlaps[0].first == 0);
+    CHECK(overlaps[0].second == 1);
+    CHECK(overlaps[0].seconds == doctest::Approx(109.4 - 107.533));
+    CHECK(interval_at(nested, 100.0) == 1);  // push's own frames
+    CHECK(interval_at(nested, 108.0) == 0);  // the nested throw keeps its frames
+    CHECK(interval_at(nested, 115.0) == 1);
+    // Two that start together: the one listed last.
+    CHECK(interval_at({{"a", 1.0, 4.0, 1}, {"b", 1.0, 2.0, 2}}, 1.5) == 1);
+    // A partial overlap counts by its shared time.
+    const std::vector<IntervalOverlap> partial = interval_overlaps({{"a", 0.0, 2.0, 1}, {"b", 1.5, 3.0, 2}});
+    REQUIRE(partial.size() == 1);
+    CHECK(partial[0].seconds == doctest::Approx(0.5));
+
+    ToyWorld world = make_toy_world();
+    const ModelView view = world.model.view();
+    const std::vector<ToyFrame> frames = toy_stream(world, {0, 1, 2}, {});
+    LabelledRecording recording{"s1", toy_clip(frames, "dir/rec.txt"), {}, {}};
+    const std::vector<double>& t = recording.clip.times;
+    const double middle = t[t.size() / 2];
+    const std::string outer = world.model.label_names[0], inner = world.model.label_names[1];
+    recording.intervals = {{outer, t.front(), t.back(), 7}, {inner, middle - 0.2, middle + 0.2, 8}};
+    note_interval_overlaps(recording);
+    REQUIRE(recording.notes.size() == 1);
+    const std::string& note = recording.notes[0];
+    CAPTURE(note);
+    CHECK(note.rfind("rec.txt: intervals " + outer + " ", 0) == 0);
+    CHECK(note.find("(list line 7)") != std::string::npos);
+    CHECK(note.find("(list line 8)") != std::string::npos);
+    CHECK(note.find("overlap by 0.400 s") != std::string::npos);
+    CHECK(note.find("count as " + inner + ", the one that starts later") != std::string::npos);
+    // Intervals that do not overlap give no note.
+    LabelledRecording apart = recording;
+    apart.notes.clear();
+    apart.intervals = {{outer, t.front(), middle, 1}, {inner, middle, t.back(), 2}};
+    note_interval_overlaps(apart);
+    CHECK(apart.notes.empty());
+
+    // The evaluation's truth takes the same rule: the nested interval keeps its frames.
+    const OnlineReport report = evaluate_recordings(view, {recording});
+    REQUIRE(report.streams.size() == 1);
+    const StreamTimeline& timeline = report.streams[0];
+    std::size_t inner_frames = 0;
+    for (std::size_t f = 0; f < t.size(); ++f) {
+        const bool in_inner = t[f] >= middle - 0.2 && t[f] <= middle + 0.2;
+        CHECK(timeline.truth[f] == (in_inner ? 1 : 0));
+        inner_frames += in_inner ? 1u : 0u;
+    }
+    CHECK(inner_frames > 0);
 }
 
 TEST_CASE("annotate_clip returns a contiguous label timeline covering the clip") {

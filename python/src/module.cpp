@@ -285,6 +285,7 @@ host::LabelledRecording recording_from_clip(const LabelledClip& clip, const py::
         recording.intervals.push_back(in);
     }
     if (recording.intervals.empty()) throw py::value_error("a recording needs at least one labelled interval");
+    host::note_interval_overlaps(recording);
     return recording;
 }
 
@@ -625,6 +626,9 @@ PYBIND11_MODULE(_actionstring, m) {
             },
             "(label, start, end) per labelled interval, seconds on the recording's time axis")
         .def_readonly("subject", &host::LabelledRecording::subject)
+        .def_readonly("notes", &host::LabelledRecording::notes,
+                      "What a user should know about the intervals: each pair that overlaps, and which label "
+                      "their shared frames take (the one that starts later)")
         .def_property_readonly("source", [](const host::LabelledRecording& r) { return r.clip.source; })
         .def_property_readonly("frame_count", [](const host::LabelledRecording& r) { return r.clip.frame_count(); })
         .def_property_readonly("duration", [](const host::LabelledRecording& r) { return r.clip.duration(); })

@@ -124,6 +124,26 @@ def test_bad_recordings_are_refused(toy_set, toy_clips, tmp_path):
         actionstring.read_recordings(listed)
 
 
+def test_overlapping_intervals_are_noted_and_their_shared_frames_go_to_the_later_start(toy_set, tmp_path):
+    clips, recordings = toy_set
+    whole = recordings[0].clip
+    end = float(whole.times[-1])
+    nested = actionstring.Recording(whole, [("outer", 0.0, end), ("inner", 1.0, 2.0)])
+    assert len(nested.notes) == 1
+    assert "overlap by 1.000 s" in nested.notes[0] and "count as inner, the one that starts later" in nested.notes[0]
+    assert actionstring.Recording(whole, [("a", 0.0, 1.0), ("b", 1.0, 2.0)]).notes == []  # back to back
+    # Read from a list, the note names both list lines.
+    csv = tmp_path / "walk.csv"
+    csv.write_text("time,root_x,root_y,root_z\n" + "".join(f"{t / 10},0,1,0\n" for t in range(40)))
+    listed = tmp_path / "intervals.tsv"
+    listed.write_text(f"path\tlabel\tsubject\tstart\tend\n{csv}\tpush\ts1\t0.5\t3.5\n{csv}\tthrow\ts1\t1\t1.5\n")
+    (recording,) = actionstring.read_recordings(listed)
+    assert len(recording.notes) == 1
+    note = recording.notes[0]
+    assert note.startswith("walk.csv: intervals push 0.500-3.500 s (list line 2) and throw 1.000-1.500 s (list line 3)")
+    assert "count as throw" in note
+
+
 @pytest.fixture(scope="module")
 def utkinect_lists(cli, tmp_path_factory):
     labels = data_dir() / "utkinect" / "actionLabel.txt"

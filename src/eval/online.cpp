@@ -442,10 +442,12 @@ StreamTimeline stream_recording(const ModelView& model, const Clip& clip,
     if (intervals != nullptr) {
         const std::vector<std::string> names = name_strings(model.label_names, model.label_count);
         timeline.truth.assign(clip.frame_count(), unknown_frame);
-        for (const auto& interval : *intervals) {
-            const int label = model_label(names, interval.label);
-            for (std::size_t f = 0; f < clip.frame_count(); ++f)
-                if (clip.times[f] >= interval.start_s && clip.times[f] <= interval.end_s) timeline.truth[f] = label;
+        std::vector<int> labels;
+        for (const auto& interval : *intervals) labels.push_back(model_label(names, interval.label));
+        // Where intervals overlap, the one that starts last (interval_at()).
+        for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+            const int i = interval_at(*intervals, clip.times[f]);
+            if (i >= 0) timeline.truth[f] = labels[static_cast<std::size_t>(i)];
         }
     }
     timeline.labels = label_stream(model, config, clip.times, clip.positions.data(), clip.joint_count(), paper_rule);

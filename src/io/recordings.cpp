@@ -1,6 +1,8 @@
 // Continuous recordings with labelled intervals.
 #include "io/recordings.hpp"
 
+#include <algorithm>
+#include <cstdio>
 #include <map>
 
 namespace actionstring {
@@ -18,12 +20,55 @@ std::vector<LabelledRecording> read_recordings(const std::vector<ClipListEntry>&
         if (found == index.end()) {
             ClipListEntry whole = entry;
             whole.has_interval = false;
-            recordings.push_back({entry.subject, read_clip(whole, read), {}});
+            recordings.push_back({entry.subject, read_clip(whole, read), {}, {}});
             found = index.emplace(entry.path, recordings.size() - 1).first;
         }
-        recordings[found->second].intervals.push_back({entry.label, entry.start_s, entry.end_s});
+        recordings[found->second].intervals.push_back({entry.label, entry.start_s, entry.end_s, entry.line});
     }
+    for (LabelledRecording& recording : recordings) note_interval_overlaps(recording);
     return recordings;
+}
+
+std::vector<IntervalOverlap> interval_overlaps(const std::vector<LabelledRecording::Interval>& intervals) {
+    std::vector<IntervalOverlap> overlaps;
+    for (std::size_t a = 0; a < intervals.size(); ++a)
+        for (std::size_t b = a + 1; b < intervals.size(); ++b) {
+            const double shared =
+                std::min(intervals[a].end_s, intervals[b].end_s) - std::max(intervals[a].start_s, intervals[b].start_s);
+            if (shared > 0) overlaps.push_back({a, b, shared});
+        }
+    return overlaps;
+}
+
+int interval_at(const std::vector<LabelledRecording::Interval>& intervals, double t) {
+    int found = -1;
+    for (std::size_t i = 0; i < intervals.size(); ++i)
+        if (t >= intervals[i].start_s && t <= intervals[i].end_s &&
+            (found < 0 || intervals[i].start_s >= intervals[static_cast<std::size_t>(found)].start_s))
+            found = static_cast<int>(i);
+    return found;
+}
+
+void note_interval_overlaps(LabelledRecording& recording) {
+    const std::size_t slash = recording.clip.source.find_last_of('/');
+    const std::string name = recording.clip.source.substr(slash == std::string::npos ? 0 : slash + 1);
+    auto describe = [](const LabelledRecording::Interval& interval) {
+        char text[96];
+        std::snprintf(text, sizeof text, " %.3f-%.3f s", interval.start_s, interval.end_s);
+        std::string out = interval.label + text;
+        if (interval.line > 0) out += " (list line " + std::to_string(interval.line) + ")";
+        return out;
+    };
+    for (const IntervalOverlap& overlap : interval_overlaps(recording.intervals)) {
+        const auto& a = recording.intervals[overlap.first];
+        const auto& b = recording.intervals[overlap.second];
+        const auto& later = interval_at({a, b}, std::max(a.start_s, b.start_s)) == 0 ? a : b;
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%.3f s", overlap.seconds);
+        recording.notes.push_back(name + ": intervals " + describe(a) + " and " + describe(b) + " overlap by " +
+                                  seconds + "; frames in both count as " + later.label +
+                                  ", the one that starts later (check the annotation)");
+    }
 }
 
 std::vector<LabelledClip> unlabelled_stretches(const std::vector<LabelledRecording>& recordings, double min_seconds) {
