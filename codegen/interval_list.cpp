@@ -1,7 +1,6 @@
 // `actionstring interval-list`: a continuous dataset's timeline file as a clip
 // list with labelled intervals (columns start and end, in seconds), which
 // train reads as cut clips and eval --online streams as whole recordings.
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -73,12 +72,11 @@ int run_interval_list(int argc, char** argv) {
             for (const host::IntervalOverlap& overlap : host::interval_overlaps(kept)) {
                 const auto& a = kept[overlap.first];
                 const auto& b = kept[overlap.second];
-                const auto& later = host::interval_at({a, b}, std::max(a.start_s, b.start_s)) == 0 ? a : b;
                 std::fprintf(stderr,
                              "interval-list: %s: %s (frames %g-%g) and %s (frames %g-%g) overlap; both are written, "
                              "and frames in both count as %s, the one that starts later (check %s)\n",
                              sequence.c_str(), a.label.c_str(), a.start_s, a.end_s, b.label.c_str(), b.start_s, b.end_s,
-                             later.label.c_str(), labels_path.c_str());
+                             kept[overlap.later].label.c_str(), labels_path.c_str());
             }
             for (const host::LabelInterval& interval : intervals) {
                 if (!interval.valid) {

@@ -519,6 +519,7 @@ TEST_CASE("overlapping intervals: noted with both lines, and shared frames go to
     CHECK(overlaps[0].first == 0);
     CHECK(overlaps[0].second == 1);
     CHECK(overlaps[0].seconds == doctest::Approx(109.4 - 107.533));
+    CHECK(overlaps[0].later == 0);  // the throw, listed first, starts later
     CHECK(interval_at(nested, 100.0) == 1);  // push's own frames
     CHECK(interval_at(nested, 108.0) == 0);  // the nested throw keeps its frames
     CHECK(interval_at(nested, 115.0) == 1);
@@ -528,6 +529,7 @@ TEST_CASE("overlapping intervals: noted with both lines, and shared frames go to
     const std::vector<IntervalOverlap> partial = interval_overlaps({{"a", 0.0, 2.0, 1}, {"b", 1.5, 3.0, 2}});
     REQUIRE(partial.size() == 1);
     CHECK(partial[0].seconds == doctest::Approx(0.5));
+    CHECK(partial[0].later == 1);
 
     ToyWorld world = make_toy_world();
     const ModelView view = world.model.view();

@@ -29,13 +29,23 @@ std::vector<LabelledRecording> read_recordings(const std::vector<ClipListEntry>&
     return recordings;
 }
 
+namespace {
+
+// Where two intervals share frames, whether the one listed later takes them
+// from the one listed earlier: it starts later, or with it.
+bool takes_over(const LabelledRecording::Interval& listed_later, const LabelledRecording::Interval& listed_earlier) {
+    return listed_later.start_s >= listed_earlier.start_s;
+}
+
+}  // namespace
+
 std::vector<IntervalOverlap> interval_overlaps(const std::vector<LabelledRecording::Interval>& intervals) {
     std::vector<IntervalOverlap> overlaps;
     for (std::size_t a = 0; a < intervals.size(); ++a)
         for (std::size_t b = a + 1; b < intervals.size(); ++b) {
             const double shared =
                 std::min(intervals[a].end_s, intervals[b].end_s) - std::max(intervals[a].start_s, intervals[b].start_s);
-            if (shared > 0) overlaps.push_back({a, b, shared});
+            if (shared > 0) overlaps.push_back({a, b, shared, takes_over(intervals[b], intervals[a]) ? b : a});
         }
     return overlaps;
 }
@@ -44,7 +54,7 @@ int interval_at(const std::vector<LabelledRecording::Interval>& intervals, doubl
     int found = -1;
     for (std::size_t i = 0; i < intervals.size(); ++i)
         if (t >= intervals[i].start_s && t <= intervals[i].end_s &&
-            (found < 0 || intervals[i].start_s >= intervals[static_cast<std::size_t>(found)].start_s))
+            (found < 0 || takes_over(intervals[i], intervals[static_cast<std::size_t>(found)])))
             found = static_cast<int>(i);
     return found;
 }
@@ -60,13 +70,11 @@ void note_interval_overlaps(LabelledRecording& recording) {
         return out;
     };
     for (const IntervalOverlap& overlap : interval_overlaps(recording.intervals)) {
-        const auto& a = recording.intervals[overlap.first];
-        const auto& b = recording.intervals[overlap.second];
-        const auto& later = interval_at({a, b}, std::max(a.start_s, b.start_s)) == 0 ? a : b;
         char seconds[32];
         std::snprintf(seconds, sizeof seconds, "%.3f s", overlap.seconds);
-        recording.notes.push_back(name + ": intervals " + describe(a) + " and " + describe(b) + " overlap by " +
-                                  seconds + "; frames in both count as " + later.label +
+        recording.notes.push_back(name + ": intervals " + describe(recording.intervals[overlap.first]) + " and " +
+                                  describe(recording.intervals[overlap.second]) + " overlap by " + seconds +
+                                  "; frames in both count as " + recording.intervals[overlap.later].label +
                                   ", the one that starts later (check the annotation)");
     }
 }

@@ -28,10 +28,12 @@ struct LabelledRecording {
 };
 
 /// Two labelled intervals of one recording that share more than an end point
-/// (indices into its intervals, first < second), and for how long.
+/// (indices into its intervals, first < second), for how long, and which of
+/// the two their shared frames take (interval_at()'s rule).
 struct IntervalOverlap {
     std::size_t first = 0, second = 0;
     double seconds = 0;
+    std::size_t later = 0;  ///< first or second: the one that starts later (second when they start together)
 };
 
 /// Every pair of intervals that overlap, in order of (first, second). Intervals
