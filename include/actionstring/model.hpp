@@ -547,6 +547,8 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
         return refuse(problem, "segment_vote_weight: negative, non-finite or beyond 1000");
     if (!(m.segment_exemplar_weight >= 0.0f && m.segment_exemplar_weight <= 1000.0f))
         return refuse(problem, "segment_exemplar_weight: negative, non-finite or beyond 1000");
+    if (!(m.segment_direction_weight >= 0.0f && m.segment_direction_weight <= 1000.0f))
+        return refuse(problem, "segment_direction_weight: negative, non-finite or beyond 1000");
     if (m.min_action_us > 600000000u) return refuse(problem, "min_action_us: over 10 minutes");
     if (m.label_lead_us > 600000000u) return refuse(problem, "label_lead_us: over 10 minutes");
     return Status::ok;
