@@ -161,6 +161,53 @@ TEST_CASE("each kind of corruption is refused") {
     }
 }
 
+TEST_CASE("a model that validates runs with its own online settings") {
+    // The model's online fields and the settings init() takes are checked in
+    // two places (validation and SegmenterConfig's check); a value only one of
+    // them refuses gives a model that validates yet cannot start with its own
+    // settings, as the blob fuzzer once found with a negative direction weight.
+    using Field = float host::ModelData::*;
+    const Field floats[] = {&host::ModelData::segment_penalty,       &host::ModelData::stay_penalty,
+                            &host::ModelData::skip_penalty,          &host::ModelData::unknown_cost,
+                            &host::ModelData::segment_vote_weight,   &host::ModelData::segment_exemplar_weight,
+                            &host::ModelData::segment_direction_weight};
+    const float inf = std::numeric_limits<float>::infinity();
+    const float float_values[] = {-inf, -1.0f, -4.8e-7f, 0.0f, 0.5f, 1000.0f, 1000.5f, 1.0e6f, 2.0e6f, inf, kNaN};
+    using Count = std::uint32_t host::ModelData::*;
+    const Count counts[] = {&host::ModelData::settle_delay_us, &host::ModelData::settle_stable_us,
+                            &host::ModelData::min_action_us, &host::ModelData::label_lead_us};
+    const std::uint32_t count_values[] = {0u, 1u, 600000000u, 600000001u, 0xFFFFFFFFu};
+    std::size_t accepted = 0, refused = 0;
+    const auto check = [&](const host::ModelData& m) {
+        const ModelView view = m.view();
+        if (validate_model(view) != Status::ok) {
+            ++refused;
+            return;
+        }
+        ++accepted;
+        CHECK(ActionSegmenter::check(view, segmenter_config(view)) == Status::ok);
+        host::Stateful<Annotator> annotator;
+        CHECK(annotator.init(view, annotator_config(view)) == Status::ok);
+    };
+    for (const Field field : floats)
+        for (const float value : float_values) {
+            host::ToyWorld world = host::make_toy_world();
+            world.model.*field = value;
+            CAPTURE(value);
+            check(world.model);
+        }
+    for (const Count field : counts)
+        for (const std::uint32_t value : count_values) {
+            host::ToyWorld world = host::make_toy_world();
+            world.model.*field = value;
+            CAPTURE(value);
+            check(world.model);
+        }
+    // Both outcomes occur, so neither half of the check is vacuous.
+    CHECK(accepted > 20);
+    CHECK(refused > 20);
+}
+
 TEST_CASE("the annotator works in exactly the storage the model needs") {
     host::ToyWorld world = host::make_toy_world();
     const ModelView view = world.model.view();
