@@ -270,6 +270,14 @@ constexpr std::uint32_t max_string_period_us = 1000000;
 /// tree centroids and W: far above anything training produces, low enough
 /// that sums over a model's dimensions stay far inside float range.
 constexpr float max_table_value = 1.0e6f;
+/// Longest settle delay a segmenter accepts (10 minutes); also the bound of
+/// the model's early settling, shortest action and label lead.
+constexpr std::int64_t max_settle_delay_us = 600000000;
+/// Largest weight of a term added to a distance or a cost (the velocity, the
+/// votes, exemplars, descriptor and directions, offline and online). One bound
+/// for the model's validation and the segmenter's settings check, so a model
+/// that validates always starts with its own settings.
+constexpr float max_weight = 1000.0f;
 /// Bounds of the GMM's log-normalisers and log-weights: a log-weight is the
 /// log of a probability (≤ 0), and neither may be so large that one
 /// component wins whatever the pose.
@@ -306,6 +314,9 @@ inline bool all_within(const float* values, std::size_t count, float low, float 
         if (!(values[i] >= low && values[i] <= high)) return false;  // NaN fails too
     return true;
 }
+
+/// A weight in [0, max_weight]; NaN is not one.
+constexpr bool is_weight(float w) noexcept { return w >= 0.0f && w <= max_weight; }
 
 /// Records which check failed (a static string naming the field) and returns invalid_model.
 inline Status refuse(const char** problem, const char* what) noexcept {
@@ -371,9 +382,9 @@ inline Status validate_feature_tables(const ModelView& m, const char** problem =
     for (std::size_t i = 0; i < m.pose_joint_count; ++i)
         if (m.pose_joints[i] >= m.joint_count) return refuse(problem, "pose_joints: not a joint of the skeleton");
     // Motion.
-    if (!(m.velocity_weight >= 0.0f && m.velocity_weight <= 1000.0f))
+    if (!detail::is_weight(m.velocity_weight))
         return refuse(problem, "velocity_weight: negative, non-finite or beyond 1000");
-    if (!(m.acceleration_weight >= 0.0f && m.acceleration_weight <= 1000.0f))
+    if (!detail::is_weight(m.acceleration_weight))
         return refuse(problem, "acceleration_weight: negative, non-finite or beyond 1000");
     if (m.has_motion() && !(m.velocity_span_us >= 10000 && m.velocity_span_us <= 2000000))
         return refuse(problem, "velocity_span_us: not between 10 ms and 2 s");
@@ -453,7 +464,7 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     for (std::size_t c = 0; c < m.total_representative_chars(); ++c)
         if (m.representative_chars[c] >= K) return refuse(problem, "representative_chars: not below K");
     // Votes: log-probabilities, finite, so a sum over any string stays finite.
-    if (!(m.vote_weight >= 0.0f && m.vote_weight <= 1000.0f))
+    if (!detail::is_weight(m.vote_weight))
         return refuse(problem, "vote_weight: negative, non-finite or beyond 1000");
     if (m.vote_weight > 0.0f &&
         !detail::all_within(m.character_votes, std::size_t{m.label_count} * K, min_log_weight, 0.0f))
@@ -462,7 +473,7 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
     if (m.vote_weight > 0.0f && m.has_no_action_votes && !detail::all_within(m.no_action_votes, K, min_log_weight, 0.0f))
         return refuse(problem, "no_action_votes: missing, or not log-probabilities in [-1e4, 0]");
     // Exemplars: labelled points of the feature space, a positive scale.
-    if (!(m.exemplar_weight >= 0.0f && m.exemplar_weight <= 1000.0f))
+    if (!detail::is_weight(m.exemplar_weight))
         return refuse(problem, "exemplar_weight: negative, non-finite or beyond 1000");
     if (m.exemplar_dim > m.feature_dim) return refuse(problem, "exemplar_dim: more than feature_dim");
     if (m.exemplar_count > 0) {
@@ -486,7 +497,7 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
         return refuse(problem, "exemplar_scale: not a positive finite mean squared distance");
     // The clip descriptor: a linear classifier over at most 64 coordinates (its
     // covariances grow with their square), finite weights.
-    if (!(m.descriptor_weight >= 0.0f && m.descriptor_weight <= 1000.0f))
+    if (!detail::is_weight(m.descriptor_weight))
         return refuse(problem, "descriptor_weight: negative, non-finite or beyond 1000");
     if (m.descriptor_levels > 8) return refuse(problem, "descriptor_levels: more than 8");
     if (m.descriptor_dim > m.feature_dim) return refuse(problem, "descriptor_dim: more than feature_dim");
@@ -500,7 +511,7 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
             return refuse(problem, "descriptor_bias: missing, non-finite or beyond 1e6");
     }
     // The motion directions: a linear classifier over the pose joints' histograms.
-    if (!(m.direction_weight >= 0.0f && m.direction_weight <= 1000.0f))
+    if (!detail::is_weight(m.direction_weight))
         return refuse(problem, "direction_weight: negative, non-finite or beyond 1000");
     if (m.direction_levels > 8) return refuse(problem, "direction_levels: more than 8");
     if (m.direction_levels > 0) {
@@ -536,21 +547,21 @@ inline Status validate_matching_tables(const ModelView& m, const char** problem 
             if (!(m.label_bounds[l] >= 0.0f)) return refuse(problem, "label_bounds: negative or NaN");
     }
     // Online settings.
-    if (m.settle_delay_us > 600000000u) return refuse(problem, "settle_delay_us: over 10 minutes");
-    if (m.settle_stable_us > 600000000u) return refuse(problem, "settle_stable_us: over 10 minutes");
+    if (m.settle_delay_us > max_settle_delay_us) return refuse(problem, "settle_delay_us: over 10 minutes");
+    if (m.settle_stable_us > max_settle_delay_us) return refuse(problem, "settle_stable_us: over 10 minutes");
     if (!(m.segment_penalty >= 0.0f && m.segment_penalty <= max_table_value) ||
         !(m.stay_penalty >= 0.0f && m.stay_penalty <= max_table_value) ||
         !(m.skip_penalty >= 0.0f && m.skip_penalty <= max_table_value))
         return refuse(problem, "segment_penalty: a penalty negative, non-finite or beyond 1e6");
     if (!(m.unknown_cost >= 0.0f)) return refuse(problem, "unknown_cost: negative or NaN");
-    if (!(m.segment_vote_weight >= 0.0f && m.segment_vote_weight <= 1000.0f))
+    if (!detail::is_weight(m.segment_vote_weight))
         return refuse(problem, "segment_vote_weight: negative, non-finite or beyond 1000");
-    if (!(m.segment_exemplar_weight >= 0.0f && m.segment_exemplar_weight <= 1000.0f))
+    if (!detail::is_weight(m.segment_exemplar_weight))
         return refuse(problem, "segment_exemplar_weight: negative, non-finite or beyond 1000");
-    if (!(m.segment_direction_weight >= 0.0f && m.segment_direction_weight <= 1000.0f))
+    if (!detail::is_weight(m.segment_direction_weight))
         return refuse(problem, "segment_direction_weight: negative, non-finite or beyond 1000");
-    if (m.min_action_us > 600000000u) return refuse(problem, "min_action_us: over 10 minutes");
-    if (m.label_lead_us > 600000000u) return refuse(problem, "label_lead_us: over 10 minutes");
+    if (m.min_action_us > max_settle_delay_us) return refuse(problem, "min_action_us: over 10 minutes");
+    if (m.label_lead_us > max_settle_delay_us) return refuse(problem, "label_lead_us: over 10 minutes");
     return Status::ok;
 }
 

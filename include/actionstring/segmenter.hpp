@@ -105,9 +105,6 @@ constexpr SegmenterConfig segmenter_config(const ModelView& m) noexcept {
     return c;
 }
 
-/// Longest settle delay a segmenter accepts (10 minutes).
-constexpr std::int64_t max_settle_delay_us = 600000000;
-
 /// Online segmentation state. Works in caller-owned storage of
 /// required_bytes(model, config) bytes (storage.hpp): two words per
 /// representative character and two rings as long as the settle delay (four
@@ -164,10 +161,8 @@ public:
         if (!(config.settle_delay_us >= 0) || !(config.settle_stable_us >= 0) || !(config.segment_penalty >= 0.0f) ||
             !(config.stay_penalty >= 0.0f) || !(config.skip_penalty >= 0.0f) || !(config.unknown_cost >= 0.0f) ||
             !detail::is_finite(config.segment_penalty) || !detail::is_finite(config.stay_penalty) ||
-            !detail::is_finite(config.skip_penalty) || !(config.vote_weight >= 0.0f) ||
-            !(config.vote_weight <= 1000.0f) || !(config.exemplar_weight >= 0.0f) ||
-            !(config.exemplar_weight <= 1000.0f) || !(config.direction_weight >= 0.0f) ||
-            !(config.direction_weight <= 1000.0f))
+            !detail::is_finite(config.skip_penalty) || !detail::is_weight(config.vote_weight) ||
+            !detail::is_weight(config.exemplar_weight) || !detail::is_weight(config.direction_weight))
             return Status::invalid_argument;
         if (model.representative_count >= unknown_rep) return Status::model_exceeds_capacity;
         if (model.string_period_us == 0) return Status::invalid_model;
