@@ -29,10 +29,20 @@ inline std::vector<float> frame_for(const ModelView& model, int step) {
     return frame;
 }
 
+/// An event's label is an action of the model, and its times are in order.
+inline void check_events(const Annotator& annotator, const ModelView& view) {
+    for (std::size_t i = 0; i < annotator.event_count(); ++i) {
+        const ActionEvent& event = annotator.event(i);
+        if (event.label >= view.label_count) std::abort();
+        if (event.last_character < event.first_character || event.end_time_us < event.start_time_us) std::abort();
+    }
+}
+
 /// Streams 40 frames through an annotator with both rules on a model that
-/// passed validation; aborts (a finding) when init() refuses it, or a label is
-/// out of range, a label name empty or the confidence not finite. A model
-/// whose state would exceed 64 MiB is valid but skipped.
+/// passed validation, then flushes it; aborts (a finding) when init() refuses
+/// it, or a label (live, settled, flushed or an event's) is out of range, a
+/// label name empty or the confidence not finite. A model whose state would
+/// exceed 64 MiB is valid but skipped.
 inline void stream_and_check(const ModelView& view) {
     AnnotatorConfig config = annotator_config(view);
     config.window_rule = true;
@@ -49,6 +59,13 @@ inline void stream_and_check(const ModelView& view) {
         if (live != unknown_label && live >= view.label_count) std::abort();
         if (!std::isfinite(annotator->confidence())) std::abort();
         if (live != unknown_label && std::strlen(view.label_names[live]) == 0) std::abort();
+        check_events(*annotator, view);
+    }
+    annotator->flush();
+    check_events(*annotator, view);
+    for (std::uint32_t i = 0; i < annotator->flushed_characters(); ++i) {
+        const LabelId flushed = annotator->flushed_label(i);
+        if (flushed != unknown_label && flushed >= view.label_count) std::abort();
     }
 }
 
