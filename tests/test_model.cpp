@@ -189,20 +189,17 @@ TEST_CASE("a model that validates runs with its own online settings") {
         host::Stateful<Annotator> annotator;
         CHECK(annotator.init(view, annotator_config(view)) == Status::ok);
     };
-    for (const Field field : floats)
-        for (const float value : float_values) {
-            host::ToyWorld world = host::make_toy_world();
-            world.model.*field = value;
-            CAPTURE(value);
-            check(world.model);
-        }
-    for (const Count field : counts)
-        for (const std::uint32_t value : count_values) {
-            host::ToyWorld world = host::make_toy_world();
-            world.model.*field = value;
-            CAPTURE(value);
-            check(world.model);
-        }
+    const auto sweep = [&](const auto& fields, const auto& values) {
+        for (const auto field : fields)
+            for (const auto value : values) {
+                host::ToyWorld world = host::make_toy_world();
+                world.model.*field = value;
+                CAPTURE(value);
+                check(world.model);
+            }
+    };
+    sweep(floats, float_values);
+    sweep(counts, count_values);
     // Both outcomes occur, so neither half of the check is vacuous.
     CHECK(accepted > 20);
     CHECK(refused > 20);
